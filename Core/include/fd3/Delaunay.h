@@ -1,0 +1,97 @@
+// FastDelaunay3D Core: exact 3D Delaunay tetrahedralization of a point set.
+// Plain C++17, no VTK. The only public header of the kernel.
+#ifndef fd3_Delaunay_h
+#define fd3_Delaunay_h
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace fd3
+{
+
+/// Order in which points are inserted. Brio (biased randomized insertion order over a Hilbert curve)
+/// keeps consecutive points close and the walk short; the others exist for the benchmark.
+enum class InsertionOrder
+{
+  Brio,
+  Input,
+  Random
+};
+
+enum class Status
+{
+  Ok,
+  Empty,          ///< no finite input point
+  TooFewPoints,   ///< fewer than 4 distinct finite points
+  Degenerate,     ///< all distinct points collinear or coplanar: no tetrahedron exists
+  Aborted         ///< the progress callback asked to stop
+};
+
+struct Options
+{
+  /// Target number of points per cell of the background grid (the paper's "onion" search).
+  /// 0 disables the grid; the walk then starts from the last created tetrahedron.
+  double pointsPerCell = 2.0;
+  /// Sliver guard of the paper's core correction: a new tetrahedron whose volume is below this
+  /// fraction of the volume of the regular tetrahedron on its longest edge is not created (the core
+  /// shrinks instead). 0 keeps the output exactly Delaunay.
+  double volumeThreshold = 0.0;
+  InsertionOrder order = InsertionOrder::Brio;
+  std::uint64_t randomSeed = 1;
+  /// Called now and then with the fraction of points inserted; return false to abort.
+  std::function<bool(double)> progress;
+};
+
+/// Figures of one run. Times are wall-clock seconds per phase.
+struct Statistics
+{
+  std::size_t inputPoints = 0;
+  std::size_t nonFinitePoints = 0;     ///< NaN or Inf coordinates: skipped, left unused
+  std::size_t duplicatesMerged = 0;    ///< exact copies of an inserted point: left unused
+  std::size_t insertedPoints = 0;      ///< vertices of the triangulation
+  std::size_t tetrahedra = 0;          ///< finite tetrahedra in the output
+  std::size_t walkSteps = 0;           ///< tetrahedra visited by all walks (the paper's "Path")
+  std::size_t maxWalkSteps = 0;
+  std::size_t cavityTetrahedra = 0;    ///< tetrahedra deleted by all insertions
+  std::size_t exactOrient = 0;         ///< orient3d calls the float filter could not decide
+  std::size_t exactInSphere = 0;       ///< insphere calls the float filter could not decide
+  std::size_t symbolicTies = 0;        ///< insphere ties broken by symbolic perturbation
+  double secondsSort = 0, secondsLocate = 0, secondsCavity = 0, secondsFill = 0, secondsOutput = 0;
+  double secondsTotal = 0;
+
+  double meanWalk() const { return insertedPoints ? double(walkSteps) / insertedPoints : 0.0; }
+  double meanCavity() const { return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0; }
+};
+
+constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu;
+
+struct Triangulation
+{
+  Status status = Status::Ok;
+  /// 4 input point ids per tetrahedron; each tetrahedron is positively oriented:
+  /// (p1 - p0) x (p2 - p0) . (p3 - p0) > 0, VTK's VTK_TETRA convention.
+  std::vector<std::uint32_t> tetrahedra;
+  /// neighbors[4*t + f] = 4*t' + f' where tetrahedron t' shares the face of t opposite its vertex f,
+  /// and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull.
+  std::vector<std::uint32_t> neighbors;
+  /// For each input point: the input id of the point it was merged into (itself when inserted),
+  /// or kNoNeighbor when it is unused (non-finite, or the run did not produce tetrahedra).
+  std::vector<std::uint32_t> representative;
+  Statistics stats;
+
+  std::size_t numberOfTetrahedra() const { return tetrahedra.size() / 4; }
+};
+
+/// Delaunay tetrahedralization of `count` points given as x,y,z triples.
+/// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the result
+/// is a Delaunay triangulation of the distinct finite input points whose boundary is their convex hull.
+Triangulation triangulate(const double* xyz, std::size_t count, const Options& options = Options());
+
+const char* toString(Status status);
+
+} // namespace fd3
+
+#endif

@@ -1,0 +1,101 @@
+#include "BackgroundGrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fd3
+{
+
+void BackgroundGrid::build(const double* xyz, std::size_t count, double pointsPerCell)
+{
+  cells_.clear();
+  if (pointsPerCell <= 0 || count == 0)
+    return;
+  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
+  for (std::size_t i = 1; i < count; ++i)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], xyz[3 * i + a]);
+      hi[a] = std::max(hi[a], xyz[3 * i + a]);
+    }
+  // Cells as close to cubes as the box allows, about count / pointsPerCell of them; flat axes get one.
+  const double cellsWanted = std::max(1.0, double(count) / pointsPerCell);
+  double extent[3], volume = 1.0;
+  int flatAxes = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent[a] = hi[a] - lo[a];
+    if (extent[a] > 0)
+      volume *= extent[a];
+    else
+      ++flatAxes;
+  }
+  const double cellSize = std::pow(volume / cellsWanted, 1.0 / (3 - std::min(flatAxes, 2)));
+  for (int a = 0; a < 3; ++a)
+  {
+    const double n = extent[a] > 0 && cellSize > 0 ? std::ceil(extent[a] / cellSize) : 1.0;
+    dims_[a] = static_cast<int>(std::clamp(n, 1.0, 2048.0));
+    origin_[a] = lo[a];
+    inverseSize_[a] = extent[a] > 0 ? dims_[a] / extent[a] : 0.0;
+  }
+  cells_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2], kEmpty);
+}
+
+void BackgroundGrid::cellCoordinates(const double* p, int ijk[3]) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const int c = static_cast<int>((p[a] - origin_[a]) * inverseSize_[a]);
+    ijk[a] = std::clamp(c, 0, dims_[a] - 1);
+  }
+}
+
+std::uint32_t BackgroundGrid::scanRow(int i0, int i1, int j, int k) const
+{
+  if (j < 0 || j >= dims_[1] || k < 0 || k >= dims_[2])
+    return kEmpty;
+  i0 = std::max(i0, 0);
+  i1 = std::min(i1, dims_[0] - 1);
+  const std::uint32_t* row = cells_.data() + index(0, j, k);
+  for (int i = i0; i <= i1; ++i)
+    if (row[i] != kEmpty)
+      return row[i];
+  return kEmpty;
+}
+
+// Layer n around cell c: the top and bottom squares (k = k0 +- n) and, between them, the open
+// cylinder of the square rings at Chebyshev distance n (the paper's Fig. 10).
+std::uint32_t BackgroundGrid::scanLayer(const int c[3], int n) const
+{
+  const int i0 = c[0] - n, i1 = c[0] + n;
+  for (int k : {c[2] - n, c[2] + n})
+    for (int j = c[1] - n; j <= c[1] + n; ++j)
+      if (const std::uint32_t v = scanRow(i0, i1, j, k); v != kEmpty)
+        return v;
+  for (int k = c[2] - n + 1; k <= c[2] + n - 1; ++k)
+  {
+    for (int j : {c[1] - n, c[1] + n})
+      if (const std::uint32_t v = scanRow(i0, i1, j, k); v != kEmpty)
+        return v;
+    for (int j = c[1] - n + 1; j <= c[1] + n - 1; ++j)
+      for (int i : {i0, i1})
+        if (const std::uint32_t v = scanRow(i, i, j, k); v != kEmpty)
+          return v;
+  }
+  return kEmpty;
+}
+
+std::uint32_t BackgroundGrid::nearestInserted(const double* p, int maxLayers) const
+{
+  int c[3];
+  cellCoordinates(p, c);
+  if (const std::uint32_t v = cells_[index(c[0], c[1], c[2])]; v != kEmpty)
+    return v;
+  const int widest = std::max({dims_[0], dims_[1], dims_[2]});
+  for (int n = 1; n <= maxLayers && n < widest; ++n)
+    if (const std::uint32_t v = scanLayer(c, n); v != kEmpty)
+      return v;
+  return kEmpty;
+}
+
+} // namespace fd3

@@ -1,0 +1,84 @@
+// Filling the core: one new tetrahedron per boundary facet, joining the facet to the new point,
+// linked to its neighbours without any search: the neighbour across a new face (p, u, v) is found by
+// rotating about the boundary edge uv through the deleted tetrahedra (the paper's section 3.3).
+#include "Triangulator.h"
+
+namespace fd3
+{
+
+void Triangulator::fillCavity(VertId v)
+{
+  created_.clear();
+  // Pass 1: create the tetrahedra and link them across the core's boundary. The new tetrahedron of
+  // facet (t, f) is t with vertex f replaced by v, which keeps the orientation positive because v
+  // sees the facet from t's side. The deleted t's slot for face f is pointed at the new
+  // tetrahedron, which is how pass 2 recognizes a boundary facet and finds its tetrahedron.
+  for (const BoundaryFacet& b : boundary_)
+  {
+    const TetId n = mesh_.allocate();
+    for (int i = 0; i < 4; ++i)
+    {
+      mesh_.vertices[4 * std::size_t(n) + i] = mesh_.vertices[4 * std::size_t(b.inner) + i];
+      mesh_.neighbors[4 * std::size_t(n) + i] = kUnlinked;
+    }
+    mesh_.vertices[4 * std::size_t(n) + b.face] = v;
+    mesh_.link(faceCode(n, b.face), mesh_.neighbor(b.inner, b.face));
+    mesh_.neighbors[4 * std::size_t(b.inner) + b.face] = faceCode(n, b.face);
+    created_.push_back(n);
+    for (int i = 0; i < 4; ++i)
+      if (const VertId u = mesh_.vertices[4 * std::size_t(n) + i]; u != kInfinite)
+        vertexTet_[u] = n;
+  }
+  // Pass 2: link the new tetrahedra to each other.
+  for (std::size_t i = 0; i < created_.size(); ++i)
+    for (int f = 0; f < 4; ++f)
+      if (f != boundary_[i].face && mesh_.neighbors[4 * std::size_t(created_[i]) + f] == kUnlinked)
+        linkAroundEdge(i, f);
+
+  for (TetId t : cavity_)
+    mesh_.release(t);
+  for (TetId t : rejected_)
+    mesh_.flags[t] = 0;
+  lastCreated_ = created_.back();
+}
+
+// New tetrahedron i was built on boundary facet (t, g); its face `face` holds the new point and
+// the facet's edge uw. Turn about uw through the deleted tetrahedra, starting with t's other face on
+// uw, until a boundary facet is met: the new tetrahedron built on it is the neighbour.
+void Triangulator::linkAroundEdge(std::size_t i, int face)
+{
+  const BoundaryFacet& facet = boundary_[i];
+  int iu = -1, iw = -1; // local indices of u and w, the same in t and in its new tetrahedron
+  for (int k = 0; k < 4; ++k)
+    if (k != face && k != facet.face)
+      (iu < 0 ? iu : iw) = k;
+  const VertId u = mesh_.vertices[4 * std::size_t(facet.inner) + iu];
+  const VertId w = mesh_.vertices[4 * std::size_t(facet.inner) + iw];
+
+  TetId t = facet.inner;
+  int g = face; // the face of t being crossed; it contains u and w
+  for (;;)
+  {
+    const FaceCode across = mesh_.neighbor(t, g);
+    const TetId next = tetOf(across);
+    if (mesh_.flags[next] != kInCavity)
+    {
+      // (t, g) is a boundary facet and `next` its new tetrahedron: t with vertex g replaced by the
+      // new point, whose face on (point, u, w) is opposite t's fourth vertex.
+      mesh_.link(faceCode(created_[i], face), faceCode(next, 6 - g - iu - iw));
+      return;
+    }
+    const VertId* nv = &mesh_.vertices[4 * std::size_t(next)];
+    for (int k = 0; k < 4; ++k)
+    {
+      if (nv[k] == u)
+        iu = k;
+      else if (nv[k] == w)
+        iw = k;
+    }
+    g = 6 - faceOf(across) - iu - iw;
+    t = next;
+  }
+}
+
+} // namespace fd3

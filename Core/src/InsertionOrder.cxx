@@ -1,0 +1,93 @@
+#include "InsertionOrder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace fd3
+{
+
+// Skilling's transform ("Programming the Hilbert curve", 2004): coordinates -> transposed Hilbert
+// index, whose bits interleaved from the top give the position along the curve.
+std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
+{
+  std::uint32_t X[3] = {x, y, z};
+  const std::uint32_t top = 1u << (bits - 1);
+  for (std::uint32_t q = top; q > 1; q >>= 1)
+  {
+    const std::uint32_t p = q - 1;
+    for (int i = 0; i < 3; ++i)
+    {
+      if (X[i] & q)
+        X[0] ^= p;
+      else
+      {
+        const std::uint32_t t = (X[0] ^ X[i]) & p;
+        X[0] ^= t;
+        X[i] ^= t;
+      }
+    }
+  }
+  X[1] ^= X[0];
+  X[2] ^= X[1];
+  std::uint32_t t = 0;
+  for (std::uint32_t q = top; q > 1; q >>= 1)
+    if (X[2] & q)
+      t ^= q - 1;
+  for (auto& c : X)
+    c ^= t;
+  std::uint64_t key = 0;
+  for (int b = bits - 1; b >= 0; --b)
+    for (int i = 0; i < 3; ++i)
+      key = (key << 1) | ((X[i] >> b) & 1u);
+  return key;
+}
+
+std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::uint32_t> ids,
+  InsertionOrder order, std::uint64_t seed)
+{
+  if (order == InsertionOrder::Input)
+    return ids;
+  std::mt19937_64 rng(seed);
+  if (order == InsertionOrder::Random)
+  {
+    std::shuffle(ids.begin(), ids.end(), rng);
+    return ids;
+  }
+  if (ids.empty())
+    return ids;
+
+  constexpr int kBits = 19; // 3 * 19 = 57 bits of curve, 7 bits left for the round
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+    lo[a] = hi[a] = xyz[3 * std::size_t(ids[0]) + a];
+  for (std::uint32_t id : ids)
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], xyz[3 * std::size_t(id) + a]);
+      hi[a] = std::max(hi[a], xyz[3 * std::size_t(id) + a]);
+    }
+  const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  const double toGrid = span > 0 ? ((1u << kBits) - 1) / span : 0.0;
+
+  // Round r holds about half the points of round r + 1; the smallest round goes first.
+  const int rounds = std::max(1, static_cast<int>(std::log2(double(ids.size()) / 64.0)));
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    const double* p = xyz + 3 * std::size_t(ids[i]);
+    std::uint32_t q[3];
+    for (int a = 0; a < 3; ++a)
+      q[a] = static_cast<std::uint32_t>((p[a] - lo[a]) * toGrid);
+    const int lastRoundsSkipped = std::min(static_cast<int>(__builtin_ctzll(rng() | (1ull << 62))),
+      rounds - 1);
+    const std::uint64_t round = static_cast<std::uint64_t>(rounds - 1 - lastRoundsSkipped);
+    keyed[i] = {(round << 57) | hilbertIndex(q[0], q[1], q[2], kBits), ids[i]};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    ids[i] = keyed[i].second;
+  return ids;
+}
+
+} // namespace fd3

@@ -1,0 +1,186 @@
+#include "Predicates.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+namespace fd3
+{
+namespace
+{
+constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
+// Relative error bounds of the float evaluations below (Shewchuk 1997, for differences of inputs).
+constexpr double kOrientBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
+constexpr double kInSphereBound = (16.0 + 224.0 * kEpsilon) * kEpsilon;
+// Below this magnitude products may have underflowed and the relative bounds no longer hold.
+constexpr double kUnderflowGuard = 1e-250;
+
+int signOf(double x)
+{
+  return (x > 0) - (x < 0);
+}
+} // namespace
+
+int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
+{
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+  const double cdxady = cdx * ady, adxcdy = adx * cdy;
+  const double adxbdy = adx * bdy, bdxady = bdx * ady;
+  // det[a-d; b-d; c-d] is the negative of VTK's orientation.
+  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
+    (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
+    (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
+  const double bound = kOrientBound * permanent;
+  if ((det > bound || -det > bound) && permanent > kUnderflowGuard)
+    return -signOf(det);
+  return orient3dExact(a, b, c, d);
+}
+
+Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3])
+{
+  ExpansionArena& x = arena_;
+  // u . (v x w)
+  const Expansion cx = x.subtract(x.multiply(v[1], w[2]), x.multiply(v[2], w[1]));
+  const Expansion cy = x.subtract(x.multiply(v[2], w[0]), x.multiply(v[0], w[2]));
+  const Expansion cz = x.subtract(x.multiply(v[0], w[1]), x.multiply(v[1], w[0]));
+  return x.add(x.add(x.multiply(u[0], cx), x.multiply(u[1], cy)), x.multiply(u[2], cz));
+}
+
+int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)
+{
+  ++exactOrientCalls;
+  arena_.reset();
+  Expansion u[3], v[3], w[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    u[k] = arena_.fromDifference(b[k], a[k]);
+    v[k] = arena_.fromDifference(c[k], a[k]);
+    w[k] = arena_.fromDifference(d[k], a[k]);
+  }
+  return static_cast<int>(minor3(u, v, w).sign());
+}
+
+int Predicates::inSphere(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
+  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
+  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
+  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
+
+  const double aexbey = aex * bey, bexaey = bex * aey, bexcey = bex * cey, cexbey = cex * bey;
+  const double cexdey = cex * dey, dexcey = dex * cey, dexaey = dex * aey, aexdey = aex * dey;
+  const double aexcey = aex * cey, cexaey = cex * aey, bexdey = bex * dey, dexbey = dex * bey;
+  const double ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey;
+  const double da = dexaey - aexdey, ac = aexcey - cexaey, bd = bexdey - dexbey;
+
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+
+  const double alift = aex * aex + aey * aey + aez * aez;
+  const double blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez;
+  const double dlift = dex * dex + dey * dey + dez * dez;
+
+  // det[(x-e, |x-e|^2) for x = a,b,c,d]; positive means inside for the negative orientation,
+  // i.e. outside for VTK's positive one.
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+
+  const double aezp = std::fabs(aez), bezp = std::fabs(bez), cezp = std::fabs(cez),
+               dezp = std::fabs(dez);
+  const double abp = std::fabs(aexbey) + std::fabs(bexaey);
+  const double bcp = std::fabs(bexcey) + std::fabs(cexbey);
+  const double cdp = std::fabs(cexdey) + std::fabs(dexcey);
+  const double dap = std::fabs(dexaey) + std::fabs(aexdey);
+  const double acp = std::fabs(aexcey) + std::fabs(cexaey);
+  const double bdp = std::fabs(bexdey) + std::fabs(dexbey);
+  const double permanent = (cdp * bezp + bdp * cezp + bcp * dezp) * alift +
+    (dap * cezp + acp * dezp + cdp * aezp) * blift +
+    (abp * dezp + bdp * aezp + dap * bezp) * clift +
+    (bcp * aezp + acp * bezp + abp * cezp) * dlift;
+  const double bound = kInSphereBound * permanent;
+  if ((det > bound || -det > bound) && permanent > kUnderflowGuard)
+    return -signOf(det);
+  return inSphereExact(a, b, c, d, e);
+}
+
+int Predicates::inSphereExact(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  ++exactInSphereCalls;
+  ExpansionArena& x = arena_;
+  x.reset();
+  const double* rows[4] = {a, b, c, d};
+  Expansion diff[4][3], lift[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+      diff[r][k] = x.fromDifference(rows[r][k], e[k]);
+    lift[r] = x.add(x.add(x.multiply(diff[r][0], diff[r][0]), x.multiply(diff[r][1], diff[r][1])),
+      x.multiply(diff[r][2], diff[r][2]));
+  }
+  // Laplace expansion along the lift column of det[(x-e, |x-e|^2)].
+  const Expansion m0 = minor3(diff[1], diff[2], diff[3]);
+  const Expansion m1 = minor3(diff[0], diff[2], diff[3]);
+  const Expansion m2 = minor3(diff[0], diff[1], diff[3]);
+  const Expansion m3 = minor3(diff[0], diff[1], diff[2]);
+  const Expansion det = x.add(x.subtract(x.multiply(lift[1], m1), x.multiply(lift[0], m0)),
+    x.subtract(x.multiply(lift[3], m3), x.multiply(lift[2], m2)));
+  return -static_cast<int>(det.sign());
+}
+
+bool Predicates::collinear(const double* a, const double* b, const double* c)
+{
+  arena_.reset();
+  Expansion u[3], v[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    u[k] = arena_.fromDifference(b[k], a[k]);
+    v[k] = arena_.fromDifference(c[k], a[k]);
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const Expansion cross =
+      arena_.subtract(arena_.multiply(u[i], v[j]), arena_.multiply(u[j], v[i]));
+    if (cross.sign() != 0)
+      return false;
+  }
+  return true;
+}
+
+int Predicates::inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::uint32_t e)
+{
+  const double* p[4] = {xyz + 3 * std::size_t(tet[0]), xyz + 3 * std::size_t(tet[1]),
+    xyz + 3 * std::size_t(tet[2]), xyz + 3 * std::size_t(tet[3])};
+  const double* pe = xyz + 3 * std::size_t(e);
+  const int s = inSphere(p[0], p[1], p[2], p[3], pe);
+  if (s != 0)
+    return s;
+  ++symbolicTies;
+  // Lowering the lift of point v by delta_v changes (plane - lift)(e) by
+  //   delta_e - sum_{v in tet} delta_v * lambda_v(e),
+  // lambda_v(e) being the barycentric coordinate of e, whose sign is orient3d(tet with v := e).
+  // The term of the smallest id dominates; the first non-zero one decides.
+  int order[4] = {0, 1, 2, 3};
+  std::sort(order, order + 4, [&](int i, int j) { return tet[i] < tet[j]; });
+  for (int k : order)
+  {
+    if (e < tet[k])
+      return 1;
+    const double* q[4] = {p[0], p[1], p[2], p[3]};
+    q[k] = pe;
+    const int o = orient3d(q[0], q[1], q[2], q[3]);
+    if (o != 0)
+      return -o;
+  }
+  return 1; // e has the largest id: its own lowering decides
+}
+
+} // namespace fd3

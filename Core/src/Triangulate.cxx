@@ -1,0 +1,231 @@
+// The kernel's entry point: clean and normalize the points, order them, insert them one by one,
+// and hand back the finite tetrahedra with input point ids.
+#include "InsertionOrder.h"
+#include "Triangulator.h"
+#include "fd3/Delaunay.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+
+namespace fd3
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// An exact change of coordinates x -> (x - shift) * scale that brings the points into [-1, 1],
+/// so that no predicate overflows (1e300) or underflows (1e-300). The scale is a power of two and a
+/// shift is used on an axis only when every subtraction on it is exact (clouds far from the
+/// origin, where it saves the float filter from cancellation), so predicates keep their signs.
+struct Normalization
+{
+  double shift[3] = {0, 0, 0};
+  double scale = 1.0;
+
+  Normalization(const double* xyz, const std::vector<std::uint32_t>& ids)
+  {
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+      lo[a] = hi[a] = xyz[3 * std::size_t(ids[0]) + a];
+    for (std::uint32_t id : ids)
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], xyz[3 * std::size_t(id) + a]);
+        hi[a] = std::max(hi[a], xyz[3 * std::size_t(id) + a]);
+      }
+    double extent = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double center = lo[a] + (hi[a] - lo[a]) / 2;
+      bool exact = std::isfinite(center);
+      for (std::size_t i = 0; i < ids.size() && exact; ++i)
+      {
+        double diff, err;
+        twoDiff(xyz[3 * std::size_t(ids[i]) + a], center, diff, err);
+        exact = err == 0.0;
+      }
+      shift[a] = exact ? center : 0.0;
+      extent = std::max({extent, std::fabs(lo[a] - shift[a]), std::fabs(hi[a] - shift[a])});
+    }
+    int exponent = 0;
+    std::frexp(extent, &exponent);
+    scale = extent > 0 ? std::ldexp(1.0, -exponent) : 1.0;
+  }
+
+  void apply(const double* p, double* out) const
+  {
+    for (int a = 0; a < 3; ++a)
+      out[a] = (p[a] - shift[a]) * scale;
+  }
+};
+
+std::size_t countDistinct(const double* xyz, const std::vector<std::uint32_t>& ids)
+{
+  std::vector<std::array<double, 3>> pts;
+  pts.reserve(ids.size());
+  for (std::uint32_t id : ids)
+    pts.push_back({xyz[3 * std::size_t(id)], xyz[3 * std::size_t(id) + 1], xyz[3 * std::size_t(id) + 2]});
+  std::sort(pts.begin(), pts.end());
+  return static_cast<std::size_t>(std::unique(pts.begin(), pts.end()) - pts.begin());
+}
+
+/// Moves the first four affinely independent points of `order` to its front, keeping the rest in
+/// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
+bool moveFirstTetrahedronToFront(
+  const double* xyz, const Normalization& norm, std::vector<std::uint32_t>& order)
+{
+  Predicates predicates;
+  double p[4][3];
+  std::size_t found[4] = {0, 0, 0, 0};
+  int have = 1;
+  norm.apply(xyz + 3 * std::size_t(order[0]), p[0]);
+  for (std::size_t i = 1; i < order.size() && have < 4; ++i)
+  {
+    norm.apply(xyz + 3 * std::size_t(order[i]), p[have]);
+    bool independent = false;
+    if (have == 1)
+      independent = p[1][0] != p[0][0] || p[1][1] != p[0][1] || p[1][2] != p[0][2];
+    else if (have == 2)
+      independent = !predicates.collinear(p[0], p[1], p[2]);
+    else
+      independent = predicates.orient3d(p[0], p[1], p[2], p[3]) != 0;
+    if (independent)
+      found[have++] = i;
+  }
+  if (have < 4)
+    return false;
+  std::uint32_t first[4];
+  for (int k = 0; k < 4; ++k)
+    first[k] = order[found[k]];
+  for (int k = 3; k >= 1; --k) // erase from the back so earlier positions stay valid
+    order.erase(order.begin() + static_cast<std::ptrdiff_t>(found[k]));
+  order.erase(order.begin());
+  order.insert(order.begin(), first, first + 4);
+  return true;
+}
+
+/// Compacts the live finite tetrahedra in place and renames vertices to input ids.
+void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, Triangulation& out)
+{
+  std::vector<std::uint32_t> newId(mesh.slots(), kNoNeighbor);
+  std::uint32_t kept = 0;
+  for (TetId t = 0; t < mesh.slots(); ++t)
+    if (!mesh.isDead(t) && !mesh.isGhost(t))
+      newId[t] = kept++;
+  for (TetId t = 0; t < mesh.slots(); ++t)
+  {
+    const std::uint32_t k = newId[t];
+    if (k == kNoNeighbor)
+      continue;
+    for (int i = 0; i < 4; ++i)
+    {
+      const FaceCode code = mesh.neighbors[4 * std::size_t(t) + i];
+      const std::uint32_t n = newId[tetOf(code)];
+      mesh.neighbors[4 * std::size_t(k) + i] =
+        n == kNoNeighbor ? kNoNeighbor : faceCode(n, faceOf(code));
+      mesh.vertices[4 * std::size_t(k) + i] = inputId[mesh.vertices[4 * std::size_t(t) + i]];
+    }
+  }
+  mesh.vertices.resize(4 * std::size_t(kept));
+  mesh.neighbors.resize(4 * std::size_t(kept));
+  out.tetrahedra = std::move(mesh.vertices);
+  out.neighbors = std::move(mesh.neighbors);
+}
+
+} // namespace
+
+Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)
+{
+  const auto start = Clock::now();
+  Triangulation out;
+  Statistics& stats = out.stats;
+  stats.inputPoints = count;
+  out.representative.assign(count, kNoNeighbor);
+
+  std::vector<std::uint32_t> ids;
+  ids.reserve(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]))
+      ids.push_back(static_cast<std::uint32_t>(i));
+    else
+      ++stats.nonFinitePoints;
+  }
+  if (ids.empty())
+  {
+    out.status = Status::Empty;
+    return out;
+  }
+
+  const Normalization norm(xyz, ids);
+  std::vector<std::uint32_t> order =
+    insertionOrder(xyz, std::move(ids), options.order, options.randomSeed);
+  if (!moveFirstTetrahedronToFront(xyz, norm, order))
+  {
+    const std::size_t distinct = countDistinct(xyz, order);
+    stats.duplicatesMerged = order.size() - distinct;
+    out.status = distinct < 4 ? Status::TooFewPoints : Status::Degenerate;
+    stats.secondsTotal = secondsSince(start);
+    return out;
+  }
+  std::vector<double> normalized(3 * order.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    norm.apply(xyz + 3 * std::size_t(order[i]), normalized.data() + 3 * i);
+  stats.secondsSort = secondsSince(start);
+
+  Triangulator triangulator(std::move(normalized), options, stats);
+  triangulator.start();
+  for (VertId v = 0; v < 4; ++v)
+    out.representative[order[v]] = order[v];
+  constexpr VertId kProgressInterval = 1u << 14;
+  for (VertId v = 4; v < order.size(); ++v)
+  {
+    if (v % kProgressInterval == 0 && options.progress && !options.progress(double(v) / order.size()))
+    {
+      out.status = Status::Aborted;
+      out.representative.assign(count, kNoNeighbor);
+      return out;
+    }
+    const bool inserted = triangulator.insert(v) == Triangulator::Outcome::Inserted;
+    out.representative[order[v]] = inserted ? order[v] : order[triangulator.duplicateOf()];
+    stats.duplicatesMerged += !inserted;
+  }
+  const Predicates& predicates = triangulator.predicates();
+  stats.exactOrient = predicates.exactOrientCalls;
+  stats.exactInSphere = predicates.exactInSphereCalls;
+  stats.symbolicTies = predicates.symbolicTies;
+
+  const auto outputStart = Clock::now();
+  extractOutput(triangulator.mesh(), order, out);
+  stats.tetrahedra = out.numberOfTetrahedra();
+  stats.secondsOutput = secondsSince(outputStart);
+  stats.secondsTotal = secondsSince(start);
+  return out;
+}
+
+const char* toString(Status status)
+{
+  switch (status)
+  {
+    case Status::Ok:
+      return "ok";
+    case Status::Empty:
+      return "no finite input point";
+    case Status::TooFewPoints:
+      return "fewer than 4 distinct points";
+    case Status::Degenerate:
+      return "all points are collinear or coplanar";
+    case Status::Aborted:
+      return "aborted";
+  }
+  return "unknown";
+}
+
+} // namespace fd3

@@ -1,0 +1,94 @@
+// Bowyer-Watson insertion as in the paper "Fast Delaunay triangulation in three dimensions":
+//   insert(p) = locate (grid + onion search, random walk to the base)
+//             -> digCavity (the core, grown from the base through adjacency with insphere)
+//             -> fillCavity (new tetrahedra linked by rotating about the core's boundary edges).
+// Each step lives in the source file named after it.
+#ifndef fd3_Triangulator_h
+#define fd3_Triangulator_h
+
+#include "BackgroundGrid.h"
+#include "Predicates.h"
+#include "TetMesh.h"
+#include "fd3/Delaunay.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fd3
+{
+
+/// A face of the cavity's boundary: face `face` of the deleted tetrahedron `inner`.
+struct BoundaryFacet
+{
+  TetId inner;
+  int face;
+};
+
+class Triangulator
+{
+public:
+  /// `xyz` holds the normalized points by insertion rank (vertex id).
+  Triangulator(std::vector<double> xyz, const Options& options, Statistics& stats);
+
+  /// Builds the first tetrahedron from vertices 0..3, which must be affinely independent.
+  void start();
+
+  enum class Outcome
+  {
+    Inserted,
+    Duplicate
+  };
+  /// Inserts vertex v; every vertex below v must have been handled before.
+  Outcome insert(VertId v);
+
+  /// Vertex v is an exact copy of this earlier vertex (valid after insert() returned Duplicate).
+  VertId duplicateOf() const { return duplicateOf_; }
+
+  const Predicates& predicates() const { return predicates_; }
+  TetMesh& mesh() { return mesh_; }
+  const TetMesh& mesh() const { return mesh_; }
+  const std::vector<double>& points() const { return xyz_; }
+
+  /// Exhaustive structural and geometric check of the invariants listed in TetMesh.h and of the
+  /// local Delaunay property (unless a volume threshold was used). Returns an empty string when valid.
+  std::string checkMesh();
+
+private:
+  const double* point(VertId v) const { return xyz_.data() + 3 * std::size_t(v); }
+
+  // Locate.cxx
+  TetId startTet(VertId v);
+  TetId walk(TetId from, VertId v);
+  TetId locate(VertId v);
+  // DigCavity.cxx
+  bool inConflict(TetId t, VertId v);
+  void digCavity(TetId base, VertId v);
+  // FillCavity.cxx
+  void fillCavity(VertId v);
+  void linkAroundEdge(std::size_t created, int face);
+
+  std::uint32_t nextRandom();
+
+  std::vector<double> xyz_;
+  Options options_;
+  Statistics& stats_;
+  Predicates predicates_;
+  TetMesh mesh_;
+  BackgroundGrid grid_;
+  std::vector<TetId> vertexTet_; // a live tetrahedron incident to each inserted vertex
+  TetId lastCreated_ = 0;
+  VertId duplicateOf_ = 0;
+  std::uint64_t rng_;
+
+  // Per-insertion scratch, reused so that the steady state allocates nothing.
+  std::vector<TetId> cavity_;
+  std::vector<TetId> rejected_;
+  std::vector<BoundaryFacet> boundary_;
+  std::vector<TetId> created_;
+  std::vector<std::uint32_t> vertexStamp_;
+  std::uint32_t stamp_ = 0;
+};
+
+} // namespace fd3
+
+#endif

