@@ -1,0 +1,166 @@
+// vtkFastDelaunay3D through VTK: the output contract, checked with the exact validator.
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "vtkFastDelaunay3D.h"
+
+#include <gtest/gtest.h>
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStructuredGrid.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+vtkSmartPointer<vtkPolyData> MakeCloud(const fd3test::Points& p, int dataType = VTK_DOUBLE)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataType(dataType);
+  const vtkIdType n = static_cast<vtkIdType>(p.size() / 3);
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkDoubleArray> scalars;
+  scalars->SetName("Index");
+  scalars->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    points->SetPoint(i, p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    scalars->SetValue(i, static_cast<double>(i));
+  }
+  auto cloud = vtkSmartPointer<vtkPolyData>::New();
+  cloud->SetPoints(points);
+  cloud->GetPointData()->AddArray(scalars);
+  return cloud;
+}
+
+std::vector<std::uint32_t> Connectivity(vtkUnstructuredGrid* grid)
+{
+  std::vector<std::uint32_t> tets;
+  const vtkIdType* ids = nullptr;
+  vtkIdType size = 0;
+  auto it = vtkSmartPointer<vtkCellArrayIterator>::Take(grid->GetCells()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    it->GetCurrentCell(size, ids);
+    EXPECT_EQ(size, 4);
+    tets.insert(tets.end(), ids, ids + size);
+  }
+  return tets;
+}
+
+/// The output's own coordinates as doubles (they are the input's, possibly float).
+fd3test::Points Coordinates(vtkPointSet* data)
+{
+  fd3test::Points p(3 * static_cast<std::size_t>(data->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+    data->GetPoint(i, p.data() + 3 * i);
+  return p;
+}
+
+TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
+{
+  for (int type : {VTK_DOUBLE, VTK_FLOAT})
+  {
+    auto cloud = MakeCloud(fd3test::uniformBall(3000, 4), type);
+    vtkNew<vtkFastDelaunay3D> filter;
+    filter->SetInputData(cloud);
+    filter->Update();
+    vtkUnstructuredGrid* out = filter->GetOutput();
+    ASSERT_EQ(out->GetNumberOfPoints(), cloud->GetNumberOfPoints());
+    EXPECT_EQ(out->GetPoints(), cloud->GetPoints()) << "input points are passed, not copied";
+    ASSERT_NE(out->GetPointData()->GetArray("Index"), nullptr);
+    EXPECT_EQ(out->GetPointData()->GetArray("Index")->GetNumberOfTuples(), 3000);
+    EXPECT_EQ(out->GetNumberOfCells(), filter->GetNumberOfTetrahedra());
+    for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+      ASSERT_EQ(out->GetCellType(c), VTK_TETRA);
+    const fd3test::Points xyz = Coordinates(out);
+    const auto report = fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(out));
+    EXPECT_TRUE(report.valid()) << report.summary();
+  }
+}
+
+TEST(Filter, LatticeThroughStructuredGrid)
+{
+  const fd3test::Points p = fd3test::lattice(6);
+  vtkNew<vtkPoints> points;
+  for (std::size_t i = 0; i < p.size() / 3; ++i)
+    points->InsertNextPoint(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  vtkNew<vtkStructuredGrid> grid;
+  grid->SetDimensions(6, 6, 6);
+  grid->SetPoints(points);
+  vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetInputData(grid);
+  filter->Update();
+  const fd3test::Points xyz = Coordinates(filter->GetOutput());
+  const auto report =
+    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  EXPECT_TRUE(report.valid()) << report.summary();
+  EXPECT_EQ(report.usedVertices, 216u);
+}
+
+TEST(Filter, DuplicatesAreMergedAndReported)
+{
+  fd3test::Points p = fd3test::uniformCube(500, 3);
+  p.insert(p.end(), p.begin(), p.begin() + 3 * 50);
+  auto cloud = MakeCloud(p);
+  vtkNew<vtkFastDelaunay3D> filter;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(cloud);
+  filter->Update();
+  EXPECT_EQ(filter->GetNumberOfDuplicatePoints(), 50);
+  EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 500);
+  EXPECT_EQ(observer->CheckWarningMessage("50 exact duplicate points were merged"), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 550);
+}
+
+TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
+{
+  vtkNew<vtkFastDelaunay3D> filter;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->AddObserver(vtkCommand::ErrorEvent, observer);
+
+  // Empty input: warning, empty output.
+  filter->SetInputData(MakeCloud({}));
+  filter->Update();
+  EXPECT_EQ(observer->CheckWarningMessage("no input points"), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
+
+  // Coplanar points: warning, the points and no cells.
+  fd3test::Points flat = fd3test::uniformCube(100, 1);
+  for (std::size_t i = 0; i < 100; ++i)
+    flat[3 * i + 2] = 0.5;
+  filter->SetInputData(MakeCloud(flat));
+  filter->Update();
+  EXPECT_EQ(observer->CheckWarningMessage("collinear or coplanar"), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 100);
+
+  // Three points: too few.
+  filter->SetInputData(MakeCloud(fd3test::uniformCube(3, 1)));
+  filter->Update();
+  EXPECT_EQ(observer->CheckWarningMessage("fewer than 4 distinct points"), 0);
+
+  // NaN and Inf: an error that counts them; the rest is tetrahedralized.
+  fd3test::Points bad = fd3test::uniformCube(200, 2);
+  bad[0] = std::nan("");
+  bad[31] = -INFINITY;
+  filter->SetInputData(MakeCloud(bad));
+  filter->Update();
+  EXPECT_EQ(observer->CheckErrorMessage("2 of 200 points have NaN or infinite coordinates"), 0);
+  EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 198);
+  EXPECT_GT(filter->GetOutput()->GetNumberOfCells(), 0);
+}
+
+} // namespace

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# FastDelaunay3D set-up on Debian 12: installs the packages the build needs (skipping those already
+# present), then configures and builds in Release with Ninja.
+#
+#   ./setup.sh          set up and build
+#   ./setup.sh demo     ... then tetrahedralize Data/points.vtp under pvbatch into output/
+#   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+# ParaView's SDK (never libvtk9-dev: it conflicts with python3-paraview), the libraries its CMake
+# package needs but does not pull in, an X server for rendering tests, and the test tools.
+packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
+  python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
+  cmake ninja-build g++ pkg-config)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""; [ "$(id -u)" = 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake --build build -j2
+
+plugin=build/lib/paraview-5.11/plugins/FastDelaunay3D/FastDelaunay3D.so
+xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
+case "${1:-build}" in
+  build) ;;
+  demo) "${xvfb[@]}" pvbatch Testing/Python/demo.py "$plugin" Data/points.vtp output ;;
+  test) cd build && "${xvfb[@]}" ctest -j2 --output-on-failure ;;
+  *) echo "usage: $0 [build|demo|test]" >&2; exit 2 ;;
+esac
