@@ -19,7 +19,53 @@ int signOf(double x)
 {
   return (x > 0) - (x < 0);
 }
+
+template <typename T>
+int signOf(T x)
+{
+  return (x > 0) - (x < 0);
+}
+
+using Int128 = __int128;
+
+Int128 det3(const std::int64_t u[3], const std::int64_t v[3], const std::int64_t w[3])
+{
+  const Int128 cx = Int128(v[1]) * w[2] - Int128(v[2]) * w[1];
+  const Int128 cy = Int128(v[2]) * w[0] - Int128(v[0]) * w[2];
+  const Int128 cz = Int128(v[0]) * w[1] - Int128(v[1]) * w[0];
+  return u[0] * cx + u[1] * cy + u[2] * cz;
+}
 } // namespace
+
+double Predicates::integerGridUnit(const double* xyz, std::size_t count)
+{
+  int lowest = 4096, highest = -4096;
+  for (std::size_t i = 0; i < 3 * count; ++i)
+  {
+    if (xyz[i] == 0.0)
+      continue;
+    int exponent;
+    const double mantissa = std::frexp(xyz[i], &exponent);
+    // The lowest set bit of the 53-bit significand gives the finest grid this value needs.
+    const auto significand = static_cast<std::uint64_t>(std::ldexp(std::fabs(mantissa), 53));
+    lowest = std::min(lowest, exponent - 53 + __builtin_ctzll(significand));
+    highest = std::max(highest, exponent);
+    if (highest - lowest > kIntegerGridBits)
+      return 0.0;
+  }
+  return lowest <= highest ? std::ldexp(1.0, lowest) : 0.0;
+}
+
+// On the grid, coordinates are integers below 2^21 in magnitude, so differences are exact doubles
+// and integers below 2^22: 3x3 minors stay below 2^69, lifts below 2^46, the insphere determinant
+// below 2^118, and orient3d below 2^69 -- all exact in __int128.
+template <int N>
+void Predicates::gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const
+{
+  for (int i = 0; i < N; ++i)
+    for (int k = 0; k < 3; ++k)
+      out[i][k] = static_cast<std::int64_t>((x[i][k] - y[k]) * inverseGridUnit_);
+}
 
 int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
 {
@@ -53,6 +99,13 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
 int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;
+  if (inverseGridUnit_ > 0)
+  {
+    const double* rows[3] = {b, c, d};
+    std::int64_t q[3][3];
+    gridDifferences<3>(rows, a, q);
+    return signOf(det3(q[0], q[1], q[2]));
+  }
   arena_.reset();
   Expansion u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k)
@@ -114,6 +167,18 @@ int Predicates::inSphereExact(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   ++exactInSphereCalls;
+  if (inverseGridUnit_ > 0)
+  {
+    const double* rows[4] = {a, b, c, d};
+    std::int64_t q[4][3];
+    gridDifferences<4>(rows, e, q);
+    Int128 lift[4];
+    for (int r = 0; r < 4; ++r)
+      lift[r] = Int128(q[r][0]) * q[r][0] + Int128(q[r][1]) * q[r][1] + Int128(q[r][2]) * q[r][2];
+    const Int128 det = lift[1] * det3(q[0], q[2], q[3]) - lift[0] * det3(q[1], q[2], q[3]) +
+      lift[3] * det3(q[0], q[1], q[2]) - lift[2] * det3(q[0], q[1], q[3]);
+    return -signOf(det);
+  }
   ExpansionArena& x = arena_;
   x.reset();
   const double* rows[4] = {a, b, c, d};

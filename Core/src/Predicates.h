@@ -31,16 +31,29 @@ public:
   /// towards the first vertex: a fan of about 2 tetrahedra per point instead of a dense tangle.
   int inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::uint32_t e);
 
+  /// Largest span, in bits, of a point set's integer grid for which the exact stage runs in
+  /// __int128 arithmetic.
+  static constexpr int kIntegerGridBits = 21;
+  /// The power of two u such that every coordinate is an integer multiple of u below
+  /// 2^kIntegerGridBits * u in magnitude (lattices, integer data), or 0 when there is none.
+  static double integerGridUnit(const double* xyz, std::size_t count);
+  /// Promises that every point passed from now on lies on that grid (unit > 0), which lets the
+  /// exact stage use integer arithmetic instead of expansions.
+  void setIntegerGrid(double unit) { inverseGridUnit_ = unit > 0 ? 1.0 / unit : 0.0; }
+
   std::size_t exactOrientCalls = 0;
   std::size_t exactInSphereCalls = 0;
   std::size_t symbolicTies = 0;
 
 private:
+  template <int N>
+  void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
 
   ExpansionArena arena_;
+  double inverseGridUnit_ = 0.0;
 };
 
 } // namespace fd3
