@@ -8,8 +8,9 @@ namespace fd3
 
 bool Triangulator::inConflict(TetId t, VertId v)
 {
-  const VertId* tv = &mesh_.vertices[4 * std::size_t(t)];
-  if (!mesh_.isGhost(t))
+  VertId tv[4];
+  mesh_.vertices(t, tv);
+  if (tv[3] != kInfinite)
     return predicates_.inSphereSoS(xyz_.data(), tv, v) > 0;
   // A ghost's circumsphere is the open half-space beyond its hull face. A point on the face's
   // plane takes the verdict of the finite tetrahedron behind the face, so that the two never
@@ -17,8 +18,8 @@ bool Triangulator::inConflict(TetId t, VertId v)
   const int side = predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v));
   if (side != 0)
     return side > 0;
-  const TetId behind = tetOf(mesh_.neighbor(t, 3));
-  return predicates_.inSphereSoS(xyz_.data(), &mesh_.vertices[4 * std::size_t(behind)], v) > 0;
+  mesh_.vertices(tetOf(mesh_.neighbor(t, 3)), tv);
+  return predicates_.inSphereSoS(xyz_.data(), tv, v) > 0;
 }
 
 void Triangulator::digCavity(TetId base, VertId v)
@@ -26,26 +27,28 @@ void Triangulator::digCavity(TetId base, VertId v)
   cavity_.clear();
   rejected_.clear();
   boundary_.clear();
-  mesh_.flags[base] = kInCavity;
+  mesh_.setFlags(base, kInCavity);
   cavity_.push_back(base);
   for (std::size_t i = 0; i < cavity_.size(); ++i)
   {
     const TetId t = cavity_[i];
     for (int f = 0; f < 4; ++f)
+      mesh_.prefetch(tetOf(mesh_.neighbor(t, f)));
+    for (int f = 0; f < 4; ++f)
     {
       const TetId n = tetOf(mesh_.neighbor(t, f));
-      std::uint8_t& flag = mesh_.flags[n];
+      const std::uint32_t flag = mesh_.flags(n);
       if (flag == kInCavity)
         continue;
       if (flag == 0)
       {
         if (inConflict(n, v))
         {
-          flag = kInCavity;
+          mesh_.setFlags(n, kInCavity);
           cavity_.push_back(n);
           continue;
         }
-        flag = kNotInCavity;
+        mesh_.setFlags(n, kNotInCavity);
         rejected_.push_back(n);
       }
       boundary_.push_back({t, f});

@@ -16,29 +16,30 @@ void Triangulator::fillCavity(VertId v)
   for (const BoundaryFacet& b : boundary_)
   {
     const TetId n = mesh_.allocate();
+    VertId tv[4];
+    mesh_.vertices(b.inner, tv);
+    tv[b.face] = v;
     for (int i = 0; i < 4; ++i)
     {
-      mesh_.vertices[4 * std::size_t(n) + i] = mesh_.vertices[4 * std::size_t(b.inner) + i];
-      mesh_.neighbors[4 * std::size_t(n) + i] = kUnlinked;
+      mesh_.setVertex(n, i, tv[i]);
+      mesh_.setNeighbor(faceCode(n, i), kUnlinked);
+      if (tv[i] != kInfinite)
+        vertexTet_[tv[i]] = n;
     }
-    mesh_.vertices[4 * std::size_t(n) + b.face] = v;
     mesh_.link(faceCode(n, b.face), mesh_.neighbor(b.inner, b.face));
-    mesh_.neighbors[4 * std::size_t(b.inner) + b.face] = faceCode(n, b.face);
+    mesh_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
     created_.push_back(n);
-    for (int i = 0; i < 4; ++i)
-      if (const VertId u = mesh_.vertices[4 * std::size_t(n) + i]; u != kInfinite)
-        vertexTet_[u] = n;
   }
   // Pass 2: link the new tetrahedra to each other.
   for (std::size_t i = 0; i < created_.size(); ++i)
     for (int f = 0; f < 4; ++f)
-      if (f != boundary_[i].face && mesh_.neighbors[4 * std::size_t(created_[i]) + f] == kUnlinked)
+      if (f != boundary_[i].face && mesh_.neighbor(created_[i], f) == kUnlinked)
         linkAroundEdge(i, f);
 
   for (TetId t : cavity_)
     mesh_.release(t);
   for (TetId t : rejected_)
-    mesh_.flags[t] = 0;
+    mesh_.setFlags(t, 0);
   lastCreated_ = created_.back();
 }
 
@@ -52,8 +53,8 @@ void Triangulator::linkAroundEdge(std::size_t i, int face)
   for (int k = 0; k < 4; ++k)
     if (k != face && k != facet.face)
       (iu < 0 ? iu : iw) = k;
-  const VertId u = mesh_.vertices[4 * std::size_t(facet.inner) + iu];
-  const VertId w = mesh_.vertices[4 * std::size_t(facet.inner) + iw];
+  const VertId u = mesh_.vertex(facet.inner, iu);
+  const VertId w = mesh_.vertex(facet.inner, iw);
 
   TetId t = facet.inner;
   int g = face; // the face of t being crossed; it contains u and w
@@ -61,14 +62,15 @@ void Triangulator::linkAroundEdge(std::size_t i, int face)
   {
     const FaceCode across = mesh_.neighbor(t, g);
     const TetId next = tetOf(across);
-    if (mesh_.flags[next] != kInCavity)
+    if (mesh_.flags(next) != kInCavity)
     {
       // (t, g) is a boundary facet and `next` its new tetrahedron: t with vertex g replaced by the
       // new point, whose face on (point, u, w) is opposite t's fourth vertex.
       mesh_.link(faceCode(created_[i], face), faceCode(next, 6 - g - iu - iw));
       return;
     }
-    const VertId* nv = &mesh_.vertices[4 * std::size_t(next)];
+    VertId nv[4];
+    mesh_.vertices(next, nv);
     for (int k = 0; k < 4; ++k)
     {
       if (nv[k] == u)

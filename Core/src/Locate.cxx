@@ -34,7 +34,8 @@ TetId Triangulator::walk(TetId t, VertId v)
   while (!mesh_.isGhost(t))
   {
     ++steps;
-    const VertId* tv = &mesh_.vertices[4 * std::size_t(t)];
+    VertId tv[4];
+    mesh_.vertices(t, tv);
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
     const int first = static_cast<int>(nextRandom() & 3u);
     int exit = -1;

@@ -9,9 +9,11 @@ namespace fd3
 namespace
 {
 constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
-// Relative error bounds of the float evaluations below (Shewchuk 1997, for differences of inputs).
-constexpr double kOrientBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
-constexpr double kInSphereBound = (16.0 + 224.0 * kEpsilon) * kEpsilon;
+// Error bounds of the float evaluations below: Shewchuk's (1997) relative bounds, for differences
+// of inputs, times a bound on the permanent from the largest differences; 2% covers the rounding
+// of that product of maxima.
+constexpr double kOrientSemiStatic = 1.02 * 6 * (7.0 + 56.0 * kEpsilon) * kEpsilon;
+constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * kEpsilon;
 // Below this magnitude products may have underflowed and the relative bounds no longer hold.
 constexpr double kUnderflowGuard = 1e-250;
 
@@ -72,16 +74,18 @@ int Predicates::orient3d(const double* a, const double* b, const double* c, cons
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-  const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
-  const double cdxady = cdx * ady, adxcdy = adx * cdy;
-  const double adxbdy = adx * bdy, bdxady = bdx * ady;
   // det[a-d; b-d; c-d] is the negative of VTK's orientation.
-  const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-    (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-    (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-  const double bound = kOrientBound * permanent;
-  if ((det > bound || -det > bound) && permanent > kUnderflowGuard)
+  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
+    cdz * (adx * bdy - bdx * ady);
+  // Semi-static filter: the permanent is at most 6 * mx * my * mz, mx being the largest |x|
+  // difference (and so on), so Shewchuk's bound (7 + 56 eps) eps * permanent is below
+  // kOrientSemiStatic * mx * my * mz.
+  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
+  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
+  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
+  const double scale = mx * my * mz;
+  const double bound = kOrientSemiStatic * scale;
+  if ((det > bound || -det > bound) && scale > kUnderflowGuard)
     return -signOf(det);
   return orient3dExact(a, b, c, d);
 }
@@ -125,40 +129,30 @@ int Predicates::inSphere(
   const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
   const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
 
-  const double aexbey = aex * bey, bexaey = bex * aey, bexcey = bex * cey, cexbey = cex * bey;
-  const double cexdey = cex * dey, dexcey = dex * cey, dexaey = dex * aey, aexdey = aex * dey;
-  const double aexcey = aex * cey, cexaey = cex * aey, bexdey = bex * dey, dexbey = dex * bey;
-  const double ab = aexbey - bexaey, bc = bexcey - cexbey, cd = cexdey - dexcey;
-  const double da = dexaey - aexdey, ac = aexcey - cexaey, bd = bexdey - dexbey;
-
+  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey, cd = cex * dey - dex * cey;
+  const double da = dex * aey - aex * dey, ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
   const double abc = aez * bc - bez * ac + cez * ab;
   const double bcd = bez * cd - cez * bd + dez * bc;
   const double cda = cez * da + dez * ac + aez * cd;
   const double dab = dez * ab + aez * bd + bez * da;
-
   const double alift = aex * aex + aey * aey + aez * aez;
   const double blift = bex * bex + bey * bey + bez * bez;
   const double clift = cex * cex + cey * cey + cez * cez;
   const double dlift = dex * dex + dey * dey + dez * dez;
-
   // det[(x-e, |x-e|^2) for x = a,b,c,d]; positive means inside for the negative orientation,
   // i.e. outside for VTK's positive one.
   const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
 
-  const double aezp = std::fabs(aez), bezp = std::fabs(bez), cezp = std::fabs(cez),
-               dezp = std::fabs(dez);
-  const double abp = std::fabs(aexbey) + std::fabs(bexaey);
-  const double bcp = std::fabs(bexcey) + std::fabs(cexbey);
-  const double cdp = std::fabs(cexdey) + std::fabs(dexcey);
-  const double dap = std::fabs(dexaey) + std::fabs(aexdey);
-  const double acp = std::fabs(aexcey) + std::fabs(cexaey);
-  const double bdp = std::fabs(bexdey) + std::fabs(dexbey);
-  const double permanent = (cdp * bezp + bdp * cezp + bcp * dezp) * alift +
-    (dap * cezp + acp * dezp + cdp * aezp) * blift +
-    (abp * dezp + bdp * aezp + dap * bezp) * clift +
-    (bcp * aezp + acp * bezp + abp * cezp) * dlift;
-  const double bound = kInSphereBound * permanent;
-  if ((det > bound || -det > bound) && permanent > kUnderflowGuard)
+  // Semi-static filter: each lift is at most 3 m^2 (m the largest difference) and each 3x3
+  // permanent at most 6 mx my mz, so the permanent is at most 72 m^2 mx my mz and Shewchuk's bound
+  // (16 + 224 eps) eps * permanent is below kInSphereSemiStatic * m^2 * mx * my * mz.
+  const double mx = std::max({std::fabs(aex), std::fabs(bex), std::fabs(cex), std::fabs(dex)});
+  const double my = std::max({std::fabs(aey), std::fabs(bey), std::fabs(cey), std::fabs(dey)});
+  const double mz = std::max({std::fabs(aez), std::fabs(bez), std::fabs(cez), std::fabs(dez)});
+  const double m = std::max({mx, my, mz});
+  const double scale = m * m * mx * my * mz;
+  const double bound = kInSphereSemiStatic * scale;
+  if ((det > bound || -det > bound) && scale > kUnderflowGuard)
     return -signOf(det);
   return inSphereExact(a, b, c, d, e);
 }

@@ -1,18 +1,18 @@
-// The tetrahedral mesh as flat arrays (structure of arrays), 33 bytes per tetrahedron:
-//   vertices[4*t + i]  vertex i of tetrahedron t (vertex ids are insertion ranks);
-//   neighbors[4*t + f] = 4*t' + f': t' shares the face of t opposite vertex f, and f' is the vertex
-//                      of t' opposite that face (the paper's adjacency table, in O(1) both ways);
-//   flags[t]           cavity bookkeeping and the free-slot mark.
-// Invariants (checked by Triangulator::checkMesh in debug builds):
+// The tetrahedral mesh: one 32-byte record per tetrahedron in a flat array, so that visiting a
+// tetrahedron (its flags, vertices and neighbours) costs one cache line:
+//   record t = [v0 v1 v2 v3 | n0 n1 n2 n3]
+//   v_i  vertex i (vertex ids are insertion ranks; v0's top two bits hold the flags below);
+//   n_f  = 4*t' + f': t' shares the face of t opposite vertex f, and f' is the vertex of t'
+//        opposite that face (the paper's adjacency table, navigable in O(1) both ways).
+// Invariants (checked by Triangulator::checkMesh):
 //   * every live tetrahedron is positively oriented (VTK convention);
 //   * the convex hull is closed by ghost tetrahedra whose vertex 3 is kInfinite, oriented as if
 //     kInfinite were a point far beyond their hull face;
-//   * neighbors[neighbors[4t+f]] == 4t+f for every live t and face f;
-//   * freed slots hold kDeadVertex in vertex 0 and are listed in freeSlots.
+//   * neighbor(neighbor(c)) == c for every face code c of a live tetrahedron;
+//   * freed slots are flagged kDead and listed in freeSlots; flags are 0 between insertions.
 #ifndef fd3_TetMesh_h
 #define fd3_TetMesh_h
 
-#include <cassert>
 #include <cstdint>
 #include <vector>
 
@@ -24,8 +24,9 @@ using VertId = std::uint32_t;
 using FaceCode = std::uint32_t; // 4*tet + face
 
 constexpr VertId kInfinite = 0xFFFFFFFFu;
-constexpr VertId kDeadVertex = 0xFFFFFFFEu;
 constexpr FaceCode kUnlinked = 0xFFFFFFFFu;
+constexpr int kVertexIdBits = 30;
+constexpr std::uint32_t kMaxVertices = 1u << kVertexIdBits;
 
 inline TetId tetOf(FaceCode code)
 {
@@ -40,59 +41,102 @@ inline FaceCode faceCode(TetId t, int f)
   return (t << 2) | static_cast<FaceCode>(f);
 }
 
-enum TetFlag : std::uint8_t
+enum TetFlag : std::uint32_t
 {
-  kInCavity = 1,   // in the conflict zone of the point being inserted
-  kNotInCavity = 2 // tested during this insertion and kept
+  kInCavity = 1,    // in the conflict zone of the point being inserted
+  kNotInCavity = 2, // tested during this insertion and kept
+  kDead = 3         // a free slot
 };
 
-struct TetMesh
+class TetMesh
 {
-  std::vector<VertId> vertices;
-  std::vector<FaceCode> neighbors;
-  std::vector<std::uint8_t> flags;
-  std::vector<TetId> freeSlots;
+public:
+  std::size_t slots() const { return records_.size() / 8; }
 
-  std::size_t slots() const { return flags.size(); }
-  bool isGhost(TetId t) const { return vertices[4 * t + 3] == kInfinite; }
-  bool isDead(TetId t) const { return vertices[4 * t] == kDeadVertex; }
-  FaceCode neighbor(TetId t, int f) const { return neighbors[4 * t + f]; }
-
-  void link(FaceCode a, FaceCode b)
+  VertId vertex(TetId t, int i) const
   {
-    neighbors[a] = b;
-    neighbors[b] = a;
+    const std::uint32_t v = records_[8 * std::size_t(t) + i];
+    return i == 0 ? v & kIdMask : v;
+  }
+  void setVertex(TetId t, int i, VertId v)
+  {
+    std::uint32_t& slot = records_[8 * std::size_t(t) + i];
+    slot = i == 0 ? (slot & ~kIdMask) | v : v;
+  }
+  /// The four vertices of t (v0 without its flags).
+  void vertices(TetId t, VertId out[4]) const
+  {
+    const std::uint32_t* r = &records_[8 * std::size_t(t)];
+    out[0] = r[0] & kIdMask;
+    out[1] = r[1];
+    out[2] = r[2];
+    out[3] = r[3];
   }
 
-  /// A slot for a new tetrahedron: a freed one first (the paper's memory management), else a new one.
+  FaceCode neighbor(TetId t, int f) const { return records_[8 * std::size_t(t) + 4 + f]; }
+  FaceCode across(FaceCode code) const { return neighbor(tetOf(code), faceOf(code)); }
+  void setNeighbor(FaceCode code, FaceCode value)
+  {
+    records_[8 * std::size_t(tetOf(code)) + 4 + faceOf(code)] = value;
+  }
+  void link(FaceCode a, FaceCode b)
+  {
+    setNeighbor(a, b);
+    setNeighbor(b, a);
+  }
+
+  std::uint32_t flags(TetId t) const { return records_[8 * std::size_t(t)] >> kVertexIdBits; }
+  void setFlags(TetId t, std::uint32_t flags)
+  {
+    std::uint32_t& slot = records_[8 * std::size_t(t)];
+    slot = (slot & kIdMask) | (flags << kVertexIdBits);
+  }
+
+  /// Starts loading t's record, which the caller will need soon (hides memory latency while
+  /// the cavity is grown breadth-first).
+  void prefetch(TetId t) const { __builtin_prefetch(&records_[8 * std::size_t(t)]); }
+
+  bool isGhost(TetId t) const { return records_[8 * std::size_t(t) + 3] == kInfinite; }
+  bool isDead(TetId t) const { return flags(t) == kDead; }
+
+  /// A slot for a new tetrahedron, flags clear: a freed one first (the paper's memory
+  /// management: deleted slots are taken by the next tetrahedra created), else a new one.
   TetId allocate()
   {
-    if (!freeSlots.empty())
+    TetId t;
+    if (!freeSlots_.empty())
     {
-      const TetId t = freeSlots.back();
-      freeSlots.pop_back();
-      return t;
+      t = freeSlots_.back();
+      freeSlots_.pop_back();
     }
-    const TetId t = static_cast<TetId>(flags.size());
-    vertices.resize(vertices.size() + 4);
-    neighbors.resize(neighbors.size() + 4);
-    flags.push_back(0);
+    else
+    {
+      t = static_cast<TetId>(slots());
+      records_.resize(records_.size() + 8);
+    }
+    records_[8 * std::size_t(t)] = 0;
     return t;
   }
 
   void release(TetId t)
   {
-    vertices[4 * t] = kDeadVertex;
-    flags[t] = 0;
-    freeSlots.push_back(t);
+    setFlags(t, kDead);
+    freeSlots_.push_back(t);
   }
 
-  void reserve(std::size_t tets)
+  void reserve(std::size_t tets) { records_.reserve(8 * tets); }
+
+  /// Hands the records over (for in-place output conversion); the mesh is empty afterwards.
+  std::vector<std::uint32_t> takeRecords()
   {
-    vertices.reserve(4 * tets);
-    neighbors.reserve(4 * tets);
-    flags.reserve(tets);
+    freeSlots_.clear();
+    return std::move(records_);
   }
+
+private:
+  static constexpr std::uint32_t kIdMask = kMaxVertices - 1;
+  std::vector<std::uint32_t> records_;
+  std::vector<TetId> freeSlots_;
 };
 
 } // namespace fd3

@@ -111,32 +111,34 @@ bool moveFirstTetrahedronToFront(
   return true;
 }
 
-/// Compacts the live finite tetrahedra in place and renames vertices to input ids.
+/// The live finite tetrahedra with input point ids, and their neighbours renumbered. The
+/// neighbour table is compacted in place inside the mesh's own records to bound peak memory.
 void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, Triangulation& out)
 {
-  std::vector<std::uint32_t> newId(mesh.slots(), kNoNeighbor);
+  const std::size_t slots = mesh.slots();
+  std::vector<std::uint32_t> newId(slots, kNoNeighbor);
   std::uint32_t kept = 0;
-  for (TetId t = 0; t < mesh.slots(); ++t)
+  for (TetId t = 0; t < slots; ++t)
     if (!mesh.isDead(t) && !mesh.isGhost(t))
       newId[t] = kept++;
-  for (TetId t = 0; t < mesh.slots(); ++t)
-  {
-    const std::uint32_t k = newId[t];
-    if (k == kNoNeighbor)
-      continue;
-    for (int i = 0; i < 4; ++i)
-    {
-      const FaceCode code = mesh.neighbors[4 * std::size_t(t) + i];
-      const std::uint32_t n = newId[tetOf(code)];
-      mesh.neighbors[4 * std::size_t(k) + i] =
-        n == kNoNeighbor ? kNoNeighbor : faceCode(n, faceOf(code));
-      mesh.vertices[4 * std::size_t(k) + i] = inputId[mesh.vertices[4 * std::size_t(t) + i]];
-    }
-  }
-  mesh.vertices.resize(4 * std::size_t(kept));
-  mesh.neighbors.resize(4 * std::size_t(kept));
-  out.tetrahedra = std::move(mesh.vertices);
-  out.neighbors = std::move(mesh.neighbors);
+  out.tetrahedra.resize(4 * std::size_t(kept));
+  for (TetId t = 0; t < slots; ++t)
+    if (const std::uint32_t k = newId[t]; k != kNoNeighbor)
+      for (int i = 0; i < 4; ++i)
+        out.tetrahedra[4 * std::size_t(k) + i] = inputId[mesh.vertex(t, i)];
+  std::vector<std::uint32_t> records = mesh.takeRecords();
+  // Record t's neighbours (words 8t+4..8t+7) move to words 4k..4k+3 with k <= t: never ahead of
+  // what is still to be read.
+  for (TetId t = 0; t < slots; ++t)
+    if (const std::uint32_t k = newId[t]; k != kNoNeighbor)
+      for (int i = 0; i < 4; ++i)
+      {
+        const FaceCode code = records[8 * std::size_t(t) + 4 + i];
+        const std::uint32_t n = newId[tetOf(code)];
+        records[4 * std::size_t(k) + i] = n == kNoNeighbor ? kNoNeighbor : faceCode(n, faceOf(code));
+      }
+  records.resize(4 * std::size_t(kept));
+  out.neighbors = std::move(records);
 }
 
 } // namespace

@@ -38,7 +38,7 @@ void Triangulator::start()
     std::swap(v[0], v[1]);
   const TetId t = mesh_.allocate();
   for (int i = 0; i < 4; ++i)
-    mesh_.vertices[4 * std::size_t(t) + i] = v[i];
+    mesh_.setVertex(t, i, v[i]);
   // Ghost i sits on the face opposite v[i], listed so that (face, v[i]) is an odd permutation of
   // t: the face normal then points away from v[i], out of the hull.
   static constexpr int kOutwardFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
@@ -47,8 +47,8 @@ void Triangulator::start()
   {
     ghost[i] = mesh_.allocate();
     for (int k = 0; k < 3; ++k)
-      mesh_.vertices[4 * std::size_t(ghost[i]) + k] = v[kOutwardFace[i][k]];
-    mesh_.vertices[4 * std::size_t(ghost[i]) + 3] = kInfinite;
+      mesh_.setVertex(ghost[i], k, v[kOutwardFace[i][k]]);
+    mesh_.setVertex(ghost[i], 3, kInfinite);
     mesh_.link(faceCode(t, i), faceCode(ghost[i], 3));
   }
   // Ghosts meet along the edges of t: ghost i's face opposite its vertex k is the edge of
@@ -56,16 +56,16 @@ void Triangulator::start()
   for (int i = 0; i < 4; ++i)
     for (int k = 0; k < 3; ++k)
     {
-      const VertId missing = mesh_.vertices[4 * std::size_t(ghost[i]) + k];
+      const VertId missing = mesh_.vertex(ghost[i], k);
       int j = 0;
       while (v[j] != missing)
         ++j;
       // The other ghost holding the edge is the one opposite `missing`; in it, the face opposite
       // v[i] is the one on the edge.
       int kk = 0;
-      while (mesh_.vertices[4 * std::size_t(ghost[j]) + kk] != v[i])
+      while (mesh_.vertex(ghost[j], kk) != v[i])
         ++kk;
-      mesh_.neighbors[4 * std::size_t(ghost[i]) + k] = faceCode(ghost[j], kk);
+      mesh_.setNeighbor(faceCode(ghost[i], k), faceCode(ghost[j], kk));
     }
   for (int i = 0; i < 4; ++i)
   {
@@ -114,7 +114,7 @@ Triangulator::Outcome Triangulator::insert(VertId v)
   clock.lap(stats_.secondsLocate);
   for (int i = 0; i < 4; ++i)
   {
-    const VertId u = mesh_.vertices[4 * std::size_t(base) + i];
+    const VertId u = mesh_.vertex(base, i);
     if (u != kInfinite && point(u)[0] == point(v)[0] && point(u)[1] == point(v)[1] &&
       point(u)[2] == point(v)[2])
     {
@@ -139,17 +139,20 @@ std::string Triangulator::checkMesh()
   {
     if (mesh_.isDead(t))
       continue;
-    const VertId* tv = &mesh_.vertices[4 * std::size_t(t)];
+    VertId tv[4], nv[4];
+    mesh_.vertices(t, tv);
+    if (mesh_.flags(t) != 0)
+      err << "tet " << t << " has stale cavity flags\n";
     for (int f = 0; f < 4; ++f)
     {
       const FaceCode back = mesh_.neighbor(t, f);
-      if (back == kUnlinked || mesh_.isDead(tetOf(back)) || mesh_.neighbors[back] != faceCode(t, f))
+      if (back == kUnlinked || mesh_.isDead(tetOf(back)) || mesh_.across(back) != faceCode(t, f))
       {
         err << "tet " << t << " face " << f << ": adjacency not symmetric\n";
         continue;
       }
       // The shared face must carry the same three vertices.
-      const VertId* nv = &mesh_.vertices[4 * std::size_t(tetOf(back))];
+      mesh_.vertices(tetOf(back), nv);
       for (int k = 0; k < 4; ++k)
       {
         if (k == f)
@@ -171,7 +174,7 @@ std::string Triangulator::checkMesh()
       const TetId n = tetOf(back);
       if (mesh_.isGhost(n))
         continue;
-      const VertId opposite = mesh_.vertices[4 * std::size_t(n) + faceOf(back)];
+      const VertId opposite = mesh_.vertex(n, faceOf(back));
       if (predicates_.inSphere(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]),
             point(opposite)) > 0)
         err << "tet " << t << " face " << f << ": not locally Delaunay\n";

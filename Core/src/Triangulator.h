@@ -85,8 +85,6 @@ private:
   std::vector<TetId> rejected_;
   std::vector<BoundaryFacet> boundary_;
   std::vector<TetId> created_;
-  std::vector<std::uint32_t> vertexStamp_;
-  std::uint32_t stamp_ = 0;
 };
 
 } // namespace fd3
