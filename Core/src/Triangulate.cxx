@@ -5,6 +5,7 @@
 #include "fd3/Delaunay.h"
 
 #include <algorithm>
+#include <cassert>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -199,6 +200,11 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     out.representative[order[v]] = inserted ? order[v] : order[triangulator.duplicateOf()];
     stats.duplicatesMerged += !inserted;
   }
+#ifndef NDEBUG
+  // Debug builds verify every invariant of the mesh before handing it out.
+  const std::string problems = triangulator.checkMesh();
+  assert(problems.empty() && "fd3: mesh invariants violated");
+#endif
   const Predicates& predicates = triangulator.predicates();
   stats.exactOrient = predicates.exactOrientCalls;
   stats.exactInSphere = predicates.exactInSphereCalls;

@@ -123,6 +123,7 @@ Triangulator::Outcome Triangulator::insert(VertId v)
     }
   }
   digCavity(base, v);
+  correctCavity(v);
   clock.lap(stats_.secondsCavity);
   fillCavity(v);
   clock.lap(stats_.secondsFill);
@@ -168,7 +169,7 @@ std::string Triangulator::checkMesh()
       continue;
     if (predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])) <= 0)
       err << "tet " << t << " not positively oriented\n";
-    for (int f = 0; f < 4; ++f)
+    for (int f = 0; f < 4 && options_.volumeThreshold <= 0; ++f)
     {
       const FaceCode back = mesh_.neighbor(t, f);
       const TetId n = tetOf(back);

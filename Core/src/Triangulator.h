@@ -1,6 +1,7 @@
 // Bowyer-Watson insertion as in the paper "Fast Delaunay triangulation in three dimensions":
 //   insert(p) = locate (grid + onion search, random walk to the base)
 //             -> digCavity (the core, grown from the base through adjacency with insphere)
+//             -> correctCavity (visibility and volume threshold: the core made star-shaped)
 //             -> fillCavity (new tetrahedra linked by rotating about the core's boundary edges).
 // Each step lives in the source file named after it.
 #ifndef fd3_Triangulator_h
@@ -63,6 +64,14 @@ private:
   // DigCavity.cxx
   bool inConflict(TetId t, VertId v);
   void digCavity(TetId base, VertId v);
+  // CorrectCavity.cxx
+  void correctCavity(VertId v);
+  bool holdsPoint(TetId t, VertId v);
+  double newTetShape(const BoundaryFacet& facet, VertId v);
+  void giveBack(TetId t);
+  void collectBoundary();
+  bool dropOrphanGhosts(VertId v);
+  bool releaseEnclosedVertex(VertId v);
   // FillCavity.cxx
   void fillCavity(VertId v);
   void linkAroundEdge(std::size_t created, int face);
@@ -85,6 +94,8 @@ private:
   std::vector<TetId> rejected_;
   std::vector<BoundaryFacet> boundary_;
   std::vector<TetId> created_;
+  std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
+  std::uint32_t stamp_ = 0;
 };
 
 } // namespace fd3

@@ -96,6 +96,7 @@ int vtkFastDelaunay3D::RequestData(
   const double* xyz = PointsAsDoubles(input->GetPoints(), converted);
   fd3::Options options;
   options.pointsPerCell = this->GridResolution;
+  options.volumeThreshold = this->VolumeThreshold;
   options.order = static_cast<fd3::InsertionOrder>(this->InsertionOrder);
   options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
   options.progress = [this](double fraction) {
@@ -145,6 +146,7 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "GridResolution: " << this->GridResolution << "\n";
+  os << indent << "VolumeThreshold: " << this->VolumeThreshold << "\n";
   os << indent << "InsertionOrder: " << this->InsertionOrder << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "NumberOfInsertedPoints: " << this->NumberOfInsertedPoints << "\n";

@@ -60,6 +60,18 @@ public:
 
   ///@{
   /**
+   * Sliver guard (the paper's core correction with a volume threshold): no tetrahedron is created
+   * whose volume is below this fraction of the volume of the regular tetrahedron on its longest
+   * edge, except around the inserted point itself, where no other choice exists. The output is then
+   * a valid triangulation of the convex hull but no longer exactly Delaunay. Default 0: exact
+   * Delaunay.
+   */
+  vtkSetClampMacro(VolumeThreshold, double, 0.0, 1.0);
+  vtkGetMacro(VolumeThreshold, double);
+  ///@}
+
+  ///@{
+  /**
    * Order in which points are inserted: BRIO_HILBERT (default, fastest), INPUT_ORDER or
    * RANDOM_ORDER. The output is the same Delaunay tetrahedralization whatever the order, except
    * where ties are broken (cospherical points), which depends on the order.
@@ -98,6 +110,7 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
   double GridResolution = 2.0;
+  double VolumeThreshold = 0.0;
   int InsertionOrder = BRIO_HILBERT;
   int RandomSeed = 1;
 

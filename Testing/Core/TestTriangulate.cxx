@@ -179,6 +179,29 @@ TEST(Triangulate, HugeTinyAndFarCoordinates)
   EXPECT_GT(r.stats.symbolicTies, 0u);
 }
 
+// The sliver guard gives up the Delaunay property, never validity: the output stays a
+// triangulation of the hull using every point, on every kind of input.
+TEST(Triangulate, VolumeThresholdKeepsAValidTriangulation)
+{
+  for (const char* kind : {"cube", "lattice", "sphere", "clusters", "slab", "torus"})
+  {
+    const Points p = fd3test::generate(kind, 3000, 17);
+    const std::size_t n = p.size() / 3;
+    for (double threshold : {0.05, 0.2})
+    {
+      fd3::Options options;
+      options.volumeThreshold = threshold;
+      const fd3::Triangulation guarded = fd3::triangulate(p.data(), n, options);
+      ASSERT_EQ(guarded.status, fd3::Status::Ok);
+      fd3test::ValidityOptions validity;
+      validity.requireDelaunay = false;
+      const auto report = fd3test::checkTriangulation(p.data(), n, guarded.tetrahedra, validity);
+      EXPECT_TRUE(report.valid()) << kind << " threshold " << threshold << ": " << report.summary();
+      EXPECT_EQ(report.usedVertices, report.distinctPoints) << kind;
+    }
+  }
+}
+
 TEST(Triangulate, AbortStopsAndReportsIt)
 {
   const Points p = fd3test::uniformCube(40000, 2);

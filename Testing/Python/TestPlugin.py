@@ -12,7 +12,7 @@ LoadPlugin(plugin, remote=False, ns=globals())
 
 reader = XMLPolyDataReader(FileName=[os.path.join(data, "points.vtp")])
 delaunay = FastDelaunay3D(Input=reader)
-for name in ("GridResolution", "InsertionOrder", "RandomSeed"):
+for name in ("GridResolution", "VolumeThreshold", "InsertionOrder", "RandomSeed"):
     assert name in delaunay.ListProperties(), name
 delaunay.UpdatePipeline()
 

@@ -37,7 +37,9 @@ struct Options
   double pointsPerCell = 2.0;
   /// Sliver guard of the paper's core correction: a new tetrahedron whose volume is below this
   /// fraction of the volume of the regular tetrahedron on its longest edge is not created (the core
-  /// shrinks instead). 0 keeps the output exactly Delaunay.
+  /// shrinks instead), except next to the new point's own tetrahedron, where no other choice
+  /// exists. The output is then a valid triangulation of the hull, no longer exactly Delaunay.
+  /// 0 keeps the output exactly Delaunay.
   double volumeThreshold = 0.0;
   InsertionOrder order = InsertionOrder::Brio;
   std::uint64_t randomSeed = 1;

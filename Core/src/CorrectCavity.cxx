@@ -1,0 +1,153 @@
+// The paper's correction of the core (section 2.3): every facet of the core's boundary must be
+// visible from the new point, so that the core is star-shaped and every new tetrahedron positive;
+// with a volume threshold, no new tetrahedron may be flatter than the threshold (the sliver
+// guard). A facet that fails gives its inner tetrahedron back to the mesh, which shrinks the core,
+// until every facet passes. An existing vertex left strictly inside the core would vanish with it:
+// one of its tetrahedra is given back too (the paper's Fig. 7).
+//
+// With an exact Delaunay core (threshold 0) both conditions hold by construction: the conflict
+// zone of exact, symbolically perturbed predicates is star-shaped, and every point is a vertex of
+// the Delaunay triangulation. The correction then has nothing to do and is skipped; checkMesh
+// verifies the outcome in the tests.
+#include "Triangulator.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fd3
+{
+
+// Tetrahedra whose closure holds the new point can never be given back: the point would be left
+// outside the core. Only finite ones qualify; ghosts are handled by their hull face below.
+bool Triangulator::holdsPoint(TetId t, VertId v)
+{
+  if (mesh_.isGhost(t))
+    return false;
+  VertId tv[4];
+  mesh_.vertices(t, tv);
+  for (int i = 0; i < 4; ++i)
+  {
+    const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
+    q[i] = point(v);
+    if (predicates_.orient3d(q[0], q[1], q[2], q[3]) < 0)
+      return false;
+  }
+  return true;
+}
+
+// Shape of the tetrahedron the facet would make with the new point: its volume relative to the
+// regular tetrahedron on its longest edge (1 for a regular tetrahedron, 0 when flat), or a negative
+// value when the point does not see the facet. Ghost results (hull faces) have no volume: 1.
+double Triangulator::newTetShape(const BoundaryFacet& facet, VertId v)
+{
+  VertId tv[4];
+  mesh_.vertices(facet.inner, tv);
+  tv[facet.face] = v;
+  if (tv[3] == kInfinite)
+    return 1.0;
+  const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
+  if (predicates_.orient3d(q[0], q[1], q[2], q[3]) <= 0)
+    return -1.0;
+  double longest = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+    {
+      const double dx = q[i][0] - q[j][0], dy = q[i][1] - q[j][1], dz = q[i][2] - q[j][2];
+      longest = std::max(longest, dx * dx + dy * dy + dz * dz);
+    }
+  const double ux = q[1][0] - q[0][0], uy = q[1][1] - q[0][1], uz = q[1][2] - q[0][2];
+  const double vx = q[2][0] - q[0][0], vy = q[2][1] - q[0][1], vz = q[2][2] - q[0][2];
+  const double wx = q[3][0] - q[0][0], wy = q[3][1] - q[0][1], wz = q[3][2] - q[0][2];
+  const double sixVolume = (uy * vz - uz * vy) * wx + (uz * vx - ux * vz) * wy + (ux * vy - uy * vx) * wz;
+  // The regular tetrahedron of edge L has six times its volume equal to L^3 / sqrt(2).
+  return sixVolume * std::sqrt(2.0) / (longest * std::sqrt(longest));
+}
+
+void Triangulator::giveBack(TetId t)
+{
+  mesh_.setFlags(t, kNotInCavity);
+  rejected_.push_back(t);
+}
+
+void Triangulator::collectBoundary()
+{
+  cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
+                  [&](TetId t) { return mesh_.flags(t) != kInCavity; }),
+    cavity_.end());
+  boundary_.clear();
+  for (TetId t : cavity_)
+    for (int f = 0; f < 4; ++f)
+      if (mesh_.flags(tetOf(mesh_.neighbor(t, f))) != kInCavity)
+        boundary_.push_back({t, f});
+}
+
+// A ghost kept only because its hull face is coplanar with the point (the tie rule of
+// inConflict) must leave with the finite tetrahedron behind that face.
+bool Triangulator::dropOrphanGhosts(VertId v)
+{
+  bool changed = false;
+  for (TetId t : cavity_)
+  {
+    if (mesh_.flags(t) != kInCavity || !mesh_.isGhost(t) ||
+      mesh_.flags(tetOf(mesh_.neighbor(t, 3))) == kInCavity)
+      continue;
+    VertId tv[4];
+    mesh_.vertices(t, tv);
+    if (predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v)) == 0)
+    {
+      giveBack(t);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+// A vertex of the core that lies on none of its boundary facets would disappear.
+bool Triangulator::releaseEnclosedVertex(VertId v)
+{
+  ++stamp_;
+  for (const BoundaryFacet& b : boundary_)
+    for (int i = 0; i < 4; ++i)
+      if (i != b.face && mesh_.vertex(b.inner, i) != kInfinite)
+        vertexStamp_[mesh_.vertex(b.inner, i)] = stamp_;
+  for (TetId t : cavity_)
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertId u = mesh_.vertex(t, i);
+      if (u != kInfinite && vertexStamp_[u] != stamp_ && !holdsPoint(t, v))
+      {
+        giveBack(t);
+        return true;
+      }
+    }
+  return false;
+}
+
+void Triangulator::correctCavity(VertId v)
+{
+  if (options_.volumeThreshold <= 0)
+    return;
+  if (vertexStamp_.empty())
+    vertexStamp_.assign(xyz_.size() / 3, 0);
+  for (bool changed = true; changed;)
+  {
+    changed = false;
+    for (const BoundaryFacet& b : boundary_)
+    {
+      if (mesh_.flags(b.inner) != kInCavity || mesh_.isGhost(b.inner))
+        continue;
+      if (newTetShape(b, v) < options_.volumeThreshold && !holdsPoint(b.inner, v))
+      {
+        giveBack(b.inner);
+        changed = true;
+      }
+    }
+    changed |= dropOrphanGhosts(v);
+    if (!changed)
+      changed = releaseEnclosedVertex(v);
+    if (changed)
+      collectBoundary();
+  }
+}
+
+} // namespace fd3
