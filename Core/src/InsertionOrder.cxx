@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 namespace fd3
 {
@@ -57,7 +58,10 @@ std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::ui
   if (ids.empty())
     return ids;
 
-  constexpr int kBits = 19; // 3 * 19 = 57 bits of curve, 7 bits left for the round
+  // 10 bits per axis (2^30 curve cells) already separates points far finer than the walk needs;
+  // with 6 bits of round on top, the 36-bit keys sort in three 12-bit radix passes.
+  constexpr int kBits = 10;
+  constexpr int kRoundShift = 3 * kBits;
   double lo[3], hi[3];
   for (int a = 0; a < 3; ++a)
     lo[a] = hi[a] = xyz[3 * std::size_t(ids[0]) + a];
@@ -71,23 +75,48 @@ std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::ui
   const double toGrid = span > 0 ? ((1u << kBits) - 1) / span : 0.0;
 
   // Round r holds about half the points of round r + 1; the smallest round goes first.
-  const int rounds = std::max(1, static_cast<int>(std::log2(double(ids.size()) / 64.0)));
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(ids.size());
+  const int rounds = std::clamp(static_cast<int>(std::log2(double(ids.size()) / 64.0)), 1, 63);
+  std::vector<std::uint64_t> keys(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i)
   {
     const double* p = xyz + 3 * std::size_t(ids[i]);
     std::uint32_t q[3];
     for (int a = 0; a < 3; ++a)
       q[a] = static_cast<std::uint32_t>((p[a] - lo[a]) * toGrid);
-    const int lastRoundsSkipped = std::min(static_cast<int>(__builtin_ctzll(rng() | (1ull << 62))),
-      rounds - 1);
-    const std::uint64_t round = static_cast<std::uint64_t>(rounds - 1 - lastRoundsSkipped);
-    keyed[i] = {(round << 57) | hilbertIndex(q[0], q[1], q[2], kBits), ids[i]};
+    const int laterRoundsSkipped =
+      std::min(static_cast<int>(__builtin_ctzll(rng() | (1ull << 62))), rounds - 1);
+    const std::uint64_t round = static_cast<std::uint64_t>(rounds - 1 - laterRoundsSkipped);
+    keys[i] = (round << kRoundShift) | hilbertIndex(q[0], q[1], q[2], kBits);
   }
-  std::sort(keyed.begin(), keyed.end());
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    ids[i] = keyed[i].second;
+  radixSort(keys, ids, kRoundShift + 6);
   return ids;
+}
+
+// Least-significant-digit radix sort of `values` by `keys` (stable), over the low `bits` bits.
+// std::sort costs n log n comparisons; this is three linear passes for our 36-bit keys.
+void radixSort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values, int bits)
+{
+  constexpr int kDigit = 12;
+  std::vector<std::uint64_t> keyBuffer(keys.size());
+  std::vector<std::uint32_t> valueBuffer(values.size());
+  std::vector<std::size_t> count(std::size_t(1) << kDigit);
+  for (int shift = 0; shift < bits; shift += kDigit)
+  {
+    std::fill(count.begin(), count.end(), 0);
+    for (std::uint64_t k : keys)
+      ++count[(k >> shift) & ((1u << kDigit) - 1)];
+    std::size_t offset = 0;
+    for (std::size_t& c : count)
+      offset += std::exchange(c, offset);
+    for (std::size_t i = 0; i < keys.size(); ++i)
+    {
+      const std::size_t to = count[(keys[i] >> shift) & ((1u << kDigit) - 1)]++;
+      keyBuffer[to] = keys[i];
+      valueBuffer[to] = values[i];
+    }
+    keys.swap(keyBuffer);
+    values.swap(valueBuffer);
+  }
 }
 
 } // namespace fd3

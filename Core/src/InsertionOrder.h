@@ -15,6 +15,9 @@ namespace fd3
 /// Position along a 3D Hilbert curve of a point whose coordinates are quantized to `bits` bits.
 std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits);
 
+/// Stable sort of `values` by the low `bits` bits of `keys` (both are permuted).
+void radixSort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values, int bits);
+
 /// The order in which to insert the points `ids` (indices into xyz).
 std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::uint32_t> ids,
   InsertionOrder order, std::uint64_t seed);

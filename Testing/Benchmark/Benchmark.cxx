@@ -1,0 +1,325 @@
+// FastDelaunay3D benchmark: Core alone, vtkFastDelaunay3D through VTK, vtkDelaunay3D, and CGAL's
+// Delaunay_triangulation_3 when built with it, on deterministic point sets, in one run.
+//
+//   Benchmark [--kinds cube,ball,...] [--sizes 10000,100000] [--vtk-limit 60] [--validate-limit N]
+//             [--repeat R] [--markdown FILE] [--csv FILE]
+//
+// Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
+// child resets it) and a crash or a time-out costs one row, not the run.
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+#include "vtkFastDelaunay3D.h"
+
+#include "vtkDelaunay3D.h"
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnstructuredGrid.h"
+
+#ifdef FD3_BENCHMARK_WITH_CGAL
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
+
+#include <malloc.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+struct Measurement
+{
+  bool ran = false;
+  double seconds = 0;
+  double tetrahedra = 0;
+  double peakMiB = 0;
+  int valid = -1; // 1 valid, 0 invalid, -1 not checked
+  std::string note;
+};
+
+std::vector<std::string> split(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    out.push_back(item);
+  return out;
+}
+
+long statusKiB(const char* field)
+{
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind(field, 0) == 0)
+      return std::stol(line.substr(std::strlen(field)));
+  return 0;
+}
+
+long gBaseKiB = 0; // the child's resident memory before its work
+
+double peakSoFarMiB()
+{
+  return (statusKiB("VmHWM:") - gBaseKiB) / 1024.0;
+}
+
+/// Runs `work` in a child process; the child reports seconds, tetrahedra, validity, and its peak
+/// memory above what it inherited. Gives up after `limit` seconds.
+template <typename Work>
+Measurement measure(Work work, double limit)
+{
+  int fds[2];
+  if (pipe(fds) != 0)
+    return {};
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    close(fds[0]);
+    malloc_trim(0); // pages the parent freed must not be reused unseen by the RSS counters
+    std::ofstream("/proc/self/clear_refs") << "5"; // reset VmHWM to the current RSS
+    gBaseKiB = statusKiB("VmRSS:");
+    Measurement m = work();
+    if (m.peakMiB == 0)
+      m.peakMiB = peakSoFarMiB();
+    char line[256];
+    const int n = std::snprintf(line, sizeof line, "%.6f %.0f %.1f %d", m.seconds, m.tetrahedra,
+      m.peakMiB, m.valid);
+    if (write(fds[1], line, static_cast<std::size_t>(n)) < 0)
+      _exit(2);
+    _exit(0);
+  }
+  close(fds[1]);
+  Measurement m;
+  const auto start = Clock::now();
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0)
+  {
+    if (std::chrono::duration<double>(Clock::now() - start).count() > limit)
+    {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      close(fds[0]);
+      m.note = "timed out";
+      return m;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  char line[256] = {0};
+  const ssize_t got = read(fds[0], line, sizeof line - 1);
+  close(fds[0]);
+  if (got <= 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  {
+    m.note = "failed";
+    return m;
+  }
+  std::sscanf(line, "%lf %lf %lf %d", &m.seconds, &m.tetrahedra, &m.peakMiB, &m.valid);
+  m.ran = true;
+  return m;
+}
+
+double since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+vtkSmartPointer<vtkPolyData> toPolyData(const fd3test::Points& p)
+{
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(p.size() / 3));
+  std::copy(p.begin(), p.end(), coordinates->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  return poly;
+}
+
+Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
+{
+  Measurement m;
+  const auto t0 = Clock::now();
+  const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3);
+  m.seconds = since(t0);
+  m.tetrahedra = static_cast<double>(r.numberOfTetrahedra());
+  m.peakMiB = peakSoFarMiB(); // before the validator's own memory
+  if (p.size() / 3 <= validateLimit)
+    m.valid = fd3test::checkTriangulation(p.data(), p.size() / 3, r.tetrahedra).valid();
+  return m;
+}
+
+Measurement runFilter(const fd3test::Points& p)
+{
+  auto poly = toPolyData(p);
+  vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetInputData(poly);
+  Measurement m;
+  const auto t0 = Clock::now();
+  filter->Update();
+  m.seconds = since(t0);
+  m.tetrahedra = static_cast<double>(filter->GetOutput()->GetNumberOfCells());
+  return m;
+}
+
+Measurement runVtkDelaunay3D(const fd3test::Points& p)
+{
+  auto poly = toPolyData(p);
+  vtkNew<vtkDelaunay3D> filter;
+  filter->SetInputData(poly);
+  filter->SetGlobalWarningDisplay(0);
+  Measurement m;
+  const auto t0 = Clock::now();
+  filter->Update();
+  m.seconds = since(t0);
+  m.tetrahedra = static_cast<double>(filter->GetOutput()->GetNumberOfCells());
+  return m;
+}
+
+#ifdef FD3_BENCHMARK_WITH_CGAL
+Measurement runCgal(const fd3test::Points& p)
+{
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<Kernel::Point_3> points;
+  points.reserve(p.size() / 3);
+  for (std::size_t i = 0; i < p.size(); i += 3)
+    points.emplace_back(p[i], p[i + 1], p[i + 2]);
+  Measurement m;
+  const auto t0 = Clock::now();
+  CGAL::Delaunay_triangulation_3<Kernel> dt(points.begin(), points.end()); // range insert
+  m.seconds = since(t0);
+  m.tetrahedra = static_cast<double>(dt.number_of_finite_cells());
+  return m;
+}
+#endif
+
+std::string machineName()
+{
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);)
+    if (line.rfind("model name", 0) == 0)
+    {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  std::ostringstream out;
+  out << cpu << ", " << std::thread::hardware_concurrency() << " threads, "
+      << (sysconf(_SC_PHYS_PAGES) * sysconf(_SC_PAGE_SIZE) >> 30) << " GiB";
+  return out.str();
+}
+
+std::string cell(const Measurement& m, const char* format, double value)
+{
+  if (!m.ran)
+    return m.note.empty() ? "skipped" : m.note;
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<std::string> kinds = {"cube", "ball", "sphere", "lattice", "clusters", "slab", "torus"};
+  std::vector<std::size_t> sizes = {10000, 100000, 1000000};
+  double vtkLimit = 60;
+  std::size_t validateLimit = 200000;
+  std::string markdownFile, csvFile;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--kinds")
+      kinds = split(value);
+    else if (key == "--sizes")
+    {
+      sizes.clear();
+      for (const std::string& s : split(value))
+        sizes.push_back(static_cast<std::size_t>(std::stod(s)));
+    }
+    else if (key == "--vtk-limit")
+      vtkLimit = std::stod(value);
+    else if (key == "--validate-limit")
+      validateLimit = static_cast<std::size_t>(std::stod(value));
+    else if (key == "--markdown")
+      markdownFile = value;
+    else if (key == "--csv")
+      csvFile = value;
+    else
+    {
+      std::cerr << "unknown option " << key << "\n";
+      return 2;
+    }
+  }
+
+  std::ostringstream md, csv;
+  md << "Machine: " << machineName() << ". Single thread; peak memory is each run's own.\n\n"
+     << "| points | n | method | seconds | points/s | tets/s | peak MiB | B/point | vs Core | exact validity |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---|\n";
+  csv << "kind,n,method,seconds,tetrahedra,peak_mib,valid\n";
+  const double hugeLimit = 1e9;
+  for (const std::string& kind : kinds)
+  {
+    double vtkSecondsPerPoint = 0; // from the last vtkDelaunay3D run, to predict the next
+    for (std::size_t size : sizes)
+    {
+      const fd3test::Points p = fd3test::generate(kind, size, 1);
+      const std::size_t n = p.size() / 3;
+      std::vector<std::pair<std::string, Measurement>> rows;
+      rows.emplace_back("Core", measure([&] { return runCore(p, validateLimit); }, hugeLimit));
+      rows.emplace_back("vtkFastDelaunay3D", measure([&] { return runFilter(p); }, hugeLimit));
+      Measurement vtk;
+      if (vtkSecondsPerPoint * n * 1.5 <= vtkLimit) // vtkDelaunay3D grows faster than linearly
+      {
+        vtk = measure([&] { return runVtkDelaunay3D(p); }, vtkLimit);
+        if (vtk.ran)
+          vtkSecondsPerPoint = vtk.seconds / n;
+        else
+          vtkSecondsPerPoint = vtkLimit; // stop trying larger sizes
+      }
+      else
+        vtk.note = "skipped (over " + std::to_string(int(vtkLimit)) + " s)";
+      rows.emplace_back("vtkDelaunay3D", vtk);
+#ifdef FD3_BENCHMARK_WITH_CGAL
+      rows.emplace_back("CGAL", measure([&] { return runCgal(p); }, hugeLimit));
+#else
+      Measurement cgal;
+      cgal.note = "not built";
+      rows.emplace_back("CGAL", cgal);
+#endif
+      const double core = rows[0].second.seconds;
+      for (const auto& [method, m] : rows)
+      {
+        md << "| " << kind << " | " << n << " | " << method << " | " << cell(m, "%.3f", m.seconds)
+           << " | " << cell(m, "%.3g", n / m.seconds) << " | " << cell(m, "%.3g", m.tetrahedra / m.seconds)
+           << " | " << cell(m, "%.0f", m.peakMiB) << " | " << cell(m, "%.0f", m.peakMiB * 1048576.0 / n)
+           << " | " << cell(m, "%.2fx", m.seconds / core) << " | "
+           << (m.valid == 1 ? "valid" : (m.valid == 0 ? "INVALID" : "-")) << " |\n";
+        csv << kind << ',' << n << ',' << method << ',' << (m.ran ? m.seconds : -1) << ','
+            << m.tetrahedra << ',' << m.peakMiB << ',' << m.valid << '\n';
+        std::cerr << kind << " " << n << " " << method << ": "
+                  << (m.ran ? std::to_string(m.seconds) + " s" : m.note) << "\n";
+      }
+    }
+  }
+  std::cout << md.str();
+  if (!markdownFile.empty())
+    std::ofstream(markdownFile) << md.str();
+  if (!csvFile.empty())
+    std::ofstream(csvFile) << csv.str();
+  return 0;
+}
