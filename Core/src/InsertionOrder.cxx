@@ -58,38 +58,70 @@ std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::ui
   if (ids.empty())
     return ids;
 
-  // 10 bits per axis (2^30 curve cells) already separates points far finer than the walk needs;
-  // with 6 bits of round on top, the 36-bit keys sort in three 12-bit radix passes.
+  // BRIO rounds: round r holds about half the points of round r + 1; the smallest goes first.
+  const int rounds = std::clamp(static_cast<int>(std::log2(double(ids.size()) / 64.0)), 1, 63);
+  std::vector<std::uint64_t> keys(ids.size());
+  for (std::uint64_t& key : keys)
+  {
+    const int laterRoundsSkipped =
+      std::min(static_cast<int>(__builtin_ctzll(rng() | (1ull << 62))), rounds - 1);
+    key = static_cast<std::uint64_t>(rounds - 1 - laterRoundsSkipped);
+  }
+  radixSort(keys, ids, 6);
+  for (std::size_t begin = 0; begin < ids.size();)
+  {
+    std::size_t end = begin;
+    while (end < ids.size() && keys[end] == keys[begin])
+      ++end;
+    hilbertSort(xyz, ids.data() + begin, end - begin);
+    begin = end;
+  }
+  return ids;
+}
+
+// Sorts ids along a Hilbert curve over their bounding box, 10 bits per axis, then sorts again
+// every run of points that fell into one curve cell, inside that run's own box: the resolution
+// adapts to the points, so tight clusters (even of spread 1e-12) are ordered as well as the rest.
+void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count)
+{
   constexpr int kBits = 10;
-  constexpr int kRoundShift = 3 * kBits;
+  constexpr std::size_t kRunWorthRefining = 8;
+  if (count < 2)
+    return;
   double lo[3], hi[3];
   for (int a = 0; a < 3; ++a)
     lo[a] = hi[a] = xyz[3 * std::size_t(ids[0]) + a];
-  for (std::uint32_t id : ids)
+  for (std::size_t i = 1; i < count; ++i)
     for (int a = 0; a < 3; ++a)
     {
-      lo[a] = std::min(lo[a], xyz[3 * std::size_t(id) + a]);
-      hi[a] = std::max(hi[a], xyz[3 * std::size_t(id) + a]);
+      lo[a] = std::min(lo[a], xyz[3 * std::size_t(ids[i]) + a]);
+      hi[a] = std::max(hi[a], xyz[3 * std::size_t(ids[i]) + a]);
     }
   const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  const double toGrid = span > 0 ? ((1u << kBits) - 1) / span : 0.0;
-
-  // Round r holds about half the points of round r + 1; the smallest round goes first.
-  const int rounds = std::clamp(static_cast<int>(std::log2(double(ids.size()) / 64.0)), 1, 63);
-  std::vector<std::uint64_t> keys(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i)
+  if (!(span > 0))
+    return; // all points equal (duplicates): any order
+  const double toGrid = ((1u << kBits) - 1) / span;
+  std::vector<std::uint64_t> keys(count);
+  std::vector<std::uint32_t> values(ids, ids + count);
+  for (std::size_t i = 0; i < count; ++i)
   {
-    const double* p = xyz + 3 * std::size_t(ids[i]);
+    const double* p = xyz + 3 * std::size_t(values[i]);
     std::uint32_t q[3];
     for (int a = 0; a < 3; ++a)
       q[a] = static_cast<std::uint32_t>((p[a] - lo[a]) * toGrid);
-    const int laterRoundsSkipped =
-      std::min(static_cast<int>(__builtin_ctzll(rng() | (1ull << 62))), rounds - 1);
-    const std::uint64_t round = static_cast<std::uint64_t>(rounds - 1 - laterRoundsSkipped);
-    keys[i] = (round << kRoundShift) | hilbertIndex(q[0], q[1], q[2], kBits);
+    keys[i] = hilbertIndex(q[0], q[1], q[2], kBits);
   }
-  radixSort(keys, ids, kRoundShift + 6);
-  return ids;
+  radixSort(keys, values, 3 * kBits);
+  std::copy(values.begin(), values.end(), ids);
+  for (std::size_t begin = 0; begin < count;)
+  {
+    std::size_t end = begin + 1;
+    while (end < count && keys[end] == keys[begin])
+      ++end;
+    if (end - begin >= kRunWorthRefining && end - begin < count)
+      hilbertSort(xyz, ids + begin, end - begin);
+    begin = end;
+  }
 }
 
 // Least-significant-digit radix sort of `values` by `keys` (stable), over the low `bits` bits.

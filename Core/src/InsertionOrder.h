@@ -18,6 +18,9 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, in
 /// Stable sort of `values` by the low `bits` bits of `keys` (both are permuted).
 void radixSort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values, int bits);
 
+/// Sorts ids along a Hilbert curve, refining the curve inside every crowded cell.
+void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count);
+
 /// The order in which to insert the points `ids` (indices into xyz).
 std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::uint32_t> ids,
   InsertionOrder order, std::uint64_t seed);

@@ -127,6 +127,7 @@ public:
   void reserve(std::size_t tets) { records_.reserve(8 * tets); }
 
   /// Hands the records over (for in-place output conversion); the mesh is empty afterwards.
+  /// Record t occupies words 8t..8t+7, v0 carrying the flags in its top bits.
   std::vector<std::uint32_t> takeRecords()
   {
     freeSlots_.clear();

@@ -8,6 +8,7 @@
 #include <cassert>
 #include <array>
 #include <chrono>
+#include <utility>
 #include <cmath>
 
 namespace fd3
@@ -112,34 +113,46 @@ bool moveFirstTetrahedronToFront(
   return true;
 }
 
-/// The live finite tetrahedra with input point ids, and their neighbours renumbered. The
-/// neighbour table is compacted in place inside the mesh's own records to bound peak memory.
-void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, Triangulation& out)
+/// The live finite tetrahedra with input point ids, compacted in place inside the mesh's records
+/// (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k, never ahead of what is still
+/// to be read), and, when asked for, their neighbours renumbered.
+void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, bool withNeighbors,
+  Triangulation& out)
 {
   const std::size_t slots = mesh.slots();
-  std::vector<std::uint32_t> newId(slots, kNoNeighbor);
-  std::uint32_t kept = 0;
-  for (TetId t = 0; t < slots; ++t)
-    if (!mesh.isDead(t) && !mesh.isGhost(t))
-      newId[t] = kept++;
-  out.tetrahedra.resize(4 * std::size_t(kept));
-  for (TetId t = 0; t < slots; ++t)
-    if (const std::uint32_t k = newId[t]; k != kNoNeighbor)
-      for (int i = 0; i < 4; ++i)
-        out.tetrahedra[4 * std::size_t(k) + i] = inputId[mesh.vertex(t, i)];
+  std::vector<std::uint32_t> newId;
+  if (withNeighbors)
+  {
+    newId.assign(slots, kNoNeighbor);
+    std::uint32_t kept = 0;
+    for (TetId t = 0; t < slots; ++t)
+      if (!mesh.isDead(t) && !mesh.isGhost(t))
+        newId[t] = kept++;
+    out.neighbors.resize(4 * std::size_t(kept));
+    for (TetId t = 0; t < slots; ++t)
+      if (const std::uint32_t k = newId[t]; k != kNoNeighbor)
+        for (int f = 0; f < 4; ++f)
+        {
+          const FaceCode code = mesh.neighbor(t, f);
+          const std::uint32_t n = newId[tetOf(code)];
+          out.neighbors[4 * std::size_t(k) + f] = n == kNoNeighbor ? kNoNeighbor : faceCode(n, faceOf(code));
+        }
+    std::vector<std::uint32_t>().swap(newId);
+  }
   std::vector<std::uint32_t> records = mesh.takeRecords();
-  // Record t's neighbours (words 8t+4..8t+7) move to words 4k..4k+3 with k <= t: never ahead of
-  // what is still to be read.
-  for (TetId t = 0; t < slots; ++t)
-    if (const std::uint32_t k = newId[t]; k != kNoNeighbor)
-      for (int i = 0; i < 4; ++i)
-      {
-        const FaceCode code = records[8 * std::size_t(t) + 4 + i];
-        const std::uint32_t n = newId[tetOf(code)];
-        records[4 * std::size_t(k) + i] = n == kNoNeighbor ? kNoNeighbor : faceCode(n, faceOf(code));
-      }
-  records.resize(4 * std::size_t(kept));
-  out.neighbors = std::move(records);
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < slots; ++t)
+  {
+    const std::uint32_t* r = &records[8 * t];
+    if ((r[0] >> kVertexIdBits) == kDead || r[3] == kInfinite)
+      continue;
+    const std::uint32_t v[4] = {r[0] & (kMaxVertices - 1), r[1], r[2], r[3]};
+    for (int i = 0; i < 4; ++i)
+      records[4 * kept + i] = inputId[v[i]];
+    ++kept;
+  }
+  records.resize(4 * kept);
+  out.tetrahedra = std::move(records);
 }
 
 } // namespace
@@ -150,7 +163,6 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   Triangulation out;
   Statistics& stats = out.stats;
   stats.inputPoints = count;
-  out.representative.assign(count, kNoNeighbor);
 
   std::vector<std::uint32_t> ids;
   ids.reserve(count);
@@ -185,21 +197,19 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
 
   Triangulator triangulator(std::move(normalized), options, stats);
   triangulator.start();
-  for (VertId v = 0; v < 4; ++v)
-    out.representative[order[v]] = order[v];
+  std::vector<std::pair<VertId, VertId>> duplicates; // (vertex, the earlier vertex it copies)
   constexpr VertId kProgressInterval = 1u << 14;
   for (VertId v = 4; v < order.size(); ++v)
   {
     if (v % kProgressInterval == 0 && options.progress && !options.progress(double(v) / order.size()))
     {
       out.status = Status::Aborted;
-      out.representative.assign(count, kNoNeighbor);
       return out;
     }
-    const bool inserted = triangulator.insert(v) == Triangulator::Outcome::Inserted;
-    out.representative[order[v]] = inserted ? order[v] : order[triangulator.duplicateOf()];
-    stats.duplicatesMerged += !inserted;
+    if (triangulator.insert(v) == Triangulator::Outcome::Duplicate)
+      duplicates.emplace_back(v, triangulator.duplicateOf());
   }
+  stats.duplicatesMerged = duplicates.size();
 #ifndef NDEBUG
   // Debug builds verify every invariant of the mesh before handing it out.
   const std::string problems = triangulator.checkMesh();
@@ -211,7 +221,13 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   stats.symbolicTies = predicates.symbolicTies;
 
   const auto outputStart = Clock::now();
-  extractOutput(triangulator.mesh(), order, out);
+  triangulator.releaseWorkspace();
+  extractOutput(triangulator.mesh(), order, options.computeNeighbors, out);
+  out.representative.assign(count, kNoNeighbor);
+  for (std::uint32_t id : order)
+    out.representative[id] = id;
+  for (const auto& [copy, original] : duplicates)
+    out.representative[order[copy]] = order[original];
   stats.tetrahedra = out.numberOfTetrahedra();
   stats.secondsOutput = secondsSince(outputStart);
   stats.secondsTotal = secondsSince(start);

@@ -21,6 +21,17 @@ Triangulator::Triangulator(std::vector<double> xyz, const Options& options, Stat
   predicates_.setIntegerGrid(Predicates::integerGridUnit(xyz_.data(), n));
 }
 
+void Triangulator::releaseWorkspace()
+{
+  std::vector<double>().swap(xyz_);
+  std::vector<TetId>().swap(vertexTet_);
+  std::vector<std::uint32_t>().swap(vertexStamp_);
+  grid_ = BackgroundGrid();
+  for (auto* scratch : {&cavity_, &rejected_, &created_})
+    std::vector<TetId>().swap(*scratch);
+  std::vector<BoundaryFacet>().swap(boundary_);
+}
+
 std::uint32_t Triangulator::nextRandom()
 {
   // xorshift64*: cheap, seeded, and good enough to break the walk's symmetries.

@@ -50,6 +50,9 @@ public:
   const TetMesh& mesh() const { return mesh_; }
   const std::vector<double>& points() const { return xyz_; }
 
+  /// Frees the points, the grid and the scratch buffers: only the mesh is left for the output.
+  void releaseWorkspace();
+
   /// Exhaustive structural and geometric check of the invariants listed in TetMesh.h and of the
   /// local Delaunay property (unless a volume threshold was used). Returns an empty string when valid.
   std::string checkMesh();

@@ -99,6 +99,7 @@ int vtkFastDelaunay3D::RequestData(
   options.volumeThreshold = this->VolumeThreshold;
   options.order = static_cast<fd3::InsertionOrder>(this->InsertionOrder);
   options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+  options.computeNeighbors = false;
   options.progress = [this](double fraction) {
     this->UpdateProgress(fraction);
     return !this->CheckAbort();

@@ -43,6 +43,9 @@ struct Options
   double volumeThreshold = 0.0;
   InsertionOrder order = InsertionOrder::Brio;
   std::uint64_t randomSeed = 1;
+  /// Also return the neighbour table. Without it the tetrahedra are compacted in place in the
+  /// mesh's own memory, which lowers the peak (the VTK filter does not need neighbours).
+  bool computeNeighbors = true;
   /// Called now and then with the fraction of points inserted; return false to abort.
   std::function<bool(double)> progress;
 };
@@ -78,9 +81,10 @@ struct Triangulation
   std::vector<std::uint32_t> tetrahedra;
   /// neighbors[4*t + f] = 4*t' + f' where tetrahedron t' shares the face of t opposite its vertex f,
   /// and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull.
+  /// Empty unless Options::computeNeighbors.
   std::vector<std::uint32_t> neighbors;
   /// For each input point: the input id of the point it was merged into (itself when inserted),
-  /// or kNoNeighbor when it is unused (non-finite, or the run did not produce tetrahedra).
+  /// or kNoNeighbor for a non-finite point. Empty when the status is not Ok.
   std::vector<std::uint32_t> representative;
   Statistics stats;
 
