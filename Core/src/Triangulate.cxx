@@ -10,6 +10,9 @@
 #include <chrono>
 #include <utility>
 #include <cmath>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace fd3
 {
@@ -194,6 +197,11 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   for (std::size_t i = 0; i < order.size(); ++i)
     norm.apply(xyz + 3 * std::size_t(order[i]), normalized.data() + 3 * i);
   stats.secondsSort = secondsSince(start);
+#if defined(__GLIBC__)
+  // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its
+  // mmap threshold has grown; hand it back before the mesh grows so it does not add to the peak.
+  malloc_trim(0);
+#endif
 
   Triangulator triangulator(std::move(normalized), options, stats);
   triangulator.start();

@@ -7,7 +7,8 @@
 #include "vtkCellArray.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
-#include "vtkIdTypeArray.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -19,6 +20,7 @@
 
 #include "fd3/Delaunay.h"
 
+#include <limits>
 #include <vector>
 
 vtkStandardNewMacro(vtkFastDelaunay3D);
@@ -44,30 +46,39 @@ const double* PointsAsDoubles(vtkPoints* points, std::vector<double>& copy)
   return copy.data();
 }
 
-/// VTK_TETRA cells from the kernel's tetrahedra, filling offsets and connectivity directly.
+/// VTK_TETRA cells from the kernel's tetrahedra, filling offsets and connectivity directly. The
+/// cell array uses 32-bit storage whenever the ids fit, which halves its memory.
+template <typename IdArray>
 vtkSmartPointer<vtkCellArray> MakeTetraCells(const std::vector<std::uint32_t>& tets)
 {
+  using Id = typename IdArray::ValueType;
   const vtkIdType numberOfTets = static_cast<vtkIdType>(tets.size() / 4);
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
+  vtkNew<IdArray> offsets;
+  vtkNew<IdArray> connectivity;
   offsets->SetNumberOfValues(numberOfTets + 1);
   connectivity->SetNumberOfValues(4 * numberOfTets);
-  vtkIdType* offset = offsets->GetPointer(0);
-  vtkIdType* ids = connectivity->GetPointer(0);
+  Id* offset = offsets->GetPointer(0);
+  Id* ids = connectivity->GetPointer(0);
   vtkSMPTools::For(0, numberOfTets, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType t = begin; t < end; ++t)
     {
-      offset[t] = 4 * t;
+      offset[t] = static_cast<Id>(4 * t);
       for (int i = 0; i < 4; ++i)
       {
-        ids[4 * t + i] = static_cast<vtkIdType>(tets[4 * t + i]);
+        ids[4 * t + i] = static_cast<Id>(tets[4 * t + i]);
       }
     }
   });
-  offset[numberOfTets] = 4 * numberOfTets;
+  offset[numberOfTets] = static_cast<Id>(4 * numberOfTets);
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   cells->SetData(offsets, connectivity);
   return cells;
+}
+
+vtkSmartPointer<vtkCellArray> MakeTetraCells(const std::vector<std::uint32_t>& tets)
+{
+  const bool fits32 = tets.size() < static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max());
+  return fits32 ? MakeTetraCells<vtkTypeInt32Array>(tets) : MakeTetraCells<vtkTypeInt64Array>(tets);
 }
 } // namespace
 

@@ -34,7 +34,7 @@ struct Options
 {
   /// Target number of points per cell of the background grid (the paper's "onion" search).
   /// 0 disables the grid; the walk then starts from the last created tetrahedron.
-  double pointsPerCell = 2.0;
+  double pointsPerCell = 4.0;
   /// Sliver guard of the paper's core correction: a new tetrahedron whose volume is below this
   /// fraction of the volume of the regular tetrahedron on its longest edge is not created (the core
   /// shrinks instead), except next to the new point's own tetrahedron, where no other choice
