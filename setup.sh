@@ -4,7 +4,9 @@
 #
 #   ./setup.sh          set up and build
 #   ./setup.sh demo     ... then tetrahedralize Data/points.vtp under pvbatch into output/
-#   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
+#   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run), then the same
+#                       suite built with AddressSanitizer + UndefinedBehaviorSanitizer (Debug:
+#                       the kernel's own mesh check on) in build-asan
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -12,7 +14,7 @@ cd "$(dirname "$0")"
 # package needs but does not pull in, an X server for rendering tests, and the test tools.
 packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
-  cmake ninja-build g++ pkg-config)
+  cmake ninja-build g++ pkg-config clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -32,6 +34,11 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
 case "${1:-build}" in
   build) ;;
   demo) "${xvfb[@]}" pvbatch Testing/Python/demo.py "$plugin" Data/points.vtp output ;;
-  test) cd build && "${xvfb[@]}" ctest -j2 --output-on-failure ;;
+  test)
+    (cd build && "${xvfb[@]}" ctest -j2 --output-on-failure)
+    cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+      -DFD3_SANITIZE=ON -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+    cmake --build build-asan -j2
+    (cd build-asan && ASAN_OPTIONS=detect_leaks=1 "${xvfb[@]}" ctest -j2 --output-on-failure) ;;
   *) echo "usage: $0 [build|demo|test]" >&2; exit 2 ;;
 esac

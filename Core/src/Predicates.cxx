@@ -90,6 +90,20 @@ int Predicates::orient3d(const double* a, const double* b, const double* c, cons
   return orient3dExact(a, b, c, d);
 }
 
+void Predicates::checkUnderflow(const double* const rows[], int count, const double* origin)
+{
+  for (int r = 0; r < count; ++r)
+    for (int k = 0; k < 3; ++k)
+    {
+      const double d = std::fabs(rows[r][k] - origin[k]);
+      if (d != 0.0 && d < kSmallestSafeDifference)
+      {
+        ++underflowRisks;
+        return;
+      }
+    }
+}
+
 Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3])
 {
   ExpansionArena& x = arena_;
@@ -110,6 +124,8 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
     gridDifferences<3>(rows, a, q);
     return signOf(det3(q[0], q[1], q[2]));
   }
+  const double* rows[3] = {b, c, d};
+  checkUnderflow(rows, 3, a);
   arena_.reset();
   Expansion u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k)
@@ -176,6 +192,7 @@ int Predicates::inSphereExact(
   ExpansionArena& x = arena_;
   x.reset();
   const double* rows[4] = {a, b, c, d};
+  checkUnderflow(rows, 4, e);
   Expansion diff[4][3], lift[4];
   for (int r = 0; r < 4; ++r)
   {

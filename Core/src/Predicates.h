@@ -44,6 +44,10 @@ public:
   std::size_t exactOrientCalls = 0;
   std::size_t exactInSphereCalls = 0;
   std::size_t symbolicTies = 0;
+  /// Exact evaluations where a non-zero coordinate difference was below kSmallestSafeDifference:
+  /// products of five such differences may underflow, and exactness is no longer guaranteed.
+  std::size_t underflowRisks = 0;
+  static constexpr double kSmallestSafeDifference = 0x1p-190; // (2^-190)^5 > 2^-969: no underflow
 
 private:
   template <int N>
@@ -51,6 +55,7 @@ private:
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
+  void checkUnderflow(const double* const rows[], int count, const double* origin);
 
   ExpansionArena arena_;
   double inverseGridUnit_ = 0.0;

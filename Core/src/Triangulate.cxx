@@ -227,6 +227,7 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   stats.exactOrient = predicates.exactOrientCalls;
   stats.exactInSphere = predicates.exactInSphereCalls;
   stats.symbolicTies = predicates.symbolicTies;
+  stats.underflowRisks = predicates.underflowRisks;
 
   const auto outputStart = Clock::now();
   triangulator.releaseWorkspace();

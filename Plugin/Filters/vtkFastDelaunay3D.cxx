@@ -20,6 +20,7 @@
 
 #include "fd3/Delaunay.h"
 
+#include <exception>
 #include <limits>
 #include <vector>
 
@@ -27,6 +28,24 @@ vtkStandardNewMacro(vtkFastDelaunay3D);
 
 namespace
 {
+/// The input's points: those of a vtkPointSet as they are (shared with the output), or built from
+/// any other dataset (image data, rectilinear grids), whose points are implicit.
+vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input)
+{
+  if (auto* pointSet = vtkPointSet::SafeDownCast(input))
+  {
+    return pointSet->GetPoints();
+  }
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(input->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    points->SetPoint(i, input->GetPoint(i));
+  }
+  return points;
+}
+
 /// The point coordinates as x,y,z doubles: the array itself when it already is one, else a copy.
 const double* PointsAsDoubles(vtkPoints* points, std::vector<double>& copy)
 {
@@ -86,14 +105,14 @@ vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
 
 int vtkFastDelaunay3D::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   return 1;
 }
 
 int vtkFastDelaunay3D::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   const vtkIdType numberOfPoints = input ? input->GetNumberOfPoints() : 0;
   if (numberOfPoints == 0)
@@ -103,8 +122,9 @@ int vtkFastDelaunay3D::RequestData(
   }
 
   // VTK arrays in -> Core -> VTK arrays out.
+  vtkSmartPointer<vtkPoints> points = InputPoints(input);
   std::vector<double> converted;
-  const double* xyz = PointsAsDoubles(input->GetPoints(), converted);
+  const double* xyz = PointsAsDoubles(points, converted);
   fd3::Options options;
   options.pointsPerCell = this->GridResolution;
   options.volumeThreshold = this->VolumeThreshold;
@@ -115,8 +135,17 @@ int vtkFastDelaunay3D::RequestData(
     this->UpdateProgress(fraction);
     return !this->CheckAbort();
   };
-  const fd3::Triangulation result =
-    fd3::triangulate(xyz, static_cast<std::size_t>(numberOfPoints), options);
+  fd3::Triangulation result;
+  try
+  {
+    result = fd3::triangulate(xyz, static_cast<std::size_t>(numberOfPoints), options);
+  }
+  catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
+  {
+    vtkErrorMacro("Triangulation failed: " << failure.what() << "; the output is empty");
+    output->Initialize();
+    return 0;
+  }
   if (result.status == fd3::Status::Aborted)
   {
     output->Initialize();
@@ -141,6 +170,12 @@ int vtkFastDelaunay3D::RequestData(
     vtkWarningMacro("Cannot triangulate: " << fd3::toString(result.status)
                                            << "; the output holds the points and no cells");
   }
+  if (stats.underflowRisks > 0)
+  {
+    vtkWarningMacro("Some points are closer together than 2^-190 of the extent of the point set: "
+                    "exactness is not guaranteed for "
+                    << stats.underflowRisks << " decisions");
+  }
   if (stats.duplicatesMerged > 0)
   {
     vtkWarningMacro(<< stats.duplicatesMerged
@@ -148,7 +183,7 @@ int vtkFastDelaunay3D::RequestData(
                        "points");
   }
 
-  output->SetPoints(input->GetPoints());
+  output->SetPoints(points);
   output->GetPointData()->PassData(input->GetPointData());
   output->SetCells(VTK_TETRA, MakeTetraCells(result.tetrahedra));
   return 1;

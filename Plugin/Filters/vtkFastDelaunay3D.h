@@ -6,7 +6,8 @@
  * @class   vtkFastDelaunay3D
  * @brief   exact and fast 3D Delaunay tetrahedralization of the input points
  *
- * vtkFastDelaunay3D is a drop-in alternative to vtkDelaunay3D. It takes any vtkPointSet and
+ * vtkFastDelaunay3D is a drop-in alternative to vtkDelaunay3D. It takes any vtkPointSet (and, beyond
+ * vtkDelaunay3D, any other vtkDataSet such as image data, whose points it makes explicit) and
  * produces a vtkUnstructuredGrid that holds the input points (same ids, same point data) and
  * VTK_TETRA cells forming the Delaunay tetrahedralization of their convex hull.
  *
@@ -23,7 +24,9 @@
  * @warning
  * Points with NaN or infinite coordinates are reported with an error and left out of the
  * tetrahedralization (they remain in the output as unused points). Fewer than 4 distinct points,
- * or points that are all collinear or coplanar, give a warning and an output without cells.
+ * or points that are all collinear or coplanar, give a warning and an output without cells. An
+ * empty input gives a warning and an empty output; an aborted run an empty output; an internal
+ * failure (such as running out of memory) an error and an empty output.
  *
  * @sa
  * vtkDelaunay3D vtkDelaunay2D

@@ -7,9 +7,11 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -161,6 +163,70 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   EXPECT_EQ(observer->CheckErrorMessage("2 of 200 points have NaN or infinite coordinates"), 0);
   EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 198);
   EXPECT_GT(filter->GetOutput()->GetNumberOfCells(), 0);
+}
+
+TEST(Filter, EveryKindOfDatasetAndCellsWithoutPoints)
+{
+  // Image data: its implicit points are made explicit and tetrahedralized (a 5^3 lattice).
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(5, 5, 5);
+  image->SetSpacing(0.5, 0.25, 1.0);
+  vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetInputData(image);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 125);
+  const fd3test::Points xyz = Coordinates(filter->GetOutput());
+  const auto report =
+    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  EXPECT_TRUE(report.valid()) << report.summary();
+
+  // An unstructured grid is a point set like any other.
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(MakeCloud(fd3test::uniformCube(300, 5))->GetPoints());
+  filter->SetInputData(grid);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 300);
+  EXPECT_GT(filter->GetOutput()->GetNumberOfCells(), 300);
+
+  // Cells but no points: a warning and an empty output, no crash.
+  vtkNew<vtkPolyData> broken;
+  vtkNew<vtkCellArray> verts;
+  verts->InsertNextCell(1);
+  verts->InsertCellPoint(0);
+  broken->SetVerts(verts);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(broken);
+  filter->Update();
+  EXPECT_EQ(observer->CheckWarningMessage("no input points"), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
+}
+
+// Abort from a progress observer (what ParaView's Abort button does): an empty output, and the
+// same filter then runs to a correct result.
+TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
+{
+  auto cloud = MakeCloud(fd3test::uniformCube(60000, 6));
+  vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetInputData(cloud);
+  vtkNew<vtkCallbackCommand> abortOnProgress;
+  abortOnProgress->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
+    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  });
+  const unsigned long tag = filter->AddObserver(vtkCommand::ProgressEvent, abortOnProgress);
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+
+  filter->RemoveObserver(tag);
+  filter->SetAbortExecute(0);
+  filter->Modified();
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 60000);
+  const fd3test::Points xyz = Coordinates(filter->GetOutput());
+  const auto report =
+    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  EXPECT_TRUE(report.valid()) << report.summary();
 }
 
 } // namespace

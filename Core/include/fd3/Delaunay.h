@@ -64,6 +64,10 @@ struct Statistics
   std::size_t exactOrient = 0;         ///< orient3d calls the float filter could not decide
   std::size_t exactInSphere = 0;       ///< insphere calls the float filter could not decide
   std::size_t symbolicTies = 0;        ///< insphere ties broken by symbolic perturbation
+  /// Exact evaluations on points so close together relative to the extent of the set (below
+  /// 2^-190 of it) that double-based exact arithmetic may underflow. When 0, the output is
+  /// guaranteed exact; otherwise it is valid in all likelihood but not guaranteed.
+  std::size_t underflowRisks = 0;
   double secondsSort = 0, secondsLocate = 0, secondsCavity = 0, secondsFill = 0, secondsOutput = 0;
   double secondsTotal = 0;
 

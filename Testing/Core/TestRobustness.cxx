@@ -1,0 +1,191 @@
+// Degenerate, hostile and huge inputs: every result must pass the exact validator.
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace
+{
+using fd3test::Points;
+
+void expectExactDelaunay(const Points& p, const std::string& what)
+{
+  const std::size_t n = p.size() / 3;
+  const fd3::Triangulation r = fd3::triangulate(p.data(), n);
+  ASSERT_EQ(r.status, fd3::Status::Ok) << what << ": " << fd3::toString(r.status);
+  const auto report = fd3test::checkTriangulation(p.data(), n, r.tetrahedra);
+  EXPECT_TRUE(report.valid()) << what << ": " << report.summary();
+  EXPECT_EQ(r.stats.insertedPoints, report.distinctPoints) << what;
+}
+
+Points subset(const Points& p, double keep, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::bernoulli_distribution take(keep);
+  Points out;
+  for (std::size_t i = 0; i < p.size(); i += 3)
+    if (take(rng))
+      out.insert(out.end(), p.begin() + i, p.begin() + i + 3);
+  return out;
+}
+
+TEST(Robustness, LatticesUpTo50Cubed)
+{
+  for (int k : {4, 7, 16, 50})
+    expectExactDelaunay(fd3test::lattice(k), "lattice " + std::to_string(k));
+}
+
+TEST(Robustness, RandomSubsetsOfLattices)
+{
+  for (double keep : {0.1, 0.5, 0.9})
+    expectExactDelaunay(subset(fd3test::lattice(15), keep, 3), "lattice subset " + std::to_string(keep));
+}
+
+TEST(Robustness, PointsExactlyOnASphere)
+{
+  expectExactDelaunay(fd3test::exactSphere(20000, 5), "sphere");
+}
+
+TEST(Robustness, PointsExactlyOnAFewPlanes)
+{
+  // Three orthogonal planes through a unit cube and one slanted plane x + y + z = 1, on a grid
+  // of step 1/64: exact in binary, so coplanarity is exact.
+  Points p;
+  std::mt19937_64 rng(8);
+  std::uniform_int_distribution<int> g(0, 64);
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double a = g(rng) / 64.0, b = g(rng) / 64.0;
+    switch (i % 4)
+    {
+      case 0: p.insert(p.end(), {a, b, 0.0}); break;
+      case 1: p.insert(p.end(), {a, 0.0, b}); break;
+      case 2: p.insert(p.end(), {0.0, a, b}); break;
+      default: p.insert(p.end(), {a / 2, b / 2, 1.0 - a / 2 - b / 2}); break;
+    }
+  }
+  expectExactDelaunay(p, "planes");
+}
+
+TEST(Robustness, CocircularAndCosphericalSubsets)
+{
+  // Clusters of cospherical points (integer sphere points, scaled and shifted by powers of two so
+  // they stay exact) inside random points, and cocircular rings (z = const slices of the sphere).
+  Points p = fd3test::uniformCube(2000, 4);
+  const Points sphere = fd3test::exactSphere(400, 6);
+  double radius = 0;
+  for (double x : sphere)
+    radius = std::max(radius, std::fabs(x));
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t i = 0; i < sphere.size(); i += 3)
+      for (int a = 0; a < 3; ++a)
+        p.push_back(0.25 + 0.25 * c + std::ldexp(sphere[i + a], -2 - static_cast<int>(std::log2(radius))));
+  for (int ring = 0; ring < 5; ++ring)
+    for (int k = 0; k < 4; ++k)
+    {
+      // (3,4), (4,3), (5,0), (0,5) and their signs lie on the circle of radius 5.
+      static const double circle[8][2] = {{3, 4}, {4, 3}, {5, 0}, {0, 5}, {-3, 4}, {-4, -3}, {-5, 0}, {0, -5}};
+      for (const auto& c : circle)
+        p.insert(p.end(), {2 + c[0] / 64 + k, 2 + c[1] / 64, ring / 8.0});
+    }
+  expectExactDelaunay(p, "cospherical and cocircular subsets");
+}
+
+TEST(Robustness, LinePlusOnePointIsDegenerate)
+{
+  Points p;
+  for (int i = 0; i < 20; ++i)
+    p.insert(p.end(), {i * 0.5, i * 0.25, i * 0.125});
+  p.insert(p.end(), {0.0, 1.0, 0.0});
+  const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3);
+  EXPECT_EQ(r.status, fd3::Status::Degenerate); // a line and a point span a plane
+  EXPECT_TRUE(r.tetrahedra.empty());
+  p.insert(p.end(), {0.0, 0.0, 1.0}); // one more point off that plane: now a real triangulation
+  expectExactDelaunay(p, "line plus two points");
+}
+
+// All configurations of up to 10 points drawn from a 3x3x3 lattice (collinear, coplanar,
+// cospherical, duplicated), many random draws of each size.
+TEST(Robustness, EverySmallConfiguration)
+{
+  const Points grid = fd3test::lattice(3);
+  std::mt19937_64 rng(12);
+  std::uniform_int_distribution<int> pick(0, 26);
+  for (std::size_t n = 1; n <= 10; ++n)
+    for (int draw = 0; draw < 300; ++draw)
+    {
+      Points p;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const int k = pick(rng);
+        p.insert(p.end(), grid.begin() + 3 * k, grid.begin() + 3 * k + 3);
+      }
+      const fd3::Triangulation r = fd3::triangulate(p.data(), n);
+      if (r.status != fd3::Status::Ok)
+      {
+        ASSERT_TRUE(r.status == fd3::Status::TooFewPoints || r.status == fd3::Status::Degenerate);
+        continue;
+      }
+      const auto report = fd3test::checkTriangulation(p.data(), n, r.tetrahedra);
+      ASSERT_TRUE(report.valid()) << "n = " << n << " draw " << draw << ": " << report.summary();
+    }
+}
+
+TEST(Robustness, TenAndNinetyPercentDuplicates)
+{
+  for (double share : {0.1, 0.9})
+  {
+    const Points base = fd3test::uniformBall(2000, 7);
+    std::mt19937_64 rng(1);
+    std::uniform_int_distribution<std::size_t> pick(0, 1999);
+    Points p = base;
+    const std::size_t copies = static_cast<std::size_t>(2000 * share / (1 - share));
+    for (std::size_t i = 0; i < copies; ++i)
+    {
+      const std::size_t k = pick(rng);
+      p.insert(p.end(), base.begin() + 3 * k, base.begin() + 3 * k + 3);
+    }
+    const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3);
+    ASSERT_EQ(r.status, fd3::Status::Ok);
+    EXPECT_EQ(r.stats.duplicatesMerged, copies);
+    EXPECT_EQ(r.stats.insertedPoints, 2000u);
+    expectExactDelaunay(p, "duplicates");
+  }
+}
+
+TEST(Robustness, PointsThatDifferInTheLastBit)
+{
+  Points p = fd3test::uniformCube(500, 9);
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; i += 3)
+    for (int a = 0; a < 3; ++a)
+      p.push_back(std::nextafter(p[i + a], 2.0)); // a twin one ulp away on every axis
+  expectExactDelaunay(p, "one-ulp twins");
+}
+
+TEST(Robustness, ThinSlabsAndTightClusters)
+{
+  expectExactDelaunay(fd3test::thinSlab(5000, 1e-9, 2), "slab 1e-9");
+  expectExactDelaunay(fd3test::clusters(5000, 5, 1e-12, 3), "clusters of spread 1e-12");
+}
+
+TEST(Robustness, HugeTinyAndFarFromTheOrigin)
+{
+  for (double scale : {1e-300, 1e300})
+  {
+    Points p = fd3test::uniformCube(2000, 10);
+    for (double& x : p)
+      x *= scale;
+    expectExactDelaunay(p, "scale " + std::to_string(scale));
+  }
+  Points far = fd3test::uniformCube(2000, 11);
+  for (double& x : far)
+    x += 1e9;
+  expectExactDelaunay(far, "offset 1e9");
+}
+
+} // namespace
