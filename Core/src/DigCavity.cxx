@@ -3,6 +3,8 @@
 // the core connected, the paper's remedy for inconsistent sphere tests.
 #include "Triangulator.h"
 
+#include "fd3/Measures.h"
+
 namespace fd3
 {
 
@@ -20,6 +22,28 @@ bool Triangulator::inConflict(TetId t, VertId v)
     return side > 0;
   mesh_.vertices(tetOf(mesh_.neighbor(t, 3)), tv);
   return predicates_.inSphereSoS(xyz_.data(), tv, v) > 0;
+}
+
+// The point's nearest inserted neighbour is a Delaunay neighbour of it, so a vertex of the cavity:
+// looking there is enough to honour the tolerance.
+VertId Triangulator::vertexWithin(double distance2, VertId v) const
+{
+  for (const BoundaryFacet& b : boundary_)
+    for (int i = 0; i < 4; ++i)
+    {
+      const VertId u = mesh_.vertex(b.inner, i);
+      if (i != b.face && u != kInfinite && fd3::distance2(point(u), point(v)) < distance2)
+        return u;
+    }
+  return kInfinite;
+}
+
+void Triangulator::undoCavity()
+{
+  for (TetId t : cavity_)
+    mesh_.setFlags(t, 0);
+  for (TetId t : rejected_)
+    mesh_.setFlags(t, 0);
 }
 
 void Triangulator::digCavity(TetId base, VertId v)

@@ -203,9 +203,11 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   malloc_trim(0);
 #endif
 
-  Triangulator triangulator(std::move(normalized), options, stats);
+  Options normalizedOptions = options;
+  normalizedOptions.tolerance = options.tolerance * norm.scale;
+  Triangulator triangulator(std::move(normalized), normalizedOptions, stats);
   triangulator.start();
-  std::vector<std::pair<VertId, VertId>> duplicates; // (vertex, the earlier vertex it copies)
+  std::vector<std::pair<VertId, VertId>> duplicates; // (vertex, the earlier vertex it is merged into)
   constexpr VertId kProgressInterval = 1u << 14;
   for (VertId v = 4; v < order.size(); ++v)
   {
@@ -214,10 +216,15 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
       out.status = Status::Aborted;
       return out;
     }
-    if (triangulator.insert(v) == Triangulator::Outcome::Duplicate)
-      duplicates.emplace_back(v, triangulator.duplicateOf());
+    const Triangulator::Outcome outcome = triangulator.insert(v);
+    if (outcome == Triangulator::Outcome::Inserted)
+      continue;
+    duplicates.emplace_back(v, triangulator.duplicateOf());
+    if (outcome == Triangulator::Outcome::Duplicate)
+      ++stats.duplicatesMerged;
+    else
+      ++stats.closePointsSkipped;
   }
-  stats.duplicatesMerged = duplicates.size();
 #ifndef NDEBUG
   // Debug builds verify every invariant of the mesh before handing it out.
   const std::string problems = triangulator.checkMesh();

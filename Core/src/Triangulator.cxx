@@ -134,6 +134,15 @@ Triangulator::Outcome Triangulator::insert(VertId v)
     }
   }
   digCavity(base, v);
+  if (options_.tolerance > 0)
+  {
+    if (const VertId near = vertexWithin(options_.tolerance * options_.tolerance, v); near != kInfinite)
+    {
+      undoCavity();
+      duplicateOf_ = near;
+      return Outcome::TooClose;
+    }
+  }
   correctCavity(v);
   clock.lap(stats_.secondsCavity);
   fillCavity(v);

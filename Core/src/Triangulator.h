@@ -37,12 +37,13 @@ public:
   enum class Outcome
   {
     Inserted,
-    Duplicate
+    Duplicate,  ///< an exact copy of an earlier vertex
+    TooClose    ///< within the tolerance of an earlier vertex
   };
   /// Inserts vertex v; every vertex below v must have been handled before.
   Outcome insert(VertId v);
 
-  /// Vertex v is an exact copy of this earlier vertex (valid after insert() returned Duplicate).
+  /// The earlier vertex that made insert() return Duplicate or TooClose.
   VertId duplicateOf() const { return duplicateOf_; }
 
   const Predicates& predicates() const { return predicates_; }
@@ -66,6 +67,8 @@ private:
   TetId locate(VertId v);
   // DigCavity.cxx
   bool inConflict(TetId t, VertId v);
+  VertId vertexWithin(double distance2, VertId v) const;
+  void undoCavity();
   void digCavity(TetId base, VertId v);
   // CorrectCavity.cxx
   void correctCavity(VertId v);

@@ -5,10 +5,11 @@
 #include "vtkFastDelaunay3D.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
-#include "vtkTypeInt32Array.h"
-#include "vtkTypeInt64Array.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -16,10 +17,16 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Delaunay.h"
+#include "fd3/Measures.h"
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
 #include <limits>
 #include <vector>
@@ -28,20 +35,80 @@ vtkStandardNewMacro(vtkFastDelaunay3D);
 
 namespace
 {
-/// The input's points: those of a vtkPointSet as they are (shared with the output), or built from
-/// any other dataset (image data, rectilinear grids), whose points are implicit.
-vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input)
+/// Bounding box of the finite points (NaN or infinite ones would spoil VTK's own bounds).
+void FiniteBounds(vtkDataSet* input, double bounds[6])
 {
-  if (auto* pointSet = vtkPointSet::SafeDownCast(input))
-  {
-    return pointSet->GetPoints();
-  }
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(input->GetNumberOfPoints());
+  bounds[0] = bounds[2] = bounds[4] = VTK_DOUBLE_MAX;
+  bounds[1] = bounds[3] = bounds[5] = -VTK_DOUBLE_MAX;
+  double x[3];
   for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
   {
-    points->SetPoint(i, input->GetPoint(i));
+    input->GetPoint(i, x);
+    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        bounds[2 * a] = std::min(bounds[2 * a], x[a]);
+        bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
+      }
+    }
+  }
+}
+
+double Diagonal(const double bounds[6])
+{
+  double d2 = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double extent = bounds[2 * a + 1] - bounds[2 * a];
+    d2 += extent > 0 ? extent * extent : 0;
+  }
+  return std::sqrt(d2);
+}
+
+/// The output's points: the input's own when nothing changes (shared, same ids), else a copy in
+/// the requested precision, followed by the bounding octahedron's 6 points when asked for.
+vtkSmartPointer<vtkPoints> MakeOutputPoints(
+  vtkDataSet* input, const double bounds[6], int precision, bool bounding, double offset)
+{
+  auto* pointSet = vtkPointSet::SafeDownCast(input);
+  vtkPoints* given = pointSet ? pointSet->GetPoints() : nullptr;
+  int type = given ? given->GetDataType() : VTK_DOUBLE;
+  if (precision == vtkAlgorithm::SINGLE_PRECISION)
+  {
+    type = VTK_FLOAT;
+  }
+  else if (precision == vtkAlgorithm::DOUBLE_PRECISION)
+  {
+    type = VTK_DOUBLE;
+  }
+  if (given && type == given->GetDataType() && !bounding)
+  {
+    return given;
+  }
+  const vtkIdType n = input->GetNumberOfPoints();
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataType(type);
+  points->SetNumberOfPoints(n + (bounding ? 6 : 0));
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    double x[3];
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      input->GetPoint(i, x);
+      points->SetPoint(i, x);
+    }
+  });
+  if (bounding) // vtkDelaunay3D's octahedron: centre +- offset * diagonal along each axis
+  {
+    const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+      (bounds[4] + bounds[5]) / 2 };
+    const double length = offset * (Diagonal(bounds) > 0 ? Diagonal(bounds) : 1.0);
+    for (int k = 0; k < 6; ++k)
+    {
+      double x[3] = { centre[0], centre[1], centre[2] };
+      x[k / 2] += (k % 2 ? length : -length);
+      points->SetPoint(n + k, x);
+    }
   }
   return points;
 }
@@ -65,39 +132,138 @@ const double* PointsAsDoubles(vtkPoints* points, std::vector<double>& copy)
   return copy.data();
 }
 
-/// VTK_TETRA cells from the kernel's tetrahedra, filling offsets and connectivity directly. The
-/// cell array uses 32-bit storage whenever the ids fit, which halves its memory.
+/// A run of cells of one type: cell c is ids[size * (select ? select[c] : c) + k], k < size.
+struct CellBlock
+{
+  int Type;
+  int Size;
+  const std::uint32_t* Ids;
+  const std::uint32_t* Select;
+  std::size_t Count;
+};
+
+/// The output cells, block after block, written straight into the cell array's offsets and
+/// connectivity (no per-cell calls); 32-bit storage whenever the ids fit, which halves its memory.
 template <typename IdArray>
-vtkSmartPointer<vtkCellArray> MakeTetraCells(const std::vector<std::uint32_t>& tets)
+void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
 {
   using Id = typename IdArray::ValueType;
-  const vtkIdType numberOfTets = static_cast<vtkIdType>(tets.size() / 4);
-  vtkNew<IdArray> offsets;
-  vtkNew<IdArray> connectivity;
-  offsets->SetNumberOfValues(numberOfTets + 1);
-  connectivity->SetNumberOfValues(4 * numberOfTets);
-  Id* offset = offsets->GetPointer(0);
-  Id* ids = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, numberOfTets, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType t = begin; t < end; ++t)
-    {
-      offset[t] = static_cast<Id>(4 * t);
-      for (int i = 0; i < 4; ++i)
+  vtkIdType cells = 0, size = 0;
+  for (const CellBlock& b : blocks)
+  {
+    cells += static_cast<vtkIdType>(b.Count);
+    size += static_cast<vtkIdType>(b.Count) * b.Size;
+  }
+  vtkNew<IdArray> offsets, connectivity;
+  vtkNew<vtkUnsignedCharArray> types;
+  offsets->SetNumberOfValues(cells + 1);
+  connectivity->SetNumberOfValues(size);
+  types->SetNumberOfValues(cells);
+  vtkIdType firstCell = 0, firstId = 0;
+  for (const CellBlock& b : blocks)
+  {
+    Id* offset = offsets->GetPointer(firstCell);
+    Id* ids = connectivity->GetPointer(firstId);
+    std::fill_n(types->GetPointer(firstCell), b.Count, static_cast<unsigned char>(b.Type));
+    vtkSMPTools::For(0, static_cast<vtkIdType>(b.Count), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType c = begin; c < end; ++c)
       {
-        ids[4 * t + i] = static_cast<Id>(tets[4 * t + i]);
+        const std::size_t source = b.Size * std::size_t(b.Select ? b.Select[c] : c);
+        offset[c] = static_cast<Id>(firstId + b.Size * c);
+        for (int k = 0; k < b.Size; ++k)
+        {
+          ids[b.Size * c + k] = static_cast<Id>(b.Ids[source + k]);
+        }
+      }
+    });
+    firstCell += static_cast<vtkIdType>(b.Count);
+    firstId += static_cast<vtkIdType>(b.Count) * b.Size;
+  }
+  offsets->SetValue(cells, static_cast<Id>(size));
+  vtkNew<vtkCellArray> cellArray;
+  cellArray->SetData(offsets, connectivity);
+  output->SetCells(types, cellArray);
+}
+
+void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
+{
+  std::size_t size = 0;
+  for (const CellBlock& b : blocks)
+  {
+    size += b.Count * b.Size;
+  }
+  if (size < static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+  {
+    SetCells<vtkTypeInt32Array>(output, blocks);
+  }
+  else
+  {
+    SetCells<vtkTypeInt64Array>(output, blocks);
+  }
+}
+
+/// "Circumradius", "Volume" and "RadiusEdgeRatio" cell arrays, as requested.
+void AddCellMeasures(vtkUnstructuredGrid* output, const double* xyz, bool circumradius, bool volume,
+  bool ratio)
+{
+  const vtkIdType n = output->GetNumberOfCells();
+  std::vector<vtkSmartPointer<vtkDoubleArray>> arrays(3);
+  const char* names[3] = { "Circumradius", "Volume", "RadiusEdgeRatio" };
+  const bool wanted[3] = { circumradius, volume, ratio };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (wanted[a])
+    {
+      arrays[a] = vtkSmartPointer<vtkDoubleArray>::New();
+      arrays[a]->SetName(names[a]);
+      arrays[a]->SetNumberOfValues(n);
+      output->GetCellData()->AddArray(arrays[a]);
+    }
+  }
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    vtkIdType size;
+    const vtkIdType* ids;
+    vtkNew<vtkIdList> scratch;
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      output->GetCellPoints(c, size, ids, scratch);
+      const double* p[4];
+      for (vtkIdType k = 0; k < size && k < 4; ++k)
+      {
+        p[k] = xyz + 3 * ids[k];
+      }
+      double values[3] = { 0, 0, 0 };
+      if (size == 4)
+      {
+        values[0] = std::sqrt(fd3::tetrahedronCircumradius2(p[0], p[1], p[2], p[3]));
+        values[1] = fd3::sixVolume(p[0], p[1], p[2], p[3]) / 6;
+        values[2] = fd3::radiusEdgeRatio(p[0], p[1], p[2], p[3]);
+      }
+      else if (size == 3)
+      {
+        values[0] = std::sqrt(fd3::triangleCircumradius2(p[0], p[1], p[2]));
+      }
+      else if (size == 2)
+      {
+        values[0] = std::sqrt(fd3::distance2(p[0], p[1])) / 2;
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        if (arrays[a])
+        {
+          arrays[a]->SetValue(c, values[a]);
+        }
       }
     }
   });
-  offset[numberOfTets] = static_cast<Id>(4 * numberOfTets);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  return cells;
 }
 
-vtkSmartPointer<vtkCellArray> MakeTetraCells(const std::vector<std::uint32_t>& tets)
+void AddFieldValue(vtkFieldData* fields, const char* name, double value)
 {
-  const bool fits32 = tets.size() < static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max());
-  return fits32 ? MakeTetraCells<vtkTypeInt32Array>(tets) : MakeTetraCells<vtkTypeInt64Array>(tets);
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  fields->AddArray(array);
 }
 } // namespace
 
@@ -121,16 +287,22 @@ int vtkFastDelaunay3D::RequestData(
     return 1;
   }
 
-  // VTK arrays in -> Core -> VTK arrays out.
-  vtkSmartPointer<vtkPoints> points = InputPoints(input);
+  // VTK points in -> Core -> VTK cells out. The kernel triangulates the output's own coordinates,
+  // so the result is exact for what is written.
+  double bounds[6];
+  FiniteBounds(input, bounds);
+  vtkSmartPointer<vtkPoints> points = MakeOutputPoints(
+    input, bounds, this->OutputPointsPrecision, this->BoundingTriangulation, this->Offset);
   std::vector<double> converted;
   const double* xyz = PointsAsDoubles(points, converted);
+  const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   fd3::Options options;
   options.pointsPerCell = this->GridResolution;
   options.volumeThreshold = this->VolumeThreshold;
+  options.tolerance = this->Tolerance * Diagonal(bounds);
   options.order = static_cast<fd3::InsertionOrder>(this->InsertionOrder);
   options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
-  options.computeNeighbors = false;
+  options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
   options.progress = [this](double fraction) {
     this->UpdateProgress(fraction);
     return !this->CheckAbort();
@@ -138,7 +310,7 @@ int vtkFastDelaunay3D::RequestData(
   fd3::Triangulation result;
   try
   {
-    result = fd3::triangulate(xyz, static_cast<std::size_t>(numberOfPoints), options);
+    result = fd3::triangulate(xyz, count, options);
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -155,6 +327,7 @@ int vtkFastDelaunay3D::RequestData(
   const fd3::Statistics& stats = result.stats;
   this->NumberOfInsertedPoints = static_cast<vtkIdType>(stats.insertedPoints);
   this->NumberOfDuplicatePoints = static_cast<vtkIdType>(stats.duplicatesMerged);
+  this->NumberOfSkippedPoints = static_cast<vtkIdType>(stats.closePointsSkipped);
   this->NumberOfInvalidPoints = static_cast<vtkIdType>(stats.nonFinitePoints);
   this->NumberOfTetrahedra = static_cast<vtkIdType>(stats.tetrahedra);
   this->MeanWalkLength = stats.meanWalk();
@@ -184,20 +357,71 @@ int vtkFastDelaunay3D::RequestData(
   }
 
   output->SetPoints(points);
-  output->GetPointData()->PassData(input->GetPointData());
-  output->SetCells(VTK_TETRA, MakeTetraCells(result.tetrahedra));
+  if (!this->BoundingTriangulation)
+  {
+    output->GetPointData()->PassData(input->GetPointData());
+  }
+  const std::uint32_t* tets = result.tetrahedra.data();
+  if (this->Alpha > 0)
+  {
+    const fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
+    std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
+    if (this->AlphaTris)
+      blocks.push_back({ VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
+    if (this->AlphaLines)
+      blocks.push_back({ VTK_LINE, 2, shape.lines.data(), nullptr, shape.lines.size() / 2 });
+    if (this->AlphaVerts)
+      blocks.push_back({ VTK_VERTEX, 1, shape.vertices.data(), nullptr, shape.vertices.size() });
+    if (this->AlphaTets)
+      blocks.push_back({ VTK_TETRA, 4, tets, shape.tetrahedra.data(), shape.tetrahedra.size() });
+    SetCells(output, blocks);
+  }
+  else
+  {
+    SetCells(output, { { VTK_TETRA, 4, tets, nullptr, result.numberOfTetrahedra() } });
+  }
+  if (this->ComputeCircumradius || this->ComputeVolume || this->ComputeRadiusEdgeRatio)
+  {
+    AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
+      this->ComputeRadiusEdgeRatio);
+  }
+  if (this->ComputeStatistics)
+  {
+    vtkFieldData* fields = output->GetFieldData();
+    AddFieldValue(fields, "NumberOfInsertedPoints", static_cast<double>(stats.insertedPoints));
+    AddFieldValue(fields, "NumberOfDuplicatePoints", static_cast<double>(stats.duplicatesMerged));
+    AddFieldValue(fields, "NumberOfSkippedPoints", static_cast<double>(stats.closePointsSkipped));
+    AddFieldValue(fields, "NumberOfInvalidPoints", static_cast<double>(stats.nonFinitePoints));
+    AddFieldValue(fields, "NumberOfTetrahedra", static_cast<double>(stats.tetrahedra));
+    AddFieldValue(fields, "MeanWalkLength", stats.meanWalk());
+    AddFieldValue(fields, "KernelSeconds", stats.secondsTotal);
+  }
   return 1;
 }
 
 void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "Alpha Tets: " << (this->AlphaTets ? "On\n" : "Off\n");
+  os << indent << "Alpha Tris: " << (this->AlphaTris ? "On\n" : "Off\n");
+  os << indent << "Alpha Lines: " << (this->AlphaLines ? "On\n" : "Off\n");
+  os << indent << "Alpha Verts: " << (this->AlphaVerts ? "On\n" : "Off\n");
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "Offset: " << this->Offset << "\n";
+  os << indent << "Bounding Triangulation: " << (this->BoundingTriangulation ? "On\n" : "Off\n");
+  os << indent << "Output Points Precision: " << this->OutputPointsPrecision << "\n";
   os << indent << "GridResolution: " << this->GridResolution << "\n";
   os << indent << "VolumeThreshold: " << this->VolumeThreshold << "\n";
   os << indent << "InsertionOrder: " << this->InsertionOrder << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "ComputeCircumradius: " << this->ComputeCircumradius << "\n";
+  os << indent << "ComputeVolume: " << this->ComputeVolume << "\n";
+  os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";
+  os << indent << "ComputeStatistics: " << this->ComputeStatistics << "\n";
   os << indent << "NumberOfInsertedPoints: " << this->NumberOfInsertedPoints << "\n";
   os << indent << "NumberOfDuplicatePoints: " << this->NumberOfDuplicatePoints << "\n";
+  os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";
   os << indent << "NumberOfInvalidPoints: " << this->NumberOfInvalidPoints << "\n";
   os << indent << "NumberOfTetrahedra: " << this->NumberOfTetrahedra << "\n";
   os << indent << "MeanWalkLength: " << this->MeanWalkLength << "\n";

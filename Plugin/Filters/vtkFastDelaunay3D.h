@@ -6,16 +6,19 @@
  * @class   vtkFastDelaunay3D
  * @brief   exact and fast 3D Delaunay tetrahedralization of the input points
  *
- * vtkFastDelaunay3D is a drop-in alternative to vtkDelaunay3D. It takes any vtkPointSet (and, beyond
- * vtkDelaunay3D, any other vtkDataSet such as image data, whose points it makes explicit) and
- * produces a vtkUnstructuredGrid that holds the input points (same ids, same point data) and
- * VTK_TETRA cells forming the Delaunay tetrahedralization of their convex hull.
+ * vtkFastDelaunay3D is a drop-in alternative to vtkDelaunay3D, with the same properties, defaults
+ * and output. It takes any vtkPointSet (and, beyond vtkDelaunay3D, any other vtkDataSet such as
+ * image data, whose points it makes explicit) and produces a vtkUnstructuredGrid holding the input
+ * points (same ids, same point data) and VTK_TETRA cells filling their convex hull; with a non-zero
+ * Alpha, the alpha shape instead (tetrahedra, then triangles, lines and vertices per the Alpha*
+ * flags, as vtkDelaunay3D emits them).
  *
  * Unlike vtkDelaunay3D the result is exact: every orientation and in-sphere decision is made with
  * exact arithmetic behind a floating-point filter, and ties (cospherical or coplanar points, such as
  * lattices) are broken consistently by symbolic perturbation. The boundary of the output is exactly
- * the convex hull of the points, and every distinct point is used. Exact duplicates are merged: the
- * copies stay in the output as unused points and their number is reported.
+ * the convex hull of the points, and every distinct point farther than Tolerance from the others is
+ * used. Exact duplicates are merged: the copies stay in the output as unused points and their
+ * number is reported.
  *
  * The kernel follows "Fast Delaunay triangulation in three dimensions" (Bowyer-Watson insertion, a
  * background grid searched layer by layer, a random walk to the containing tetrahedron, the cavity
@@ -53,6 +56,77 @@ public:
 
   ///@{
   /**
+   * Specify alpha (or distance) value to control output of this filter. For a non-zero alpha
+   * value, only tetrahedra, triangles, edges and vertices whose circumsphere radius (half-length
+   * for edges) is at most alpha are output, and lower-dimensional simplices only where no output
+   * simplex already covers them. In other words, an alpha shape is computed. Default 0: the whole
+   * tetrahedralization.
+   */
+  vtkSetClampMacro(Alpha, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Alpha, double);
+  ///@}
+
+  ///@{
+  /**
+   * Whether tetrahedra, triangles, lines and vertices are output for non-zero alpha values.
+   * All on by default (as in vtkDelaunay3D; ParaView's proxy turns lines and vertices off).
+   */
+  vtkSetMacro(AlphaTets, vtkTypeBool);
+  vtkGetMacro(AlphaTets, vtkTypeBool);
+  vtkBooleanMacro(AlphaTets, vtkTypeBool);
+  vtkSetMacro(AlphaTris, vtkTypeBool);
+  vtkGetMacro(AlphaTris, vtkTypeBool);
+  vtkBooleanMacro(AlphaTris, vtkTypeBool);
+  vtkSetMacro(AlphaLines, vtkTypeBool);
+  vtkGetMacro(AlphaLines, vtkTypeBool);
+  vtkBooleanMacro(AlphaLines, vtkTypeBool);
+  vtkSetMacro(AlphaVerts, vtkTypeBool);
+  vtkGetMacro(AlphaVerts, vtkTypeBool);
+  vtkBooleanMacro(AlphaVerts, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Discard closely spaced points: a point closer than Tolerance times the diagonal of the
+   * bounding box to an inserted point is skipped and stays in the output as an unused point.
+   * Default 0.001, as vtkDelaunay3D. With 0 only exact duplicates are skipped and every distinct
+   * point is a vertex.
+   */
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Size of the bounding octahedron of BoundingTriangulation, as a multiple of the diagonal of the
+   * bounding box of the points. Default 2.5.
+   */
+  vtkSetClampMacro(Offset, double, 2.5, VTK_DOUBLE_MAX);
+  vtkGetMacro(Offset, double);
+  ///@}
+
+  ///@{
+  /**
+   * When on, the output also holds the 6 points of a bounding octahedron (appended after the
+   * input points) and the tetrahedra that use them, as vtkDelaunay3D does; point data is then not
+   * passed. Off by default.
+   */
+  vtkSetMacro(BoundingTriangulation, vtkTypeBool);
+  vtkGetMacro(BoundingTriangulation, vtkTypeBool);
+  vtkBooleanMacro(BoundingTriangulation, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Precision of the output points: vtkAlgorithm::DEFAULT_PRECISION (that of the input),
+   * SINGLE_PRECISION or DOUBLE_PRECISION. The tetrahedralization is exact for the output points.
+   */
+  vtkSetMacro(OutputPointsPrecision, int);
+  vtkGetMacro(OutputPointsPrecision, int);
+  ///@}
+
+  ///@{
+  /**
    * Resolution of the background grid used to find a starting point for each insertion, as the
    * target number of points per grid cell. 0 turns the grid off (each walk then starts from the
    * last created tetrahedron). Default is 4, chosen by measurement (README).
@@ -77,7 +151,8 @@ public:
   /**
    * Order in which points are inserted: BRIO_HILBERT (default, fastest), INPUT_ORDER or
    * RANDOM_ORDER. The output is the same Delaunay tetrahedralization whatever the order, except
-   * where ties are broken (cospherical points), which depends on the order.
+   * where ties are broken (cospherical points) and which of two points closer than Tolerance is
+   * kept.
    */
   vtkSetClampMacro(InsertionOrder, int, BRIO_HILBERT, RANDOM_ORDER);
   vtkGetMacro(InsertionOrder, int);
@@ -94,11 +169,40 @@ public:
 
   ///@{
   /**
-   * Figures of the last execution: distinct points inserted, exact duplicates merged, points with
-   * NaN/Inf coordinates skipped, tetrahedra produced, mean walk length, and seconds in the kernel.
+   * Optional cell arrays, off by default: "Circumradius" (of tetrahedra and triangles; half the
+   * length of lines), "Volume" (of tetrahedra; 0 for other cells) and "RadiusEdgeRatio"
+   * (circumradius over shortest edge of tetrahedra, 0.612 for a regular one; 0 for other cells).
+   */
+  vtkSetMacro(ComputeCircumradius, vtkTypeBool);
+  vtkGetMacro(ComputeCircumradius, vtkTypeBool);
+  vtkBooleanMacro(ComputeCircumradius, vtkTypeBool);
+  vtkSetMacro(ComputeVolume, vtkTypeBool);
+  vtkGetMacro(ComputeVolume, vtkTypeBool);
+  vtkBooleanMacro(ComputeVolume, vtkTypeBool);
+  vtkSetMacro(ComputeRadiusEdgeRatio, vtkTypeBool);
+  vtkGetMacro(ComputeRadiusEdgeRatio, vtkTypeBool);
+  vtkBooleanMacro(ComputeRadiusEdgeRatio, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * When on, the output's field data holds the figures of the run (see the getters below) as
+   * one-tuple arrays named after them. Off by default.
+   */
+  vtkSetMacro(ComputeStatistics, vtkTypeBool);
+  vtkGetMacro(ComputeStatistics, vtkTypeBool);
+  vtkBooleanMacro(ComputeStatistics, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Figures of the last execution: distinct points inserted, exact duplicates merged, points
+   * skipped for Tolerance, points with NaN/Inf coordinates, tetrahedra produced, mean walk length
+   * (tetrahedra visited to locate each point), and seconds spent in the kernel.
    */
   vtkGetMacro(NumberOfInsertedPoints, vtkIdType);
   vtkGetMacro(NumberOfDuplicatePoints, vtkIdType);
+  vtkGetMacro(NumberOfSkippedPoints, vtkIdType);
   vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
   vtkGetMacro(NumberOfTetrahedra, vtkIdType);
   vtkGetMacro(MeanWalkLength, double);
@@ -112,13 +216,27 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
 
+  double Alpha = 0.0;
+  vtkTypeBool AlphaTets = 1;
+  vtkTypeBool AlphaTris = 1;
+  vtkTypeBool AlphaLines = 1;
+  vtkTypeBool AlphaVerts = 1;
+  double Tolerance = 0.001;
+  double Offset = 2.5;
+  vtkTypeBool BoundingTriangulation = 0;
+  int OutputPointsPrecision = vtkAlgorithm::DEFAULT_PRECISION;
   double GridResolution = 4.0;
   double VolumeThreshold = 0.0;
   int InsertionOrder = BRIO_HILBERT;
   int RandomSeed = 1;
+  vtkTypeBool ComputeCircumradius = 0;
+  vtkTypeBool ComputeVolume = 0;
+  vtkTypeBool ComputeRadiusEdgeRatio = 0;
+  vtkTypeBool ComputeStatistics = 0;
 
   vtkIdType NumberOfInsertedPoints = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
+  vtkIdType NumberOfSkippedPoints = 0;
   vtkIdType NumberOfInvalidPoints = 0;
   vtkIdType NumberOfTetrahedra = 0;
   double MeanWalkLength = 0.0;

@@ -75,6 +75,7 @@ TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
   {
     auto cloud = MakeCloud(fd3test::uniformBall(3000, 4), type);
     vtkNew<vtkFastDelaunay3D> filter;
+    filter->SetTolerance(0); // exactness: every distinct point must be used
     filter->SetInputData(cloud);
     filter->Update();
     vtkUnstructuredGrid* out = filter->GetOutput();
@@ -101,6 +102,7 @@ TEST(Filter, LatticeThroughStructuredGrid)
   grid->SetDimensions(6, 6, 6);
   grid->SetPoints(points);
   vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetTolerance(0);
   filter->SetInputData(grid);
   filter->Update();
   const fd3test::Points xyz = Coordinates(filter->GetOutput());
@@ -116,6 +118,7 @@ TEST(Filter, DuplicatesAreMergedAndReported)
   p.insert(p.end(), p.begin(), p.begin() + 3 * 50);
   auto cloud = MakeCloud(p);
   vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetTolerance(0);
   vtkNew<vtkTest::ErrorObserver> observer;
   filter->AddObserver(vtkCommand::WarningEvent, observer);
   filter->SetInputData(cloud);
@@ -129,6 +132,7 @@ TEST(Filter, DuplicatesAreMergedAndReported)
 TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
 {
   vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetTolerance(0);
   vtkNew<vtkTest::ErrorObserver> observer;
   filter->AddObserver(vtkCommand::WarningEvent, observer);
   filter->AddObserver(vtkCommand::ErrorEvent, observer);
@@ -172,6 +176,7 @@ TEST(Filter, EveryKindOfDatasetAndCellsWithoutPoints)
   image->SetDimensions(5, 5, 5);
   image->SetSpacing(0.5, 0.25, 1.0);
   vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetTolerance(0);
   filter->SetInputData(image);
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 125);
@@ -208,6 +213,7 @@ TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
 {
   auto cloud = MakeCloud(fd3test::uniformCube(60000, 6));
   vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetTolerance(0);
   filter->SetInputData(cloud);
   vtkNew<vtkCallbackCommand> abortOnProgress;
   abortOnProgress->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {

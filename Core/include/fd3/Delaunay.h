@@ -43,6 +43,10 @@ struct Options
   double volumeThreshold = 0.0;
   InsertionOrder order = InsertionOrder::Brio;
   std::uint64_t randomSeed = 1;
+  /// Points closer than this (in input units) to an already inserted point are skipped and left
+  /// unused, like exact duplicates (vtkDelaunay3D's Tolerance, times the bounding-box diagonal).
+  /// 0 skips exact duplicates only, and every distinct point is a vertex.
+  double tolerance = 0.0;
   /// Also return the neighbour table. Without it the tetrahedra are compacted in place in the
   /// mesh's own memory, which lowers the peak (the VTK filter does not need neighbours).
   bool computeNeighbors = true;
@@ -56,6 +60,7 @@ struct Statistics
   std::size_t inputPoints = 0;
   std::size_t nonFinitePoints = 0;     ///< NaN or Inf coordinates: skipped, left unused
   std::size_t duplicatesMerged = 0;    ///< exact copies of an inserted point: left unused
+  std::size_t closePointsSkipped = 0;  ///< within Options::tolerance of an inserted point: unused
   std::size_t insertedPoints = 0;      ///< vertices of the triangulation
   std::size_t tetrahedra = 0;          ///< finite tetrahedra in the output
   std::size_t walkSteps = 0;           ///< tetrahedra visited by all walks (the paper's "Path")
@@ -87,13 +92,29 @@ struct Triangulation
   /// and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull.
   /// Empty unless Options::computeNeighbors.
   std::vector<std::uint32_t> neighbors;
-  /// For each input point: the input id of the point it was merged into (itself when inserted),
+  /// For each input point: the input id of the point it was merged into or skipped for (exact
+  /// duplicate, or closer than the tolerance; itself when inserted),
   /// or kNoNeighbor for a non-finite point. Empty when the status is not Ok.
   std::vector<std::uint32_t> representative;
   Statistics stats;
 
   std::size_t numberOfTetrahedra() const { return tetrahedra.size() / 4; }
 };
+
+/// The alpha complex of a Delaunay tetrahedralization, as vtkDelaunay3D defines it: the
+/// tetrahedra of circumradius <= alpha; the triangles of circumradius <= alpha that are not a face of
+/// those tetrahedra; the edges of half-length <= alpha on neither; the points on none of them.
+struct AlphaComplex
+{
+  std::vector<std::uint32_t> tetrahedra; ///< indices into Triangulation::tetrahedra / 4
+  std::vector<std::uint32_t> triangles;  ///< 3 point ids each
+  std::vector<std::uint32_t> lines;      ///< 2 point ids each
+  std::vector<std::uint32_t> vertices;   ///< point ids (finite points only)
+};
+
+/// Requires `triangulation` to hold neighbours (Options::computeNeighbors).
+AlphaComplex alphaComplex(
+  const double* xyz, std::size_t count, const Triangulation& triangulation, double alpha);
 
 /// Delaunay tetrahedralization of `count` points given as x,y,z triples.
 /// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the result
