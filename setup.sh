@@ -4,6 +4,9 @@
 #
 #   ./setup.sh          set up and build
 #   ./setup.sh demo     ... then tetrahedralize Data/points.vtp under pvbatch into output/
+#   ./setup.sh benchmark [sizes]   ... then benchmark Core, the filter, vtkDelaunay3D and CGAL
+#                       (sizes default 10000,100000,1000000) into output/benchmark.{md,csv,png}
+#                       and the paper's Table 1 into output/table1.md
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run), then the same
 #                       suite built with AddressSanitizer + UndefinedBehaviorSanitizer (Debug:
 #                       the kernel's own mesh check on) in build-asan
@@ -15,6 +18,8 @@ cd "$(dirname "$0")"
 packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
   cmake ninja-build g++ pkg-config clang libclang-rt-14-dev)
+# The benchmark alone compares against CGAL (never a dependency of Core or Plugin) and plots.
+[ "${1:-}" = benchmark ] && packages+=(libcgal-dev python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -34,11 +39,20 @@ xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
 case "${1:-build}" in
   build) ;;
   demo) "${xvfb[@]}" pvbatch Testing/Python/demo.py "$plugin" Data/points.vtp output ;;
+  benchmark)
+    cmake -S . -B build >/dev/null # picks CGAL up if it was just installed
+    cmake --build build --target Benchmark -j2
+    mkdir -p output
+    build/bin/Benchmark --sizes "${2:-10000,100000,1000000}" --markdown output/benchmark.md \
+      --csv output/benchmark.csv
+    build/bin/Benchmark --table1 --markdown output/table1.md
+    /usr/bin/python3 Testing/Benchmark/plot.py output/benchmark.csv output/benchmark.png \
+      "$(sed -n 's/^Machine: \([^.]*\)\..*/\1/p' output/benchmark.md)" ;;
   test)
     (cd build && "${xvfb[@]}" ctest -j2 --output-on-failure)
     cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
       -DFD3_SANITIZE=ON -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
     cmake --build build-asan -j2
     (cd build-asan && ASAN_OPTIONS=detect_leaks=1 "${xvfb[@]}" ctest -j2 --output-on-failure) ;;
-  *) echo "usage: $0 [build|demo|test]" >&2; exit 2 ;;
+  *) echo "usage: $0 [build|demo|test|benchmark [sizes]]" >&2; exit 2 ;;
 esac

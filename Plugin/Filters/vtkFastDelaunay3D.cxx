@@ -17,6 +17,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
@@ -283,7 +284,12 @@ int vtkFastDelaunay3D::RequestData(
   const vtkIdType numberOfPoints = input ? input->GetNumberOfPoints() : 0;
   if (numberOfPoints == 0)
   {
-    vtkWarningMacro("Cannot triangulate; no input points");
+    // Under MPI a rank may hold an empty piece: nothing to report there.
+    vtkInformation* outInfo = outputVector->GetInformationObject(0);
+    if (outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) <= 1)
+    {
+      vtkWarningMacro("Cannot triangulate; no input points");
+    }
     return 1;
   }
 

@@ -52,4 +52,13 @@ volume_brio.UpdatePipeline()
 a = servermanager.Fetch(volume_random).GetCellData().GetArray("Volume").GetValue(0)
 b = servermanager.Fetch(volume_brio).GetCellData().GetArray("Volume").GetValue(0)
 assert abs(a - b) <= 1e-9 * abs(b), (a, b)
+# Image data: the proxy accepts any dataset and tetrahedralizes its (implicit) points.
+wavelet = Wavelet(WholeExtent=[0, 6, 0, 6, 0, 6])
+image_tets = FastDelaunay3D(Input=wavelet, Tolerance=0)
+image_tets.UpdatePipeline()
+image_info = image_tets.GetDataInformation()
+assert image_info.GetNumberOfPoints() == 7 ** 3
+assert image_info.GetNumberOfCells() >= 5 * 6 ** 3  # at least 5 tetrahedra per lattice cube
+assert image_tets.PointData["RTData"] is not None
+
 print("TestPlugin: %d tetrahedra, hull volume %.6f: OK" % (cells, b))
