@@ -8,6 +8,7 @@
 #include <cassert>
 #include <array>
 #include <chrono>
+#include <stdexcept>
 #include <utility>
 #include <cmath>
 #if defined(__GLIBC__)
@@ -181,6 +182,8 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     out.status = Status::Empty;
     return out;
   }
+  if (ids.size() >= kMaxVertices)
+    throw std::length_error("fd3::triangulate: more than 2^30 points");
 
   const Normalization norm(xyz, ids);
   std::vector<std::uint32_t> order =

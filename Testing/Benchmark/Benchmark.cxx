@@ -41,6 +41,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace
@@ -194,28 +195,12 @@ Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
   return m;
 }
 
-// Both VTK filters run with Tolerance 0 so that all of them triangulate the same points.
-Measurement runFilter(const fd3test::Points& p, std::size_t validateLimit)
+// Both VTK filters run with Tolerance 0 so that every method triangulates the same points.
+template <typename Filter>
+Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit)
 {
   auto poly = toPolyData(p);
-  vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetInputData(poly);
-  filter->SetTolerance(0);
-  Measurement m;
-  const auto t0 = Clock::now();
-  filter->Update();
-  m.seconds = since(t0);
-  m.conversionSeconds = m.seconds - filter->GetKernelSeconds();
-  m.tetrahedra = static_cast<double>(filter->GetOutput()->GetNumberOfCells());
-  m.peakMiB = peakSoFarMiB();
-  m.valid = validity(p, tetrahedraOf(filter->GetOutput()), validateLimit);
-  return m;
-}
-
-Measurement runVtkDelaunay3D(const fd3test::Points& p, std::size_t validateLimit)
-{
-  auto poly = toPolyData(p);
-  vtkNew<vtkDelaunay3D> filter;
+  vtkNew<Filter> filter;
   filter->SetInputData(poly);
   filter->SetTolerance(0);
   filter->SetGlobalWarningDisplay(0);
@@ -223,6 +208,8 @@ Measurement runVtkDelaunay3D(const fd3test::Points& p, std::size_t validateLimit
   const auto t0 = Clock::now();
   filter->Update();
   m.seconds = since(t0);
+  if constexpr (std::is_same_v<Filter, vtkFastDelaunay3D>)
+    m.conversionSeconds = m.seconds - filter->GetKernelSeconds();
   m.tetrahedra = static_cast<double>(filter->GetOutput()->GetNumberOfCells());
   m.peakMiB = peakSoFarMiB();
   m.valid = validity(p, tetrahedraOf(filter->GetOutput()), validateLimit);
@@ -392,11 +379,12 @@ int main(int argc, char* argv[])
       std::vector<std::pair<std::string, Measurement>> rows;
       rows.emplace_back("Core", measure([&] { return runCore(p, validateLimit); }, hugeLimit));
       rows.emplace_back(
-        "vtkFastDelaunay3D", measure([&] { return runFilter(p, validateLimit); }, hugeLimit));
+        "vtkFastDelaunay3D",
+        measure([&] { return runVtkFilter<vtkFastDelaunay3D>(p, validateLimit); }, hugeLimit));
       Measurement vtk;
       if (vtkSecondsPerPoint * n * 1.5 <= vtkLimit) // vtkDelaunay3D grows faster than linearly
       {
-        vtk = measure([&] { return runVtkDelaunay3D(p, validateLimit); }, vtkLimit);
+        vtk = measure([&] { return runVtkFilter<vtkDelaunay3D>(p, validateLimit); }, vtkLimit);
         if (vtk.ran)
           vtkSecondsPerPoint = vtk.seconds / n;
         else

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
 
 namespace
 {
@@ -200,6 +201,21 @@ TEST(Triangulate, VolumeThresholdKeepsAValidTriangulation)
       EXPECT_EQ(report.usedVertices, report.distinctPoints) << kind;
     }
   }
+}
+
+// A failure in the middle of a run: the exception crosses the kernel, which releases everything
+// (LeakSanitizer checks in the sanitizer build), and the next run is correct.
+TEST(Triangulate, ExceptionMidRunLeavesNothingBehind)
+{
+  const Points p = fd3test::uniformCube(40000, 3);
+  fd3::Options options;
+  options.progress = [](double fraction) -> bool {
+    if (fraction > 0.3)
+      throw std::runtime_error("simulated failure");
+    return true;
+  };
+  EXPECT_THROW(fd3::triangulate(p.data(), p.size() / 3, options), std::runtime_error);
+  triangulateAndCheck(p);
 }
 
 TEST(Triangulate, AbortStopsAndReportsIt)
