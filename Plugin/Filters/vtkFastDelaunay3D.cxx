@@ -347,7 +347,9 @@ int vtkFastDelaunay3D::RequestData(
   if (result.status != fd3::Status::Ok)
   {
     vtkWarningMacro("Cannot triangulate: " << fd3::toString(result.status)
-                                           << "; the output holds the points and no cells");
+                                           << "; the output is empty");
+    output->Initialize();
+    return 1;
   }
   if (stats.underflowRisks > 0)
   {

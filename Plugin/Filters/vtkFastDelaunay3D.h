@@ -27,7 +27,7 @@
  * @warning
  * Points with NaN or infinite coordinates are reported with an error and left out of the
  * tetrahedralization (they remain in the output as unused points). Fewer than 4 distinct points,
- * or points that are all collinear or coplanar, give a warning and an output without cells. An
+ * or points that are all collinear or coplanar, give a warning and an empty output. An
  * empty input gives a warning and an empty output; an aborted run an empty output; an internal
  * failure (such as running out of memory) an error and an empty output.
  *

@@ -144,7 +144,7 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   EXPECT_EQ(observer->CheckWarningMessage("no input points"), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
 
-  // Coplanar points: warning, the points and no cells.
+  // Coplanar points (fewer than 4 affinely independent): warning, empty output.
   fd3test::Points flat = fd3test::uniformCube(100, 1);
   for (std::size_t i = 0; i < 100; ++i)
     flat[3 * i + 2] = 0.5;
@@ -152,12 +152,13 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   filter->Update();
   EXPECT_EQ(observer->CheckWarningMessage("collinear or coplanar"), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
-  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 100);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   // Three points: too few.
   filter->SetInputData(MakeCloud(fd3test::uniformCube(3, 1)));
   filter->Update();
   EXPECT_EQ(observer->CheckWarningMessage("fewer than 4 distinct points"), 0);
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   // NaN and Inf: an error that counts them; the rest is tetrahedralized.
   fd3test::Points bad = fd3test::uniformCube(200, 2);
