@@ -25,8 +25,6 @@ public:
   /// from p's cell, or kEmpty when the first `maxLayers` layers are all empty.
   std::uint32_t nearestInserted(const double* p, int maxLayers) const;
 
-  int resolution(int axis) const { return dims_[axis]; }
-
 private:
   void cellCoordinates(const double* p, int ijk[3]) const;
   std::size_t cellIndex(const double* p) const

@@ -7,17 +7,12 @@
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
 // child resets it) and a crash or a time-out costs one row, not the run.
-#include "ExactValidator.h"
-#include "PointSets.h"
+#include "VtkTestUtilities.h"
 #include "fd3/Delaunay.h"
 #include "vtkFastDelaunay3D.h"
 
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
 #include "vtkDelaunay3D.h"
-#include "vtkDoubleArray.h"
 #include "vtkNew.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -66,20 +61,6 @@ int validity(const fd3test::Points& p, const std::vector<std::uint32_t>& tets, s
   if (p.size() / 3 > limit)
     return -1;
   return fd3test::checkTriangulation(p.data(), p.size() / 3, tets).valid() ? 1 : 0;
-}
-
-std::vector<std::uint32_t> tetrahedraOf(vtkUnstructuredGrid* grid)
-{
-  std::vector<std::uint32_t> tets;
-  const vtkIdType* ids;
-  vtkIdType size;
-  auto it = vtk::TakeSmartPointer(grid->GetCells()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    it->GetCurrentCell(size, ids);
-    tets.insert(tets.end(), ids, ids + size);
-  }
-  return tets;
 }
 
 std::vector<std::string> split(const std::string& s)
@@ -167,19 +148,6 @@ double since(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-vtkSmartPointer<vtkPolyData> toPolyData(const fd3test::Points& p)
-{
-  vtkNew<vtkDoubleArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(p.size() / 3));
-  std::copy(p.begin(), p.end(), coordinates->GetPointer(0));
-  vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(points);
-  return poly;
-}
-
 Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
 {
   Measurement m;
@@ -199,7 +167,7 @@ Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
 template <typename Filter>
 Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit)
 {
-  auto poly = toPolyData(p);
+  auto poly = fd3test::toPolyData(p);
   vtkNew<Filter> filter;
   filter->SetInputData(poly);
   filter->SetTolerance(0);
@@ -212,7 +180,7 @@ Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit)
     m.conversionSeconds = m.seconds - filter->GetKernelSeconds();
   m.tetrahedra = static_cast<double>(filter->GetOutput()->GetNumberOfCells());
   m.peakMiB = peakSoFarMiB();
-  m.valid = validity(p, tetrahedraOf(filter->GetOutput()), validateLimit);
+  m.valid = validity(p, fd3test::tetrahedra(filter->GetOutput()), validateLimit);
   return m;
 }
 

@@ -1,12 +1,10 @@
 // vtkFastDelaunay3D through VTK: the output contract, checked with the exact validator.
-#include "ExactValidator.h"
-#include "PointSets.h"
+#include "VtkTestUtilities.h"
 #include "vtkFastDelaunay3D.h"
 
 #include <gtest/gtest.h>
 
 #include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
@@ -26,55 +24,20 @@
 
 namespace
 {
-vtkSmartPointer<vtkPolyData> MakeCloud(const fd3test::Points& p, int dataType = VTK_DOUBLE)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataType(dataType);
-  const vtkIdType n = static_cast<vtkIdType>(p.size() / 3);
-  points->SetNumberOfPoints(n);
-  vtkNew<vtkDoubleArray> scalars;
-  scalars->SetName("Index");
-  scalars->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    points->SetPoint(i, p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-    scalars->SetValue(i, static_cast<double>(i));
-  }
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  cloud->GetPointData()->AddArray(scalars);
-  return cloud;
-}
-
-std::vector<std::uint32_t> Connectivity(vtkUnstructuredGrid* grid)
-{
-  std::vector<std::uint32_t> tets;
-  const vtkIdType* ids = nullptr;
-  vtkIdType size = 0;
-  auto it = vtkSmartPointer<vtkCellArrayIterator>::Take(grid->GetCells()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    it->GetCurrentCell(size, ids);
-    EXPECT_EQ(size, 4);
-    tets.insert(tets.end(), ids, ids + size);
-  }
-  return tets;
-}
-
-/// The output's own coordinates as doubles (they are the input's, possibly float).
-fd3test::Points Coordinates(vtkPointSet* data)
-{
-  fd3test::Points p(3 * static_cast<std::size_t>(data->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
-    data->GetPoint(i, p.data() + 3 * i);
-  return p;
-}
+using fd3test::checkOutput;
+using fd3test::toPolyData;
 
 TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
 {
   for (int type : {VTK_DOUBLE, VTK_FLOAT})
   {
-    auto cloud = MakeCloud(fd3test::uniformBall(3000, 4), type);
+    auto cloud = toPolyData(fd3test::uniformBall(3000, 4), type);
+    vtkNew<vtkDoubleArray> index;
+    index->SetName("Index");
+    index->SetNumberOfValues(3000);
+    for (vtkIdType i = 0; i < 3000; ++i)
+      index->SetValue(i, static_cast<double>(i));
+    cloud->GetPointData()->AddArray(index);
     vtkNew<vtkFastDelaunay3D> filter;
     filter->SetTolerance(0); // exactness: every distinct point must be used
     filter->SetInputData(cloud);
@@ -87,8 +50,7 @@ TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
     EXPECT_EQ(out->GetNumberOfCells(), filter->GetNumberOfTetrahedra());
     for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
       ASSERT_EQ(out->GetCellType(c), VTK_TETRA);
-    const fd3test::Points xyz = Coordinates(out);
-    const auto report = fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(out));
+    const auto report = checkOutput(out);
     EXPECT_TRUE(report.valid()) << report.summary();
   }
 }
@@ -106,9 +68,7 @@ TEST(Filter, LatticeThroughStructuredGrid)
   filter->SetTolerance(0);
   filter->SetInputData(grid);
   filter->Update();
-  const fd3test::Points xyz = Coordinates(filter->GetOutput());
-  const auto report =
-    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  const auto report = checkOutput(filter->GetOutput());
   EXPECT_TRUE(report.valid()) << report.summary();
   EXPECT_EQ(report.usedVertices, 216u);
 }
@@ -117,7 +77,7 @@ TEST(Filter, DuplicatesAreMergedAndReported)
 {
   fd3test::Points p = fd3test::uniformCube(500, 3);
   p.insert(p.end(), p.begin(), p.begin() + 3 * 50);
-  auto cloud = MakeCloud(p);
+  auto cloud = toPolyData(p);
   vtkNew<vtkFastDelaunay3D> filter;
   filter->SetTolerance(0);
   vtkNew<vtkTest::ErrorObserver> observer;
@@ -139,7 +99,7 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   filter->AddObserver(vtkCommand::ErrorEvent, observer);
 
   // Empty input: warning, empty output.
-  filter->SetInputData(MakeCloud({}));
+  filter->SetInputData(toPolyData({}));
   filter->Update();
   EXPECT_EQ(observer->CheckWarningMessage("no input points"), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
@@ -148,14 +108,14 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   fd3test::Points flat = fd3test::uniformCube(100, 1);
   for (std::size_t i = 0; i < 100; ++i)
     flat[3 * i + 2] = 0.5;
-  filter->SetInputData(MakeCloud(flat));
+  filter->SetInputData(toPolyData(flat));
   filter->Update();
   EXPECT_EQ(observer->CheckWarningMessage("collinear or coplanar"), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
   // Three points: too few.
-  filter->SetInputData(MakeCloud(fd3test::uniformCube(3, 1)));
+  filter->SetInputData(toPolyData(fd3test::uniformCube(3, 1)));
   filter->Update();
   EXPECT_EQ(observer->CheckWarningMessage("fewer than 4 distinct points"), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
@@ -164,7 +124,7 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   fd3test::Points bad = fd3test::uniformCube(200, 2);
   bad[0] = std::nan("");
   bad[31] = -INFINITY;
-  filter->SetInputData(MakeCloud(bad));
+  filter->SetInputData(toPolyData(bad));
   filter->Update();
   EXPECT_EQ(observer->CheckErrorMessage("2 of 200 points have NaN or infinite coordinates"), 0);
   EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 198);
@@ -182,14 +142,12 @@ TEST(Filter, EveryKindOfDatasetAndCellsWithoutPoints)
   filter->SetInputData(image);
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 125);
-  const fd3test::Points xyz = Coordinates(filter->GetOutput());
-  const auto report =
-    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  const auto report = checkOutput(filter->GetOutput());
   EXPECT_TRUE(report.valid()) << report.summary();
 
   // An unstructured grid is a point set like any other.
   vtkNew<vtkUnstructuredGrid> grid;
-  grid->SetPoints(MakeCloud(fd3test::uniformCube(300, 5))->GetPoints());
+  grid->SetPoints(toPolyData(fd3test::uniformCube(300, 5))->GetPoints());
   filter->SetInputData(grid);
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 300);
@@ -213,7 +171,7 @@ TEST(Filter, EveryKindOfDatasetAndCellsWithoutPoints)
 // same filter then runs to a correct result.
 TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
 {
-  auto cloud = MakeCloud(fd3test::uniformCube(60000, 6));
+  auto cloud = toPolyData(fd3test::uniformCube(60000, 6));
   vtkNew<vtkFastDelaunay3D> filter;
   filter->SetTolerance(0);
   filter->SetInputData(cloud);
@@ -231,9 +189,7 @@ TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
   filter->Modified();
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 60000);
-  const fd3test::Points xyz = Coordinates(filter->GetOutput());
-  const auto report =
-    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  const auto report = checkOutput(filter->GetOutput());
   EXPECT_TRUE(report.valid()) << report.summary();
 }
 
@@ -242,7 +198,7 @@ TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
 // filter runs correctly afterwards.
 TEST(Filter, InternalFailureLeavesAnEmptyOutputAndTheFilterRunsAgain)
 {
-  auto cloud = MakeCloud(fd3test::uniformCube(60000, 8));
+  auto cloud = toPolyData(fd3test::uniformCube(60000, 8));
   vtkNew<vtkFastDelaunay3D> filter;
   filter->SetTolerance(0);
   filter->SetInputData(cloud);
@@ -272,9 +228,7 @@ TEST(Filter, InternalFailureLeavesAnEmptyOutputAndTheFilterRunsAgain)
   filter->RemoveObserver(tag);
   filter->Modified();
   filter->Update();
-  const fd3test::Points xyz = Coordinates(filter->GetOutput());
-  const auto report =
-    fd3test::checkTriangulation(xyz.data(), xyz.size() / 3, Connectivity(filter->GetOutput()));
+  const auto report = checkOutput(filter->GetOutput());
   EXPECT_TRUE(report.valid()) << report.summary();
   EXPECT_EQ(report.usedVertices, 60000u);
 }

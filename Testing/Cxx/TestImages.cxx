@@ -3,7 +3,7 @@
 // Circumradius: the bundled cloud, whole cells on one side of a plane, shrunk, coloured by the
 //   cells' circumradius; AlphaShape: the alpha shape of points sampled on a torus;
 //   BoundingTriangulation: the tetrahedra of a small cloud with the bounding octahedron.
-#include "PointSets.h"
+#include "VtkTestUtilities.h"
 #include "vtkFastDelaunay3D.h"
 
 #include "vtkActor.h"
@@ -13,7 +13,6 @@
 #include "vtkExtractGeometry.h"
 #include "vtkNew.h"
 #include "vtkPlane.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
@@ -30,14 +29,10 @@
 
 namespace
 {
+/// Float coordinates, as the baselines were made with.
 vtkSmartPointer<vtkPolyData> Cloud(const fd3test::Points& p)
 {
-  vtkNew<vtkPoints> points;
-  for (std::size_t i = 0; i < p.size(); i += 3)
-    points->InsertNextPoint(p[i], p[i + 1], p[i + 2]);
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  return cloud;
+  return fd3test::toPolyData(p, VTK_FLOAT);
 }
 
 /// Fills the renderer for the named scene; returns false for an unknown name.

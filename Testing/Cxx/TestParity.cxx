@@ -1,7 +1,6 @@
 // Drop-in parity with vtkDelaunay3D: same defaults, same tetrahedra and alpha shapes where both
 // are well defined, and the extra properties' contracts.
-#include "ExactValidator.h"
-#include "PointSets.h"
+#include "VtkTestUtilities.h"
 #include "vtkFastDelaunay3D.h"
 
 #include <gtest/gtest.h>
@@ -29,17 +28,7 @@
 namespace
 {
 using Cell = std::vector<vtkIdType>; // sorted point ids
-
-vtkSmartPointer<vtkPolyData> MakeCloud(const fd3test::Points& p, int type = VTK_DOUBLE)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataType(type);
-  for (std::size_t i = 0; i < p.size(); i += 3)
-    points->InsertNextPoint(p[i], p[i + 1], p[i + 2]);
-  auto cloud = vtkSmartPointer<vtkPolyData>::New();
-  cloud->SetPoints(points);
-  return cloud;
-}
+using fd3test::toPolyData;
 
 /// Cells by type, each as its sorted point ids.
 std::map<int, std::set<Cell>> CellsByType(vtkUnstructuredGrid* grid)
@@ -114,7 +103,7 @@ TEST(Parity, DefaultsAreVtkDelaunay3Ds)
 // octahedron only changes tetrahedra whose circumsphere reaches it, near the hull.
 TEST(Parity, SameTetrahedraAwayFromTheHull)
 {
-  auto cloud = MakeCloud(fd3test::uniformBall(3000, 21));
+  auto cloud = toPolyData(fd3test::uniformBall(3000, 21));
   vtkNew<vtkDelaunay3D> theirs;
   theirs->SetInputData(cloud);
   theirs->Update();
@@ -131,7 +120,7 @@ TEST(Parity, SameTetrahedraAwayFromTheHull)
 
 TEST(Parity, SameAlphaShapes)
 {
-  auto cloud = MakeCloud(fd3test::uniformBall(3000, 22));
+  auto cloud = toPolyData(fd3test::uniformBall(3000, 22));
   vtkNew<vtkFastDelaunay3D> full;
   full->SetInputData(cloud);
   full->SetTolerance(0);
@@ -173,7 +162,7 @@ TEST(Parity, SameAlphaShapes)
 TEST(Parity, BoundingTriangulationHoldsTheOctahedron)
 {
   const fd3test::Points p = fd3test::uniformBall(500, 23);
-  auto cloud = MakeCloud(p);
+  auto cloud = toPolyData(p);
   vtkNew<vtkFastDelaunay3D> ours;
   ours->SetInputData(cloud);
   ours->SetBoundingTriangulation(1);
@@ -182,19 +171,7 @@ TEST(Parity, BoundingTriangulationHoldsTheOctahedron)
   vtkUnstructuredGrid* out = ours->GetOutput();
   ASSERT_EQ(out->GetNumberOfPoints(), 506);
   EXPECT_EQ(out->GetPointData()->GetNumberOfArrays(), 0);
-  fd3test::Points xyz(3 * 506);
-  for (vtkIdType i = 0; i < 506; ++i)
-    out->GetPoint(i, xyz.data() + 3 * i);
-  std::vector<std::uint32_t> tets; // in the filter's order: sorted ids would lose orientation
-  auto it = vtk::TakeSmartPointer(out->GetCells()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    vtkIdType size;
-    const vtkIdType* ids;
-    it->GetCurrentCell(size, ids);
-    tets.insert(tets.end(), ids, ids + size);
-  }
-  const auto report = fd3test::checkTriangulation(xyz.data(), 506, tets);
+  const auto report = fd3test::checkOutput(out); // every point used: the 6 bounding ones too
   EXPECT_TRUE(report.valid()) << report.summary();
   EXPECT_EQ(report.hullFaces, 8u); // the octahedron
   const std::set<vtkIdType> hull = HullPoints(out);
@@ -203,7 +180,7 @@ TEST(Parity, BoundingTriangulationHoldsTheOctahedron)
 
 TEST(Parity, OutputPointsPrecision)
 {
-  auto cloud = MakeCloud(fd3test::uniformCube(200, 24), VTK_FLOAT);
+  auto cloud = toPolyData(fd3test::uniformCube(200, 24), VTK_FLOAT);
   vtkNew<vtkFastDelaunay3D> ours;
   ours->SetInputData(cloud);
   ours->Update();
@@ -221,7 +198,7 @@ TEST(Parity, ToleranceSkipsClosePointsOnly)
 {
   fd3test::Points p = fd3test::uniformCube(1000, 25);
   p.insert(p.end(), {p[0] + 1e-6, p[1], p[2]}); // within 0.001 * diagonal of point 0
-  auto cloud = MakeCloud(p);
+  auto cloud = toPolyData(p);
   vtkNew<vtkFastDelaunay3D> ours;
   ours->SetInputData(cloud);
   ours->SetTolerance(1e-5);
@@ -236,7 +213,7 @@ TEST(Parity, ToleranceSkipsClosePointsOnly)
 
 TEST(Parity, OptionalArraysAndStatistics)
 {
-  auto cloud = MakeCloud(fd3test::uniformCube(2000, 26));
+  auto cloud = toPolyData(fd3test::uniformCube(2000, 26));
   vtkNew<vtkFastDelaunay3D> ours;
   ours->SetInputData(cloud);
   ours->Update();
@@ -274,7 +251,7 @@ TEST(Parity, OptionalArraysAndStatistics)
 
 TEST(Parity, ProgressMovesDuringInsertion)
 {
-  auto cloud = MakeCloud(fd3test::uniformCube(100000, 27));
+  auto cloud = toPolyData(fd3test::uniformCube(100000, 27));
   vtkNew<vtkFastDelaunay3D> ours;
   ours->SetInputData(cloud);
   std::vector<double> seen;
