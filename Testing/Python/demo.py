@@ -1,5 +1,5 @@
 """The main job: tetrahedralize the bundled point cloud with the FastDelaunay3D plugin under
-pvbatch, write the result (.vtu) and a picture (.png), and print the figures.
+pvbatch, write the result (.vtu) and a picture of its alpha shape (.png), and print the figures.
 
 usage: pvbatch demo.py <plugin .so> <input .vtp> <output folder>
 """
@@ -11,6 +11,7 @@ from paraview.simple import *
 
 plugin, input_file, out_dir = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
+from knot_view import show_knot  # noqa: E402
 os.makedirs(out_dir, exist_ok=True)
 
 reader = XMLPolyDataReader(FileName=[input_file])
@@ -26,22 +27,7 @@ vtu = os.path.join(out_dir, stem + ".vtu")
 png = os.path.join(out_dir, stem + ".png")
 SaveData(vtu, proxy=delaunay)
 
-view = CreateView("RenderView")
-view.ViewSize = [800, 600]
-view.OrientationAxesVisibility = 0
-# Whole tetrahedra on one side of a plane through the cloud, shrunk so each one is seen.
-clip = Clip(Input=delaunay, ClipType="Plane", Crinkleclip=1)
-clip.ClipType.Origin = [0, 0, 0]
-clip.ClipType.Normal = [0, 1, 0]
-shrink = Shrink(Input=clip, ShrinkFactor=0.7)
-display = Show(shrink, view)
-ColorBy(display, ("POINTS", "Elevation"))
-display.RescaleTransferFunctionToDataRange(True)
-view.CameraPosition = [3, 12, 8]
-view.CameraFocalPoint = [0, 0, 0]
-view.CameraViewUp = [0, 0, 1]
-view.ResetCamera()
-Render(view)
+view = show_knot(FastDelaunay3D, reader, 800, 600)
 SaveScreenshot(png, view, ImageResolution=[800, 600])
 
 print("points:      %d" % info.GetNumberOfPoints())
