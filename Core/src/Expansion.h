@@ -78,13 +78,6 @@ public:
     return compact(out, 2);
   }
 
-  Expansion fromProduct(double a, double b)
-  {
-    double* out = take(2);
-    twoProduct(a, b, out[1], out[0]);
-    return compact(out, 2);
-  }
-
   Expansion add(Expansion e, Expansion f)
   {
     double* h = take(e.n + f.n);
