@@ -49,10 +49,11 @@ void Triangulator::fillCavity(VertId v)
 void Triangulator::linkAroundEdge(std::size_t i, int face)
 {
   const BoundaryFacet& facet = boundary_[i];
-  int iu = -1, iw = -1; // local indices of u and w, the same in t and in its new tetrahedron
-  for (int k = 0; k < 4; ++k)
-    if (k != face && k != facet.face)
-      (iu < 0 ? iu : iw) = k;
+  // Local indices of u and w (the same in t and in its new tetrahedron): the two of 0..3 that are
+  // neither `face` nor `facet.face`, as the two bit positions left in a 4-bit mask.
+  const unsigned rest = 15u & ~(1u << face) & ~(1u << facet.face);
+  int iu = __builtin_ctz(rest);
+  int iw = __builtin_ctz(rest & (rest - 1));
   const VertId u = mesh_.vertex(facet.inner, iu);
   const VertId w = mesh_.vertex(facet.inner, iw);
 
@@ -71,13 +72,8 @@ void Triangulator::linkAroundEdge(std::size_t i, int face)
     }
     VertId nv[4];
     mesh_.vertices(next, nv);
-    for (int k = 0; k < 4; ++k)
-    {
-      if (nv[k] == u)
-        iu = k;
-      else if (nv[k] == w)
-        iw = k;
-    }
+    iu = (nv[1] == u) + 2 * (nv[2] == u) + 3 * (nv[3] == u);
+    iw = (nv[1] == w) + 2 * (nv[2] == w) + 3 * (nv[3] == w);
     g = 6 - faceOf(across) - iu - iw;
     t = next;
   }

@@ -8,20 +8,6 @@ namespace fd3
 {
 namespace
 {
-constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
-// Error bounds of the float evaluations below: Shewchuk's (1997) relative bounds, for differences
-// of inputs, times a bound on the permanent from the largest differences; 2% covers the rounding
-// of that product of maxima.
-constexpr double kOrientSemiStatic = 1.02 * 6 * (7.0 + 56.0 * kEpsilon) * kEpsilon;
-constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * kEpsilon;
-// Below this magnitude products may have underflowed and the relative bounds no longer hold.
-constexpr double kUnderflowGuard = 1e-250;
-
-int signOf(double x)
-{
-  return (x > 0) - (x < 0);
-}
-
 template <typename T>
 int signOf(T x)
 {
@@ -39,12 +25,15 @@ Int128 det3(const std::int64_t u[3], const std::int64_t v[3], const std::int64_t
 }
 } // namespace
 
-double Predicates::integerGridUnit(const double* xyz, std::size_t count)
+void Predicates::adaptTo(const double* xyz, std::size_t count)
 {
-  int lowest = 4096, highest = -4096;
+  constexpr int kNoGrid = -4096;
+  int lowest = 4096, highest = kNoGrid; // the grid: |x| < 2^highest, x a multiple of 2^lowest
+  double largest = 0;
   for (std::size_t i = 0; i < 3 * count; ++i)
   {
-    if (xyz[i] == 0.0)
+    largest = std::max(largest, std::fabs(xyz[i]));
+    if (xyz[i] == 0.0 || lowest == kNoGrid)
       continue;
     int exponent;
     const double mantissa = std::frexp(xyz[i], &exponent);
@@ -53,9 +42,30 @@ double Predicates::integerGridUnit(const double* xyz, std::size_t count)
     lowest = std::min(lowest, exponent - 53 + __builtin_ctzll(significand));
     highest = std::max(highest, exponent);
     if (highest - lowest > kIntegerGridBits)
-      return 0.0;
+      lowest = kNoGrid; // keep scanning for the extent only
   }
-  return lowest <= highest ? std::ldexp(1.0, lowest) : 0.0;
+  const bool onGrid = lowest != kNoGrid && lowest <= highest;
+  const int gridBits = onGrid ? highest - lowest : kIntegerGridBits + 1;
+  inverseGridUnit_ = onGrid ? std::ldexp(1.0, -lowest) : 0.0;
+  // Static bounds: the semi-static ones with every difference at its largest possible value,
+  // 2 * largest (exact: a power-of-two multiple of a double). Tiny extents, where products could
+  // underflow, keep the semi-static filter with its underflow guard.
+  const double d = 2 * largest;
+  const bool staticSafe = d * d * d * d * d > filter::kUnderflowGuard;
+  orientStatic_ = staticSafe ? filter::kOrientSemiStatic * (d * d * d) * 1.01 : HUGE_VAL;
+  inSphereStatic_ = staticSafe ? filter::kInSphereSemiStatic * (d * d * d * d * d) * 1.01 : HUGE_VAL;
+  // On a grid of b bits, differences are integers (in units of u) below 2^(b+1). orient3d's
+  // products, minors and sum then stay below 2^(3b+6) <= 2^51, and insphere's 2x2 minors below
+  // 2^(2b+3), 3x3 minors below 2^(3b+6), lifts below 2^(2b+4) and determinant below
+  // 2^(5b+12) <= 2^52: every float operation is exact, provided no product of five values leaves
+  // the normal range (always so for points normalized into [-1, 1]).
+  const bool normalProducts = onGrid && lowest > -190 && highest < 190;
+  floatExactOrient_ = normalProducts && gridBits <= kFloatExactOrientBits;
+  floatExactInSphere_ = normalProducts && gridBits <= kFloatExactInSphereBits;
+  if (floatExactOrient_)
+    orientStatic_ = 0;
+  if (floatExactInSphere_)
+    inSphereStatic_ = 0;
 }
 
 // On the grid, coordinates are integers below 2^21 in magnitude, so differences are exact doubles
@@ -67,27 +77,6 @@ void Predicates::gridDifferences(const double* const x[N], const double* y, std:
   for (int i = 0; i < N; ++i)
     for (int k = 0; k < 3; ++k)
       out[i][k] = static_cast<std::int64_t>((x[i][k] - y[k]) * inverseGridUnit_);
-}
-
-int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
-{
-  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-  // det[a-d; b-d; c-d] is the negative of VTK's orientation.
-  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
-    cdz * (adx * bdy - bdx * ady);
-  // Semi-static filter: the permanent is at most 6 * mx * my * mz, mx being the largest |x|
-  // difference (and so on), so Shewchuk's bound (7 + 56 eps) eps * permanent is below
-  // kOrientSemiStatic * mx * my * mz.
-  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
-  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
-  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
-  const double scale = mx * my * mz;
-  const double bound = kOrientSemiStatic * scale;
-  if ((det > bound || -det > bound) && scale > kUnderflowGuard)
-    return -signOf(det);
-  return orient3dExact(a, b, c, d);
 }
 
 void Predicates::checkUnderflow(const double* const rows[], int count, const double* origin)
@@ -135,42 +124,6 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
     w[k] = arena_.fromDifference(d[k], a[k]);
   }
   return static_cast<int>(minor3(u, v, w).sign());
-}
-
-int Predicates::inSphere(
-  const double* a, const double* b, const double* c, const double* d, const double* e)
-{
-  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
-  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
-  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
-  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
-
-  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey, cd = cex * dey - dex * cey;
-  const double da = dex * aey - aex * dey, ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
-  const double abc = aez * bc - bez * ac + cez * ab;
-  const double bcd = bez * cd - cez * bd + dez * bc;
-  const double cda = cez * da + dez * ac + aez * cd;
-  const double dab = dez * ab + aez * bd + bez * da;
-  const double alift = aex * aex + aey * aey + aez * aez;
-  const double blift = bex * bex + bey * bey + bez * bez;
-  const double clift = cex * cex + cey * cey + cez * cez;
-  const double dlift = dex * dex + dey * dey + dez * dez;
-  // det[(x-e, |x-e|^2) for x = a,b,c,d]; positive means inside for the negative orientation,
-  // i.e. outside for VTK's positive one.
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-
-  // Semi-static filter: each lift is at most 3 m^2 (m the largest difference) and each 3x3
-  // permanent at most 6 mx my mz, so the permanent is at most 72 m^2 mx my mz and Shewchuk's bound
-  // (16 + 224 eps) eps * permanent is below kInSphereSemiStatic * m^2 * mx * my * mz.
-  const double mx = std::max({std::fabs(aex), std::fabs(bex), std::fabs(cex), std::fabs(dex)});
-  const double my = std::max({std::fabs(aey), std::fabs(bey), std::fabs(cey), std::fabs(dey)});
-  const double mz = std::max({std::fabs(aez), std::fabs(bez), std::fabs(cez), std::fabs(dez)});
-  const double m = std::max({mx, my, mz});
-  const double scale = m * m * mx * my * mz;
-  const double bound = kInSphereSemiStatic * scale;
-  if ((det > bound || -det > bound) && scale > kUnderflowGuard)
-    return -signOf(det);
-  return inSphereExact(a, b, c, d, e);
 }
 
 int Predicates::inSphereExact(
@@ -244,10 +197,13 @@ int Predicates::inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::
   //   delta_e - sum_{v in tet} delta_v * lambda_v(e),
   // lambda_v(e) being the barycentric coordinate of e, whose sign is orient3d(tet with v := e).
   // The term of the smallest id dominates; the first non-zero one decides.
-  int order[4] = {0, 1, 2, 3};
-  std::sort(order, order + 4, [&](int i, int j) { return tet[i] < tet[j]; });
-  for (int k : order)
+  std::uint32_t done = 0; // bit k: vertex k's term was zero
+  for (int round = 0; round < 4; ++round)
   {
+    int k = -1;
+    for (int i = 0; i < 4; ++i)
+      if (!(done >> i & 1u) && (k < 0 || tet[i] < tet[k]))
+        k = i;
     if (e < tet[k])
       return 1;
     const double* q[4] = {p[0], p[1], p[2], p[3]};
@@ -255,6 +211,7 @@ int Predicates::inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::
     const int o = orient3d(q[0], q[1], q[2], q[3]);
     if (o != 0)
       return -o;
+    done |= 1u << k;
   }
   return 1; // e has the largest id: its own lowering decides
 }

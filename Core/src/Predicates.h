@@ -1,5 +1,7 @@
 // Geometric predicates of the kernel, each in two layers: a floating-point evaluation with a
-// rigorous error bound (decides almost every call), then exact expansion arithmetic.
+// rigorous error bound (decides almost every call), then exact expansion arithmetic. The float
+// layer is inline here because it runs tens of times per insertion inside the cavity search; the
+// exact layer is rare and lives in Predicates.cxx.
 // Signs follow VTK's tetrahedron convention:
 //   orient3d(a,b,c,d) > 0  iff  (b-a) x (c-a) . (d-a) > 0,
 //   inSphere(a,b,c,d,e) > 0 iff e lies strictly inside the circumsphere of the positive tet abcd.
@@ -10,11 +12,31 @@
 
 #include "Expansion.h"
 
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
 namespace fd3
 {
+
+namespace filter
+{
+constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
+// Error bounds of the float evaluations below: Shewchuk's (1997) relative bounds, for differences
+// of inputs, times a bound on the permanent from the largest differences; 2% covers the rounding
+// of that product of maxima.
+constexpr double kOrientSemiStatic = 1.02 * 6 * (7.0 + 56.0 * kEpsilon) * kEpsilon;
+constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * kEpsilon;
+// Below this magnitude products may have underflowed and the relative bounds no longer hold.
+constexpr double kUnderflowGuard = 1e-250;
+
+inline int signOf(double x)
+{
+  return (x > 0) - (x < 0);
+}
+} // namespace filter
 
 class Predicates
 {
@@ -31,15 +53,17 @@ public:
   /// towards the first vertex: a fan of about 2 tetrahedra per point instead of a dense tangle.
   int inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::uint32_t e);
 
-  /// Largest span, in bits, of a point set's integer grid for which the exact stage runs in
-  /// __int128 arithmetic.
+  /// Tunes the predicates to a point set; every point passed from then on must belong to it.
+  /// From the set's extent come static error bounds, checked before the semi-static ones (one
+  /// comparison decides almost every call on well-spread points). When every coordinate is an
+  /// integer multiple of one power of two u, below 2^kIntegerGridBits u in magnitude (lattices,
+  /// image and integer data), the exact stage runs in __int128 instead of expansions, and below
+  /// 2^kFloatExactOrientBits u (orient3d) or 2^kFloatExactInSphereBits u (insphere) the float
+  /// evaluation itself is exact, so even a tie costs no more than the float evaluation.
+  void adaptTo(const double* xyz, std::size_t count);
   static constexpr int kIntegerGridBits = 21;
-  /// The power of two u such that every coordinate is an integer multiple of u below
-  /// 2^kIntegerGridBits * u in magnitude (lattices, integer data), or 0 when there is none.
-  static double integerGridUnit(const double* xyz, std::size_t count);
-  /// Promises that every point passed from now on lies on that grid (unit > 0), which lets the
-  /// exact stage use integer arithmetic instead of expansions.
-  void setIntegerGrid(double unit) { inverseGridUnit_ = unit > 0 ? 1.0 / unit : 0.0; }
+  static constexpr int kFloatExactOrientBits = 15;
+  static constexpr int kFloatExactInSphereBits = 8;
 
   std::size_t exactOrientCalls = 0;
   std::size_t exactInSphereCalls = 0;
@@ -58,8 +82,79 @@ private:
   void checkUnderflow(const double* const rows[], int count, const double* origin);
 
   ExpansionArena arena_;
-  double inverseGridUnit_ = 0.0;
+  double inverseGridUnit_ = 0.0; // 1/u on an integer grid, else 0
+  // A float determinant beyond these bounds has the exact sign; +inf until adaptTo(), 0 where the
+  // float evaluation is exact. floatExact* tells that a determinant within them is exactly 0.
+  double orientStatic_ = HUGE_VAL;
+  double inSphereStatic_ = HUGE_VAL;
+  bool floatExactOrient_ = false;
+  bool floatExactInSphere_ = false;
 };
+
+inline int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
+{
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  // det[a-d; b-d; c-d] is the negative of VTK's orientation.
+  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
+    cdz * (adx * bdy - bdx * ady);
+  if (det > orientStatic_ || -det > orientStatic_)
+    return -filter::signOf(det);
+  if (floatExactOrient_)
+    return 0;
+  // Semi-static filter: the permanent is at most 6 * mx * my * mz, mx being the largest |x|
+  // difference (and so on), so Shewchuk's bound (7 + 56 eps) eps * permanent is below
+  // filter::kOrientSemiStatic * mx * my * mz.
+  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
+  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
+  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
+  const double scale = mx * my * mz;
+  const double bound = filter::kOrientSemiStatic * scale;
+  if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
+    return -filter::signOf(det);
+  return orient3dExact(a, b, c, d);
+}
+
+inline int Predicates::inSphere(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
+  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
+  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
+  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
+
+  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey, cd = cex * dey - dex * cey;
+  const double da = dex * aey - aex * dey, ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+  const double alift = aex * aex + aey * aey + aez * aez;
+  const double blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez;
+  const double dlift = dex * dex + dey * dey + dez * dez;
+  // det[(x-e, |x-e|^2) for x = a,b,c,d]; positive means inside for the negative orientation,
+  // i.e. outside for VTK's positive one.
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  if (det > inSphereStatic_ || -det > inSphereStatic_)
+    return -filter::signOf(det);
+  if (floatExactInSphere_)
+    return 0;
+
+  // Semi-static filter: each lift is at most 3 m^2 (m the largest difference) and each 3x3
+  // permanent at most 6 mx my mz, so the permanent is at most 72 m^2 mx my mz and Shewchuk's bound
+  // (16 + 224 eps) eps * permanent is below filter::kInSphereSemiStatic * m^2 * mx * my * mz.
+  const double mx = std::max({std::fabs(aex), std::fabs(bex), std::fabs(cex), std::fabs(dex)});
+  const double my = std::max({std::fabs(aey), std::fabs(bey), std::fabs(cey), std::fabs(dey)});
+  const double mz = std::max({std::fabs(aez), std::fabs(bez), std::fabs(cez), std::fabs(dez)});
+  const double m = std::max({mx, my, mz});
+  const double scale = m * m * mx * my * mz;
+  const double bound = filter::kInSphereSemiStatic * scale;
+  if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
+    return -filter::signOf(det);
+  return inSphereExact(a, b, c, d, e);
+}
 
 } // namespace fd3
 

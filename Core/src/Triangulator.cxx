@@ -18,7 +18,7 @@ Triangulator::Triangulator(std::vector<double> xyz, const Options& options, Stat
   mesh_.reserve(7 * n + 64);
   vertexTet_.assign(n, 0);
   grid_.build(xyz_.data(), n, options.pointsPerCell);
-  predicates_.setIntegerGrid(Predicates::integerGridUnit(xyz_.data(), n));
+  predicates_.adaptTo(xyz_.data(), n);
 }
 
 void Triangulator::releaseWorkspace()

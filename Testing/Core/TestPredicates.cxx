@@ -8,6 +8,7 @@
 #include <cfloat>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace
 {
@@ -136,6 +137,114 @@ TEST_P(PredicatesAgainstRationals, AgreeOnNearDegenerateInput)
 // The predicates' contract is coordinates within [-1, 1] (Core normalizes exactly before calling);
 // small scales exercise the underflow guard of the filter.
 INSTANTIATE_TEST_SUITE_P(Scales, PredicatesAgainstRationals, ::testing::Values(1.0, 1e-5, 1e-40));
+
+// Predicates adapted to a point set (static filter bounds, integer-grid exact stages, and float
+// evaluations that are exact on small grids) against GMP, at grid sizes on both sides of each
+// threshold. Coordinates are drawn from the extremes of the grid (the worst case for the bounds)
+// and from a coarse sub-lattice (cospherical and coplanar ties), as well as at random.
+class AdaptedPredicates : public ::testing::TestWithParam<int>
+{
+};
+
+TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
+{
+  const int bits = GetParam(); // coordinates: integers below 2^bits, in units of 2^-bits
+  const double unit = std::ldexp(1.0, -bits);
+  const std::int64_t largest = (std::int64_t(1) << bits) - 1;
+  std::mt19937_64 rng(bits);
+  std::uniform_int_distribution<std::int64_t> any(-largest, largest), coarse(-2, 2), pick(0, 3);
+  auto coordinate = [&]() -> double {
+    switch (pick(rng))
+    {
+      case 0: return double(largest) * unit;
+      case 1: return -double(largest) * unit;
+      case 2: return double(coarse(rng) * (largest / 2)) * unit;
+      default: return double(any(rng)) * unit;
+    }
+  };
+  std::vector<double> xyz(3 * 2000);
+  for (double& x : xyz)
+    x = coordinate();
+  xyz[0] = -double(largest) * unit; // the grid's extent and unit are fixed by the set
+  xyz[1] = unit;
+  // Grid points exactly on the sphere of radius R = m^2 + n^2 + p^2 + q^2 (as large as the grid
+  // allows), from Euler's four-square identity: the largest coordinates, and all ties. Each
+  // comes with a neighbour one unit off, a near tie.
+  const std::int64_t radius = std::min<std::int64_t>(largest, (std::int64_t(1) << 26) - 1);
+  const auto root = static_cast<std::int64_t>(std::sqrt(double(radius)));
+  std::uniform_int_distribution<std::int64_t> part(0, root);
+  for (int found = 0, tries = 0; found < 60 && tries < 1000000; ++tries)
+  {
+    const std::int64_t m = part(rng), n = part(rng), p = part(rng);
+    const std::int64_t rest = radius - m * m - n * n - p * p;
+    const auto q = static_cast<std::int64_t>(std::llround(std::sqrt(double(std::max<std::int64_t>(rest, 0)))));
+    if (rest < 0 || q * q != rest)
+      continue;
+    const double c[3] = {double(m * m + n * n - p * p - q * q), double(2 * (m * q + n * p)),
+      double(2 * (n * q - m * p))};
+    for (int k = 0; k < 3; ++k)
+      xyz.push_back(c[k] * unit);
+    for (int k = 0; k < 3; ++k)
+      xyz.push_back((c[k] + (k == 0 ? (c[0] > 0 ? -1 : 1) : 0)) * unit);
+    ++found;
+  }
+  const std::size_t sphereFirst = 2000, sphereCount = xyz.size() / 3 - sphereFirst;
+  ASSERT_GE(sphereCount, 40u);
+  fd3::Predicates predicates;
+  predicates.adaptTo(xyz.data(), xyz.size() / 3);
+  std::uniform_int_distribution<std::size_t> point(0, sphereFirst - 1), onSphere(0, sphereCount - 1);
+  int orientTies = 0, sphereTies = 0;
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const double* p[5];
+    for (auto& q : p)
+      q = xyz.data() + 3 * (trial % 2 ? point(rng) : sphereFirst + onSphere(rng));
+    const int o = predicates.orient3d(p[0], p[1], p[2], p[3]);
+    ASSERT_EQ(o, exactOrient3d(p[0], p[1], p[2], p[3]));
+    orientTies += o == 0;
+    if (o > 0)
+    {
+      const int s = predicates.inSphere(p[0], p[1], p[2], p[3], p[4]);
+      ASSERT_EQ(s, exactInSphere(p[0], p[1], p[2], p[3], p[4]));
+      sphereTies += s == 0;
+    }
+  }
+  EXPECT_GT(orientTies, 100);
+  EXPECT_GT(sphereTies, 10);
+}
+
+INSTANTIATE_TEST_SUITE_P(GridBits, AdaptedPredicates, ::testing::Values(3, 8, 9, 15, 16, 21, 22, 40));
+
+// Off any grid, an adapted set decides well-spread points with its static bounds and the rest
+// with the semi-static filter and expansions; agreement with GMP on nearly degenerate input.
+TEST(Predicates, AdaptedStaticFilterAgreesWithRationals)
+{
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  std::vector<double> xyz(3 * 1000);
+  for (double& x : xyz)
+    x = uniform(rng);
+  fd3::Predicates predicates;
+  predicates.adaptTo(xyz.data(), xyz.size() / 3);
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    const double* a = &xyz[3 * (trial % 1000)];
+    const double* b = &xyz[3 * ((trial * 7 + 1) % 1000)];
+    const double* c = &xyz[3 * ((trial * 13 + 2) % 1000)];
+    // d and e close to the plane abc, or tiny tetrahedra: both stages get exercised.
+    const double s = uniform(rng), t = uniform(rng), lift = std::ldexp(uniform(rng), -(trial % 60));
+    double d[3], e[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      d[k] = a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]) + lift;
+      e[k] = a[k] + lift * uniform(rng);
+    }
+    ASSERT_EQ(predicates.orient3d(a, b, c, d), exactOrient3d(a, b, c, d));
+    if (exactOrient3d(a, b, c, d) > 0)
+      ASSERT_EQ(predicates.inSphere(a, b, c, d, e), exactInSphere(a, b, c, d, e));
+  }
+  EXPECT_GT(predicates.exactOrientCalls, 0u);
+}
 
 TEST(Predicates, ExactTiesOnIntegerLattice)
 {
