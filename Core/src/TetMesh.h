@@ -99,7 +99,7 @@ public:
   bool isGhost(TetId t) const { return records_[8 * std::size_t(t) + 3] == kInfinite; }
   bool isDead(TetId t) const { return flags(t) == kDead; }
 
-  /// A slot for a new tetrahedron, flags clear: a freed one first (the paper's memory
+  /// A slot for a new tetrahedron, to be filled by create(): a freed one first (the paper's memory
   /// management: deleted slots are taken by the next tetrahedra created), else a new one.
   TetId allocate()
   {
@@ -114,8 +114,18 @@ public:
       t = static_cast<TetId>(slots());
       records_.resize(records_.size() + 8);
     }
-    records_[8 * std::size_t(t)] = 0;
     return t;
+  }
+
+  /// Writes the whole record of t at once: vertices v (flags clear), no neighbours yet.
+  void create(TetId t, const VertId v[4])
+  {
+    std::uint32_t* r = &records_[8 * std::size_t(t)];
+    for (int i = 0; i < 4; ++i)
+    {
+      r[i] = v[i];
+      r[4 + i] = kUnlinked;
+    }
   }
 
   void release(TetId t)

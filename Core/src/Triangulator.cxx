@@ -48,8 +48,7 @@ void Triangulator::start()
   if (predicates_.orient3d(point(0), point(1), point(2), point(3)) < 0)
     std::swap(v[0], v[1]);
   const TetId t = mesh_.allocate();
-  for (int i = 0; i < 4; ++i)
-    mesh_.setVertex(t, i, v[i]);
+  mesh_.create(t, v);
   // Ghost i sits on the face opposite v[i], listed so that (face, v[i]) is an odd permutation of
   // t: the face normal then points away from v[i], out of the hull.
   static constexpr int kOutwardFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
@@ -57,9 +56,8 @@ void Triangulator::start()
   for (int i = 0; i < 4; ++i)
   {
     ghost[i] = mesh_.allocate();
-    for (int k = 0; k < 3; ++k)
-      mesh_.setVertex(ghost[i], k, v[kOutwardFace[i][k]]);
-    mesh_.setVertex(ghost[i], 3, kInfinite);
+    const VertId face[4] = {v[kOutwardFace[i][0]], v[kOutwardFace[i][1]], v[kOutwardFace[i][2]], kInfinite};
+    mesh_.create(ghost[i], face);
     mesh_.link(faceCode(t, i), faceCode(ghost[i], 3));
   }
   // Ghosts meet along the edges of t: ghost i's face opposite its vertex k is the edge of

@@ -80,6 +80,8 @@ private:
   bool releaseEnclosedVertex(VertId v);
   // FillCavity.cxx
   void fillCavity(VertId v);
+  bool linkByEdgeTable();
+  std::uint32_t localIndex(VertId u);
   void linkAroundEdge(std::size_t created, int face);
 
   std::uint32_t nextRandom();
@@ -100,6 +102,17 @@ private:
   std::vector<TetId> rejected_;
   std::vector<BoundaryFacet> boundary_;
   std::vector<TetId> created_;
+  // linkByEdgeTable's: local numbers of the boundary's vertices (an open-addressing table keyed
+  // by vertex id, emptied after each insertion), the face code at each directed boundary edge, and
+  // each new interior face with the table entry of its reversed edge.
+  static constexpr int kLocalHashBits = 8;
+  static constexpr std::uint32_t kMaxLocalVertices = 64;
+  static constexpr VertId kNoKey = 0xFFFFFFFEu;
+  std::vector<VertId> localKey_ = std::vector<VertId>(1u << kLocalHashBits, kNoKey);
+  std::vector<std::uint8_t> localValue_ = std::vector<std::uint8_t>(1u << kLocalHashBits);
+  std::vector<std::uint32_t> localSlots_;
+  std::vector<FaceCode> edgeFace_ = std::vector<FaceCode>(kMaxLocalVertices * kMaxLocalVertices);
+  std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
   std::uint32_t stamp_ = 0;
 };

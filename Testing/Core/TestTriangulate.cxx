@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -130,6 +131,28 @@ TEST(Triangulate, InsertionOrdersAgreeOnGeneralPosition)
   options.order = fd3::InsertionOrder::Random;
   options.pointsPerCell = 8;
   EXPECT_EQ(sorted(triangulateAndCheck(p, options).tetrahedra), brio);
+}
+
+// The centre of points on a sphere, inserted last, is in conflict with almost every tetrahedron:
+// its cavity's boundary is the whole hull, too many vertices for the edge table of fillCavity, so
+// the new tetrahedra are linked by rotation about the boundary's edges instead.
+TEST(Triangulate, HugeCavityIsLinkedByRotation)
+{
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal;
+  Points p;
+  for (int i = 0; i < 400; ++i)
+  {
+    const double x = normal(rng), y = normal(rng), z = normal(rng);
+    const double r = std::sqrt(x * x + y * y + z * z);
+    p.insert(p.end(), {x / r, y / r, z / r});
+  }
+  p.insert(p.end(), {0.0, 0.0, 0.0});
+  fd3::Options options;
+  options.order = fd3::InsertionOrder::Input;
+  const auto r = triangulateAndCheck(p, options);
+  EXPECT_EQ(r.stats.insertedPoints, 401u);
+  EXPECT_GT(r.stats.cavityTetrahedra, 2 * 400u) << "the centre's cavity should hold the whole ball";
 }
 
 TEST(Triangulate, NeighboursAreConsistent)
