@@ -47,7 +47,8 @@ void Triangulator::fillCavity(VertId v)
   lastCreated_ = created_.back();
 }
 
-std::uint32_t Triangulator::localIndex(VertId u)
+// Inlined by hand (GCC would not): it runs three times per new tetrahedron.
+__attribute__((always_inline)) inline std::uint32_t Triangulator::localIndex(VertId u)
 {
   const std::uint32_t mask = (1u << kLocalHashBits) - 1;
   std::uint32_t h = (u * 0x9E3779B1u) >> (32 - kLocalHashBits);
@@ -56,7 +57,7 @@ std::uint32_t Triangulator::localIndex(VertId u)
     if (localKey_[h] == kNoKey)
     {
       localKey_[h] = u;
-      localValue_[h] = static_cast<std::uint8_t>(localSlots_.size());
+      localValue_[h] = static_cast<std::uint32_t>(localSlots_.size());
       localSlots_.push_back(h);
       break;
     }
@@ -71,14 +72,19 @@ std::uint32_t Triangulator::localIndex(VertId u)
 // at b->a. The edges are indexed by local numbers of the boundary's vertices.
 bool Triangulator::linkByEdgeTable()
 {
-  // For face f of a new tetrahedron whose vertex g is the new point: the outward-oriented face
-  // (a cyclic order of kOutwardFace[f]) read from the new point on gives the directed edge a->b.
-  static constexpr int kEdge[4][4][2] = {
-    {{0, 0}, {2, 3}, {3, 1}, {1, 2}},
-    {{3, 2}, {0, 0}, {0, 3}, {2, 0}},
-    {{1, 3}, {3, 0}, {0, 0}, {0, 1}},
-    {{2, 1}, {0, 2}, {1, 0}, {0, 0}}};
-  interiorFaces_.clear();
+  // The interior faces f of a new tetrahedron whose vertex g is the new point, each with the
+  // directed edge a->b it holds: the face's outward order (a cyclic order of kOutwardFace[f]) read
+  // from the new point on.
+  struct InteriorFace
+  {
+    int f, a, b;
+  };
+  static constexpr InteriorFace kInterior[4][3] = {
+    {{1, 3, 2}, {2, 1, 3}, {3, 2, 1}},
+    {{0, 2, 3}, {2, 3, 0}, {3, 0, 2}},
+    {{0, 3, 1}, {1, 0, 3}, {3, 1, 0}},
+    {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}};
+  interiorFaces_.resize(3 * created_.size());
   bool fits = true;
   for (std::size_t i = 0; i < created_.size() && fits; ++i)
   {
@@ -88,15 +94,16 @@ bool Triangulator::linkByEdgeTable()
     VertId nv[4];
     mesh_.vertices(n, nv);
     for (int k = 0; k < 4; ++k)
-      local[k] = k == g ? 0 : localIndex(nv[k]);
+      local[k] = localIndex(nv[k]); // the new point too: one more local number, no branch
     fits = localSlots_.size() <= kMaxLocalVertices;
-    for (int f = 0; f < 4 && fits; ++f)
+    if (!fits)
+      break;
+    for (int j = 0; j < 3; ++j)
     {
-      if (f == g)
-        continue;
-      const std::uint32_t a = local[kEdge[f][g][0]], b = local[kEdge[f][g][1]];
-      edgeFace_[a * kMaxLocalVertices + b] = faceCode(n, f);
-      interiorFaces_.push_back({faceCode(n, f), b * kMaxLocalVertices + a});
+      const InteriorFace& face = kInterior[g][j];
+      const std::uint32_t a = local[face.a], b = local[face.b];
+      edgeFace_[a * kMaxLocalVertices + b] = faceCode(n, face.f);
+      interiorFaces_[3 * i + j] = {faceCode(n, face.f), b * kMaxLocalVertices + a};
     }
   }
   for (std::uint32_t h : localSlots_)

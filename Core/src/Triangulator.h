@@ -109,7 +109,7 @@ private:
   static constexpr std::uint32_t kMaxLocalVertices = 64;
   static constexpr VertId kNoKey = 0xFFFFFFFEu;
   std::vector<VertId> localKey_ = std::vector<VertId>(1u << kLocalHashBits, kNoKey);
-  std::vector<std::uint8_t> localValue_ = std::vector<std::uint8_t>(1u << kLocalHashBits);
+  std::vector<std::uint32_t> localValue_ = std::vector<std::uint32_t>(1u << kLocalHashBits);
   std::vector<std::uint32_t> localSlots_;
   std::vector<FaceCode> edgeFace_ = std::vector<FaceCode>(kMaxLocalVertices * kMaxLocalVertices);
   std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces_;
