@@ -3,8 +3,8 @@
 // (p, u, v) is the other new tetrahedron on the boundary edge uv: found in a small table of the
 // boundary's directed edges (the paper's one-to-one correspondence of section 3.3 between new
 // tetrahedra and boundary facets), or, for cavities with too many boundary vertices for the table,
-// by rotating about uv through the deleted tetrahedra. The table costs about a third of the
-// rotation's instructions: 1M uniform points fill in 1.28 s instead of 1.45 s.
+// by rotating about uv through the deleted tetrahedra. Measured on 1M uniform points (GCC 12):
+// the fill phase takes 0.78 s with the table, 1.45 s with rotation alone.
 #include "Triangulator.h"
 
 namespace fd3
@@ -23,47 +23,41 @@ void Triangulator::fillCavity(VertId v)
     const TetId n = mesh_.allocate();
     VertId tv[4];
     mesh_.vertices(b.inner, tv);
-    tv[b.face] = v;
-    mesh_.create(n, tv);
-    // Only vertex 3 can be the ghost vertex (ghosts keep it there; it is never replaced by v).
+    // Vertex b.face replaced by masks, neither by a store into tv (a narrow store then a wide
+    // reload of the same bytes, which stalls store forwarding) nor by a branch on b.face (a coin
+    // toss to the predictor): GCC turns both plain forms into one or the other.
+    VertId nv[4];
     for (int k = 0; k < 4; ++k)
-      if (tv[k] != kInfinite)
-        vertexTet_[tv[k]] = n;
+    {
+      const VertId replace = 0u - VertId(k == b.face);
+      nv[k] = (tv[k] & ~replace) | (v & replace);
+    }
+    mesh_.create(n, nv);
     mesh_.link(faceCode(n, b.face), mesh_.neighbor(b.inner, b.face));
     mesh_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
     created_.push_back(n);
   }
-  // Pass 2: link the new tetrahedra to each other.
+  // Pass 2: link the new tetrahedra to each other (which also points vertexTet_ at them).
   if (!linkByEdgeTable())
+  {
     for (std::size_t i = 0; i < created_.size(); ++i)
+    {
+      VertId nv[4];
+      mesh_.vertices(created_[i], nv);
+      for (int k = 0; k < 4; ++k)
+        if (nv[k] != kInfinite)
+          vertexTet_[nv[k]] = created_[i];
       for (int f = 0; f < 4; ++f)
         if (f != boundary_[i].face && mesh_.neighbor(created_[i], f) == kUnlinked)
           linkAroundEdge(i, f);
+    }
+  }
 
   for (TetId t : cavity_)
     mesh_.release(t);
   for (TetId t : rejected_)
     mesh_.setFlags(t, 0);
   lastCreated_ = created_.back();
-}
-
-// Inlined by hand (GCC would not): it runs three times per new tetrahedron.
-__attribute__((always_inline)) inline std::uint32_t Triangulator::localIndex(VertId u)
-{
-  const std::uint32_t mask = (1u << kLocalHashBits) - 1;
-  std::uint32_t h = (u * 0x9E3779B1u) >> (32 - kLocalHashBits);
-  while (localKey_[h] != u)
-  {
-    if (localKey_[h] == kNoKey)
-    {
-      localKey_[h] = u;
-      localValue_[h] = static_cast<std::uint32_t>(localSlots_.size());
-      localSlots_.push_back(h);
-      break;
-    }
-    h = (h + 1) & mask;
-  }
-  return localValue_[h];
 }
 
 // Each interior face (p, a, b) of the new tetrahedra holds one edge ab of the core's boundary, and
@@ -85,6 +79,11 @@ bool Triangulator::linkByEdgeTable()
     {{0, 3, 1}, {1, 0, 3}, {3, 1, 0}},
     {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}};
   interiorFaces_.resize(3 * created_.size());
+  // Local numbers live in vertexTet_ while the table is built (every boundary vertex needs a new
+  // entry there anyway): no lookup structure of its own, and no branch on whether a vertex was
+  // met before. The ghost vertex uses the extra last entry; the new point is numbered too.
+  const VertId ghostEntry = static_cast<VertId>(vertexTet_.size() - 1);
+  std::uint32_t count = 0;
   bool fits = true;
   for (std::size_t i = 0; i < created_.size() && fits; ++i)
   {
@@ -94,8 +93,17 @@ bool Triangulator::linkByEdgeTable()
     VertId nv[4];
     mesh_.vertices(n, nv);
     for (int k = 0; k < 4; ++k)
-      local[k] = localIndex(nv[k]); // the new point too: one more local number, no branch
-    fits = localSlots_.size() <= kMaxLocalVertices;
+    {
+      const VertId u = nv[k] == kInfinite ? ghostEntry : nv[k];
+      const TetId entry = vertexTet_[u];
+      const bool seen = (entry & kLocalMark) != 0;
+      local[k] = seen ? entry & ~kLocalMark : count;
+      vertexTet_[u] = kLocalMark | local[k];
+      localVertex_[count] = u;
+      localTet_[count] = n;
+      count += !seen;
+    }
+    fits = count <= kMaxLocalVertices;
     if (!fits)
       break;
     for (int j = 0; j < 3; ++j)
@@ -106,9 +114,8 @@ bool Triangulator::linkByEdgeTable()
       interiorFaces_[3 * i + j] = {faceCode(n, face.f), b * kMaxLocalVertices + a};
     }
   }
-  for (std::uint32_t h : localSlots_)
-    localKey_[h] = kNoKey;
-  localSlots_.clear();
+  for (std::uint32_t k = 0; k < count; ++k)
+    vertexTet_[localVertex_[k]] = localTet_[k];
   if (!fits)
     return false;
   for (const auto& [face, reversed] : interiorFaces_)

@@ -16,7 +16,7 @@ Triangulator::Triangulator(std::vector<double> xyz, const Options& options, Stat
 {
   const std::size_t n = xyz_.size() / 3;
   mesh_.reserve(7 * n + 64);
-  vertexTet_.assign(n, 0);
+  vertexTet_.assign(n + 1, 0);
   grid_.build(xyz_.data(), n, options.pointsPerCell);
   predicates_.adaptTo(xyz_.data(), n);
 }

@@ -81,7 +81,6 @@ private:
   // FillCavity.cxx
   void fillCavity(VertId v);
   bool linkByEdgeTable();
-  std::uint32_t localIndex(VertId u);
   void linkAroundEdge(std::size_t created, int face);
 
   std::uint32_t nextRandom();
@@ -92,7 +91,8 @@ private:
   Predicates predicates_;
   TetMesh mesh_;
   BackgroundGrid grid_;
-  std::vector<TetId> vertexTet_; // a live tetrahedron incident to each inserted vertex
+  // A live tetrahedron incident to each inserted vertex; one more entry stands for kInfinite.
+  std::vector<TetId> vertexTet_;
   TetId lastCreated_ = 0;
   VertId duplicateOf_ = 0;
   std::uint64_t rng_;
@@ -102,15 +102,13 @@ private:
   std::vector<TetId> rejected_;
   std::vector<BoundaryFacet> boundary_;
   std::vector<TetId> created_;
-  // linkByEdgeTable's: local numbers of the boundary's vertices (an open-addressing table keyed
-  // by vertex id, emptied after each insertion), the face code at each directed boundary edge, and
-  // each new interior face with the table entry of its reversed edge.
-  static constexpr int kLocalHashBits = 8;
+  // linkByEdgeTable's: the boundary's vertices by local number, with a new tetrahedron on each
+  // (while the table is built, vertexTet_ holds kLocalMark | local number for them), the face code
+  // at each directed boundary edge, and each new interior face with the entry of its reversed edge.
   static constexpr std::uint32_t kMaxLocalVertices = 64;
-  static constexpr VertId kNoKey = 0xFFFFFFFEu;
-  std::vector<VertId> localKey_ = std::vector<VertId>(1u << kLocalHashBits, kNoKey);
-  std::vector<std::uint32_t> localValue_ = std::vector<std::uint32_t>(1u << kLocalHashBits);
-  std::vector<std::uint32_t> localSlots_;
+  static constexpr TetId kLocalMark = 0x80000000u; // above any tetrahedron id (< 2^30)
+  std::vector<VertId> localVertex_ = std::vector<VertId>(kMaxLocalVertices + 4);
+  std::vector<TetId> localTet_ = std::vector<TetId>(kMaxLocalVertices + 4);
   std::vector<FaceCode> edgeFace_ = std::vector<FaceCode>(kMaxLocalVertices * kMaxLocalVertices);
   std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
