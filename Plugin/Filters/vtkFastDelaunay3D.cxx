@@ -27,6 +27,7 @@
 #include "fd3/Measures.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -337,7 +338,15 @@ int vtkFastDelaunay3D::RequestData(
   this->NumberOfInvalidPoints = static_cast<vtkIdType>(stats.nonFinitePoints);
   this->NumberOfTetrahedra = static_cast<vtkIdType>(stats.tetrahedra);
   this->MeanWalkLength = stats.meanWalk();
+  this->MaxWalkLength = static_cast<vtkIdType>(stats.maxWalkSteps);
+  this->MeanCavitySize = stats.meanCavity();
   this->KernelSeconds = stats.secondsTotal;
+  this->SortSeconds = stats.secondsSort;
+  this->LocateSeconds = stats.secondsLocate;
+  this->CavitySeconds = stats.secondsCavity;
+  this->FillSeconds = stats.secondsFill;
+  this->OutputSeconds = stats.secondsOutput;
+  const auto conversionStart = std::chrono::steady_clock::now();
   if (stats.nonFinitePoints > 0)
   {
     vtkErrorMacro(<< stats.nonFinitePoints << " of " << numberOfPoints
@@ -393,18 +402,31 @@ int vtkFastDelaunay3D::RequestData(
     AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
       this->ComputeRadiusEdgeRatio);
   }
+  this->OutputSeconds +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   if (this->ComputeStatistics)
   {
-    vtkFieldData* fields = output->GetFieldData();
-    AddFieldValue(fields, "NumberOfInsertedPoints", static_cast<double>(stats.insertedPoints));
-    AddFieldValue(fields, "NumberOfDuplicatePoints", static_cast<double>(stats.duplicatesMerged));
-    AddFieldValue(fields, "NumberOfSkippedPoints", static_cast<double>(stats.closePointsSkipped));
-    AddFieldValue(fields, "NumberOfInvalidPoints", static_cast<double>(stats.nonFinitePoints));
-    AddFieldValue(fields, "NumberOfTetrahedra", static_cast<double>(stats.tetrahedra));
-    AddFieldValue(fields, "MeanWalkLength", stats.meanWalk());
-    AddFieldValue(fields, "KernelSeconds", stats.secondsTotal);
+    for (const auto& figure : this->Figures())
+    {
+      AddFieldValue(output->GetFieldData(), figure.first, figure.second);
+    }
   }
   return 1;
+}
+
+std::vector<std::pair<const char*, double>> vtkFastDelaunay3D::Figures() const
+{
+  return { { "NumberOfInsertedPoints", static_cast<double>(this->NumberOfInsertedPoints) },
+    { "NumberOfDuplicatePoints", static_cast<double>(this->NumberOfDuplicatePoints) },
+    { "NumberOfSkippedPoints", static_cast<double>(this->NumberOfSkippedPoints) },
+    { "NumberOfInvalidPoints", static_cast<double>(this->NumberOfInvalidPoints) },
+    { "NumberOfTetrahedra", static_cast<double>(this->NumberOfTetrahedra) },
+    { "MeanWalkLength", this->MeanWalkLength },
+    { "MaxWalkLength", static_cast<double>(this->MaxWalkLength) },
+    { "MeanCavitySize", this->MeanCavitySize }, { "KernelSeconds", this->KernelSeconds },
+    { "SortSeconds", this->SortSeconds }, { "LocateSeconds", this->LocateSeconds },
+    { "CavitySeconds", this->CavitySeconds }, { "FillSeconds", this->FillSeconds },
+    { "OutputSeconds", this->OutputSeconds } };
 }
 
 void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
@@ -427,11 +449,8 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeVolume: " << this->ComputeVolume << "\n";
   os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";
   os << indent << "ComputeStatistics: " << this->ComputeStatistics << "\n";
-  os << indent << "NumberOfInsertedPoints: " << this->NumberOfInsertedPoints << "\n";
-  os << indent << "NumberOfDuplicatePoints: " << this->NumberOfDuplicatePoints << "\n";
-  os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";
-  os << indent << "NumberOfInvalidPoints: " << this->NumberOfInvalidPoints << "\n";
-  os << indent << "NumberOfTetrahedra: " << this->NumberOfTetrahedra << "\n";
-  os << indent << "MeanWalkLength: " << this->MeanWalkLength << "\n";
-  os << indent << "KernelSeconds: " << this->KernelSeconds << "\n";
+  for (const auto& figure : this->Figures())
+  {
+    os << indent << figure.first << ": " << figure.second << "\n";
+  }
 }

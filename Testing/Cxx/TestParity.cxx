@@ -245,8 +245,27 @@ TEST(Parity, OptionalArraysAndStatistics)
   ASSERT_NE(fields->GetArray("NumberOfTetrahedra"), nullptr);
   EXPECT_EQ(fields->GetArray("NumberOfTetrahedra")->GetTuple1(0), out->GetNumberOfCells());
   EXPECT_EQ(fields->GetArray("NumberOfInsertedPoints")->GetTuple1(0), 2000);
-  EXPECT_GT(fields->GetArray("MeanWalkLength")->GetTuple1(0), 0);
-  EXPECT_NE(fields->GetArray("KernelSeconds"), nullptr);
+  auto figure = [fields](const char* name) {
+    vtkDataArray* array = fields->GetArray(name);
+    EXPECT_NE(array, nullptr) << name;
+    return array ? array->GetTuple1(0) : -1.0;
+  };
+  EXPECT_GT(figure("MeanWalkLength"), 0);
+  EXPECT_GE(figure("MaxWalkLength"), figure("MeanWalkLength"));
+  EXPECT_EQ(figure("MaxWalkLength"), ours->GetMaxWalkLength());
+  // Each insertion deletes at least the tetrahedron holding the point; about 20 on uniform points.
+  EXPECT_GT(figure("MeanCavitySize"), 5);
+  EXPECT_LT(figure("MeanCavitySize"), 60);
+  const double kernel = figure("KernelSeconds");
+  EXPECT_GT(kernel, 0);
+  double phases = 0;
+  for (const char* phase : { "SortSeconds", "LocateSeconds", "CavitySeconds", "FillSeconds" })
+  {
+    EXPECT_GE(figure(phase), 0) << phase;
+    phases += figure(phase);
+  }
+  EXPECT_GT(phases, 0);
+  EXPECT_GT(figure("OutputSeconds"), 0);
 }
 
 TEST(Parity, ProgressMovesDuringInsertion)
