@@ -14,6 +14,7 @@
 #define fd3_TetMesh_h
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace fd3
@@ -27,6 +28,7 @@ constexpr VertId kInfinite = 0xFFFFFFFFu;
 constexpr FaceCode kUnlinked = 0xFFFFFFFFu;
 constexpr int kVertexIdBits = 30;
 constexpr std::uint32_t kMaxVertices = 1u << kVertexIdBits;
+constexpr std::size_t kMaxTetrahedra = std::size_t(1) << 30;
 
 inline TetId tetOf(FaceCode code)
 {
@@ -111,6 +113,9 @@ public:
     }
     else
     {
+      // Face codes 4t+f are 32-bit: beyond 2^30 slots (about 150M points) they would wrap.
+      if (slots() >= kMaxTetrahedra)
+        throw std::length_error("fd3: more than 2^30 tetrahedra, beyond 32-bit face codes");
       t = static_cast<TetId>(slots());
       records_.resize(records_.size() + 8);
     }

@@ -117,8 +117,9 @@ AlphaComplex alphaComplex(
   const double* xyz, std::size_t count, const Triangulation& triangulation, double alpha);
 
 /// Delaunay tetrahedralization of `count` points given as x,y,z triples. Throws std::length_error
-/// beyond 2^30 points (32-bit ids), std::bad_alloc when memory runs out, and lets exceptions from
-/// the progress callback through; all memory is released either way.
+/// beyond 2^30 points or 2^30 tetrahedra (32-bit ids; about 150M uniform points), std::bad_alloc
+/// when memory runs out, and lets exceptions from the progress callback through; all memory is
+/// released either way.
 /// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the result
 /// is a Delaunay triangulation of the distinct finite input points whose boundary is their convex hull.
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options = Options());
