@@ -1,19 +1,13 @@
 #include "Predicates.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 
 namespace fd3
 {
 namespace
 {
-template <typename T>
-int signOf(T x)
-{
-  return (x > 0) - (x < 0);
-}
-
+using filter::signOf;
 using Int128 = __int128;
 
 Int128 det3(const std::int64_t u[3], const std::int64_t v[3], const std::int64_t w[3])

@@ -32,7 +32,8 @@ constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * k
 // Below this magnitude products may have underflowed and the relative bounds no longer hold.
 constexpr double kUnderflowGuard = 1e-250;
 
-inline int signOf(double x)
+template <typename T>
+int signOf(T x) // for doubles here, and __int128 in the exact stage
 {
   return (x > 0) - (x < 0);
 }

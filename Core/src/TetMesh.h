@@ -60,11 +60,6 @@ public:
     const std::uint32_t v = records_[8 * std::size_t(t) + i];
     return i == 0 ? v & kIdMask : v;
   }
-  void setVertex(TetId t, int i, VertId v)
-  {
-    std::uint32_t& slot = records_[8 * std::size_t(t) + i];
-    slot = i == 0 ? (slot & ~kIdMask) | v : v;
-  }
   /// The four vertices of t (v0 without its flags).
   void vertices(TetId t, VertId out[4]) const
   {

@@ -30,6 +30,7 @@ void Triangulator::releaseWorkspace()
   for (auto* scratch : {&cavity_, &rejected_, &created_})
     std::vector<TetId>().swap(*scratch);
   std::vector<BoundaryFacet>().swap(boundary_);
+  std::vector<std::pair<FaceCode, std::uint32_t>>().swap(interiorFaces_);
 }
 
 std::uint32_t Triangulator::nextRandom()

@@ -13,6 +13,7 @@
 #include "fd3/Delaunay.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace fd3
