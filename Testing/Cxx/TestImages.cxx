@@ -7,6 +7,7 @@
 #include "vtkFastDelaunay3D.h"
 
 #include "vtkActor.h"
+#include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkDataSetMapper.h"
@@ -35,6 +36,19 @@ vtkSmartPointer<vtkPolyData> Cloud(const fd3test::Points& p)
   return fd3test::toPolyData(p, VTK_FLOAT);
 }
 
+/// Shows `cells` shrunk by `factor`, coloured by their cell array `name` over [0, maxValue].
+void ShowShrunkCells(
+  vtkAlgorithmOutput* cells, double factor, const char* name, double maxValue, vtkDataSetMapper* mapper)
+{
+  vtkNew<vtkShrinkFilter> shrink;
+  shrink->SetInputConnection(cells);
+  shrink->SetShrinkFactor(factor);
+  mapper->SetInputConnection(shrink->GetOutputPort());
+  mapper->SetScalarModeToUseCellFieldData();
+  mapper->SelectColorArray(name);
+  mapper->SetScalarRange(0.0, maxValue);
+}
+
 /// Fills the renderer for the named scene; returns false for an unknown name.
 bool BuildScene(const std::string& scene, int argc, char* argv[], vtkRenderer* renderer)
 {
@@ -58,13 +72,7 @@ bool BuildScene(const std::string& scene, int argc, char* argv[], vtkRenderer* r
     half->SetInputConnection(delaunay->GetOutputPort());
     half->SetImplicitFunction(plane);
     half->ExtractBoundaryCellsOn();
-    vtkNew<vtkShrinkFilter> shrink;
-    shrink->SetInputConnection(half->GetOutputPort());
-    shrink->SetShrinkFactor(0.7);
-    mapper->SetInputConnection(shrink->GetOutputPort());
-    mapper->SetScalarModeToUseCellFieldData();
-    mapper->SelectColorArray("Circumradius");
-    mapper->SetScalarRange(0.0, 0.6);
+    ShowShrunkCells(half->GetOutputPort(), 0.7, "Circumradius", 0.6, mapper);
     camera->SetPosition(3, -12, 8);
   }
   else if (scene == "AlphaShape")
@@ -81,13 +89,7 @@ bool BuildScene(const std::string& scene, int argc, char* argv[], vtkRenderer* r
     delaunay->SetInputData(Cloud(fd3test::uniformBall(60, 4)));
     delaunay->BoundingTriangulationOn();
     delaunay->ComputeVolumeOn();
-    vtkNew<vtkShrinkFilter> shrink;
-    shrink->SetInputConnection(delaunay->GetOutputPort());
-    shrink->SetShrinkFactor(0.8);
-    mapper->SetInputConnection(shrink->GetOutputPort());
-    mapper->SetScalarModeToUseCellFieldData();
-    mapper->SelectColorArray("Volume");
-    mapper->SetScalarRange(0.0, 20.0);
+    ShowShrunkCells(delaunay->GetOutputPort(), 0.8, "Volume", 20.0, mapper);
     actor->GetProperty()->SetOpacity(0.6);
     camera->SetPosition(10, -14, 9);
   }
