@@ -4,9 +4,11 @@
 =========================================================================*/
 #include "vtkFastDelaunay3D.h"
 
+#include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -16,6 +18,7 @@
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
+#include "vtkSMPThreadLocalObject.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt32Array.h"
@@ -31,6 +34,8 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <sstream>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkFastDelaunay3D);
@@ -115,6 +120,25 @@ vtkSmartPointer<vtkPoints> MakeOutputPoints(
   return points;
 }
 
+/// Copies x,y,z tuples of any real array into doubles, without a virtual call per tuple.
+struct CopyToDoubles
+{
+  template <typename ArrayType>
+  void operator()(ArrayType* array, double* out) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange<3>(array);
+    vtkSMPTools::For(0, tuples.size(), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          out[3 * i + k] = static_cast<double>(tuples[i][k]);
+        }
+      }
+    });
+  }
+};
+
 /// The point coordinates as x,y,z doubles: the array itself when it already is one, else a copy.
 const double* PointsAsDoubles(vtkPoints* points, std::vector<double>& copy)
 {
@@ -123,14 +147,12 @@ const double* PointsAsDoubles(vtkPoints* points, std::vector<double>& copy)
   {
     return doubles->GetPointer(0);
   }
-  const vtkIdType n = points->GetNumberOfPoints();
-  copy.resize(3 * static_cast<std::size_t>(n));
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      data->GetTuple(i, copy.data() + 3 * i);
-    }
-  });
+  copy.resize(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
+  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  if (!Reals::Execute(data, CopyToDoubles{}, copy.data()))
+  {
+    CopyToDoubles{}(data, copy.data());
+  }
   return copy.data();
 }
 
@@ -222,13 +244,14 @@ void AddCellMeasures(vtkUnstructuredGrid* output, const double* xyz, bool circum
       output->GetCellData()->AddArray(arrays[a]);
     }
   }
+  vtkSMPThreadLocalObject<vtkIdList> scratch; // the cell array stores 32-bit ids: a copy is needed
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    vtkIdType size;
-    const vtkIdType* ids;
-    vtkNew<vtkIdList> scratch;
+    vtkIdList* idList = scratch.Local();
     for (vtkIdType c = begin; c < end; ++c)
     {
-      output->GetCellPoints(c, size, ids, scratch);
+      vtkIdType size;
+      const vtkIdType* ids;
+      output->GetCells()->GetCellAtId(c, size, ids, idList);
       const double* p[4];
       for (vtkIdType k = 0; k < size && k < 4; ++k)
       {
@@ -260,6 +283,31 @@ void AddCellMeasures(vtkUnstructuredGrid* output, const double* xyz, bool circum
   });
 }
 
+/// What the tetrahedralization leaves out, by cause, with what keeps it; empty when nothing is.
+std::string LeftOutPoints(const fd3::Statistics& stats)
+{
+  std::ostringstream causes;
+  const char* separator = "";
+  if (stats.duplicatesMerged > 0)
+  {
+    causes << separator << stats.duplicatesMerged
+           << " exact duplicates (merged: points at one position make one vertex)";
+    separator = "; ";
+  }
+  if (stats.closePointsSkipped > 0)
+  {
+    causes << separator << stats.closePointsSkipped
+           << " within Tolerance of an inserted point (Tolerance 0 keeps them)";
+    separator = "; ";
+  }
+  if (stats.nonFinitePoints > 0)
+  {
+    causes << separator << stats.nonFinitePoints
+           << " with NaN or infinite coordinates (no position to triangulate)";
+  }
+  return causes.str();
+}
+
 void AddFieldValue(vtkFieldData* fields, const char* name, double value)
 {
   vtkNew<vtkDoubleArray> array;
@@ -282,6 +330,7 @@ int vtkFastDelaunay3D::RequestData(
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  this->RecordFigures(fd3::Statistics());
   const vtkIdType numberOfPoints = input ? input->GetNumberOfPoints() : 0;
   if (numberOfPoints == 0)
   {
@@ -303,21 +352,10 @@ int vtkFastDelaunay3D::RequestData(
   std::vector<double> converted;
   const double* xyz = PointsAsDoubles(points, converted);
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
-  fd3::Options options;
-  options.pointsPerCell = this->GridResolution;
-  options.volumeThreshold = this->VolumeThreshold;
-  options.tolerance = this->Tolerance * Diagonal(bounds);
-  options.order = static_cast<fd3::InsertionOrder>(this->InsertionOrder);
-  options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
-  options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
-  options.progress = [this](double fraction) {
-    this->UpdateProgress(fraction);
-    return !this->CheckAbort();
-  };
   fd3::Triangulation result;
   try
   {
-    result = fd3::triangulate(xyz, count, options);
+    result = fd3::triangulate(xyz, count, this->KernelOptions(Diagonal(bounds)));
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -330,8 +368,60 @@ int vtkFastDelaunay3D::RequestData(
     output->Initialize();
     return 1;
   }
+  this->RecordFigures(result.stats);
+  if (!this->ReportOnInput(result, numberOfPoints))
+  {
+    output->Initialize();
+    return 1;
+  }
 
-  const fd3::Statistics& stats = result.stats;
+  const auto conversionStart = std::chrono::steady_clock::now();
+  output->SetPoints(points);
+  if (!this->BoundingTriangulation)
+  {
+    output->GetPointData()->PassData(input->GetPointData());
+  }
+  this->SetOutputCells(output, xyz, count, result);
+  if (this->ComputeCircumradius || this->ComputeVolume || this->ComputeRadiusEdgeRatio)
+  {
+    AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
+      this->ComputeRadiusEdgeRatio);
+  }
+  this->OutputSeconds +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
+  this->AddFigures(output->GetFieldData());
+  return 1;
+}
+
+fd3::Options vtkFastDelaunay3D::KernelOptions(double diagonal)
+{
+  fd3::Options options;
+  options.pointsPerCell = this->GridResolution;
+  options.volumeThreshold = this->VolumeThreshold;
+  options.tolerance = this->Tolerance * diagonal;
+  switch (this->InsertionOrder)
+  {
+    case INPUT_ORDER:
+      options.order = fd3::InsertionOrder::Input;
+      break;
+    case RANDOM_ORDER:
+      options.order = fd3::InsertionOrder::Random;
+      break;
+    default:
+      options.order = fd3::InsertionOrder::Brio;
+      break;
+  }
+  options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+  options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
+  options.progress = [this](double fraction) {
+    this->UpdateProgress(fraction);
+    return !this->CheckAbort();
+  };
+  return options;
+}
+
+void vtkFastDelaunay3D::RecordFigures(const fd3::Statistics& stats)
+{
   this->NumberOfInsertedPoints = static_cast<vtkIdType>(stats.insertedPoints);
   this->NumberOfDuplicatePoints = static_cast<vtkIdType>(stats.duplicatesMerged);
   this->NumberOfSkippedPoints = static_cast<vtkIdType>(stats.closePointsSkipped);
@@ -346,87 +436,94 @@ int vtkFastDelaunay3D::RequestData(
   this->CavitySeconds = stats.secondsCavity;
   this->FillSeconds = stats.secondsFill;
   this->OutputSeconds = stats.secondsOutput;
-  const auto conversionStart = std::chrono::steady_clock::now();
-  if (stats.nonFinitePoints > 0)
-  {
-    vtkErrorMacro(<< stats.nonFinitePoints << " of " << numberOfPoints
-                  << " points have NaN or infinite coordinates; they are left out of the "
-                     "tetrahedralization and remain in the output as unused points");
-  }
+}
+
+bool vtkFastDelaunay3D::ReportOnInput(const fd3::Triangulation& result, vtkIdType numberOfPoints)
+{
+  const std::string leftOut = LeftOutPoints(result.stats);
   if (result.status != fd3::Status::Ok)
   {
     vtkWarningMacro("Cannot triangulate: " << fd3::toString(result.status)
-                                           << "; the output is empty");
-    output->Initialize();
-    return 1;
+                                           << "; the output is empty"
+                                           << (leftOut.empty() ? "" : " (left out: ") << leftOut
+                                           << (leftOut.empty() ? "" : ")"));
+    return false;
   }
-  if (stats.underflowRisks > 0)
+  if (!leftOut.empty())
+  {
+    const std::size_t unused = numberOfPoints - result.stats.insertedPoints;
+    vtkWarningMacro(<< unused << " of " << numberOfPoints
+                    << " points are not vertices of the tetrahedralization (they remain in the "
+                       "output, unused): "
+                    << leftOut);
+  }
+  if (result.stats.underflowRisks > 0)
   {
     vtkWarningMacro("Some points are closer together than 2^-190 of the extent of the point set: "
                     "exactness is not guaranteed for "
-                    << stats.underflowRisks << " decisions");
+                    << result.stats.underflowRisks << " decisions");
   }
-  if (stats.duplicatesMerged > 0)
-  {
-    vtkWarningMacro(<< stats.duplicatesMerged
-                    << " exact duplicate points were merged; they remain in the output as unused "
-                       "points");
-  }
-
-  output->SetPoints(points);
-  if (!this->BoundingTriangulation)
-  {
-    output->GetPointData()->PassData(input->GetPointData());
-  }
-  const std::uint32_t* tets = result.tetrahedra.data();
-  if (this->Alpha > 0)
-  {
-    const fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
-    std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
-    if (this->AlphaTris)
-      blocks.push_back({ VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
-    if (this->AlphaLines)
-      blocks.push_back({ VTK_LINE, 2, shape.lines.data(), nullptr, shape.lines.size() / 2 });
-    if (this->AlphaVerts)
-      blocks.push_back({ VTK_VERTEX, 1, shape.vertices.data(), nullptr, shape.vertices.size() });
-    if (this->AlphaTets)
-      blocks.push_back({ VTK_TETRA, 4, tets, shape.tetrahedra.data(), shape.tetrahedra.size() });
-    SetCells(output, blocks);
-  }
-  else
-  {
-    SetCells(output, { { VTK_TETRA, 4, tets, nullptr, result.numberOfTetrahedra() } });
-  }
-  if (this->ComputeCircumradius || this->ComputeVolume || this->ComputeRadiusEdgeRatio)
-  {
-    AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
-      this->ComputeRadiusEdgeRatio);
-  }
-  this->OutputSeconds +=
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
-  if (this->ComputeStatistics)
-  {
-    for (const auto& figure : this->Figures())
-    {
-      AddFieldValue(output->GetFieldData(), figure.first, figure.second);
-    }
-  }
-  return 1;
+  return true;
 }
 
-std::vector<std::pair<const char*, double>> vtkFastDelaunay3D::Figures() const
+void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double* xyz,
+  std::size_t count, const fd3::Triangulation& result)
 {
-  return { { "NumberOfInsertedPoints", static_cast<double>(this->NumberOfInsertedPoints) },
-    { "NumberOfDuplicatePoints", static_cast<double>(this->NumberOfDuplicatePoints) },
-    { "NumberOfSkippedPoints", static_cast<double>(this->NumberOfSkippedPoints) },
-    { "NumberOfInvalidPoints", static_cast<double>(this->NumberOfInvalidPoints) },
-    { "NumberOfTetrahedra", static_cast<double>(this->NumberOfTetrahedra) },
-    { "MeanWalkLength", this->MeanWalkLength },
-    { "MaxWalkLength", static_cast<double>(this->MaxWalkLength) },
-    { "MeanCavitySize", this->MeanCavitySize }, { "KernelSeconds", this->KernelSeconds },
-    { "SortSeconds", this->SortSeconds }, { "LocateSeconds", this->LocateSeconds },
-    { "CavitySeconds", this->CavitySeconds }, { "FillSeconds", this->FillSeconds },
-    { "OutputSeconds", this->OutputSeconds } };
+  const std::uint32_t* tets = result.tetrahedra.data();
+  if (this->Alpha <= 0)
+  {
+    SetCells(output, { { VTK_TETRA, 4, tets, nullptr, result.numberOfTetrahedra() } });
+    return;
+  }
+  const fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
+  std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
+  if (this->AlphaTris)
+  {
+    blocks.push_back({ VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
+  }
+  if (this->AlphaLines)
+  {
+    blocks.push_back({ VTK_LINE, 2, shape.lines.data(), nullptr, shape.lines.size() / 2 });
+  }
+  if (this->AlphaVerts)
+  {
+    blocks.push_back({ VTK_VERTEX, 1, shape.vertices.data(), nullptr, shape.vertices.size() });
+  }
+  if (this->AlphaTets)
+  {
+    blocks.push_back({ VTK_TETRA, 4, tets, shape.tetrahedra.data(), shape.tetrahedra.size() });
+  }
+  SetCells(output, blocks);
+}
+
+void vtkFastDelaunay3D::AddFigures(vtkFieldData* fields) const
+{
+  // The counts of left-out points always travel with the data that lacks them.
+  const bool leftOut = this->NumberOfDuplicatePoints > 0 || this->NumberOfSkippedPoints > 0 ||
+    this->NumberOfInvalidPoints > 0;
+  for (const Figure& figure : this->Figures())
+  {
+    if (this->ComputeStatistics || (leftOut && figure.CountsLeftOutPoints))
+    {
+      AddFieldValue(fields, figure.Name, figure.Value);
+    }
+  }
+}
+
+std::vector<vtkFastDelaunay3D::Figure> vtkFastDelaunay3D::Figures() const
+{
+  return { { "NumberOfInsertedPoints", static_cast<double>(this->NumberOfInsertedPoints), false },
+    { "NumberOfDuplicatePoints", static_cast<double>(this->NumberOfDuplicatePoints), true },
+    { "NumberOfSkippedPoints", static_cast<double>(this->NumberOfSkippedPoints), true },
+    { "NumberOfInvalidPoints", static_cast<double>(this->NumberOfInvalidPoints), true },
+    { "NumberOfTetrahedra", static_cast<double>(this->NumberOfTetrahedra), false },
+    { "MeanWalkLength", this->MeanWalkLength, false },
+    { "MaxWalkLength", static_cast<double>(this->MaxWalkLength), false },
+    { "MeanCavitySize", this->MeanCavitySize, false },
+    { "KernelSeconds", this->KernelSeconds, false }, { "SortSeconds", this->SortSeconds, false },
+    { "LocateSeconds", this->LocateSeconds, false },
+    { "CavitySeconds", this->CavitySeconds, false }, { "FillSeconds", this->FillSeconds, false },
+    { "OutputSeconds", this->OutputSeconds, false } };
 }
 
 void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
@@ -449,8 +546,8 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeVolume: " << this->ComputeVolume << "\n";
   os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";
   os << indent << "ComputeStatistics: " << this->ComputeStatistics << "\n";
-  for (const auto& figure : this->Figures())
+  for (const Figure& figure : this->Figures())
   {
-    os << indent << figure.first << ": " << figure.second << "\n";
+    os << indent << figure.Name << ": " << figure.Value << "\n";
   }
 }

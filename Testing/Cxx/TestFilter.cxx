@@ -8,6 +8,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
@@ -18,7 +19,9 @@
 #include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -39,7 +42,6 @@ TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
       index->SetValue(i, static_cast<double>(i));
     cloud->GetPointData()->AddArray(index);
     vtkNew<vtkFastDelaunay3D> filter;
-    filter->SetTolerance(0); // exactness: every distinct point must be used
     filter->SetInputData(cloud);
     filter->Update();
     vtkUnstructuredGrid* out = filter->GetOutput();
@@ -65,7 +67,6 @@ TEST(Filter, LatticeThroughStructuredGrid)
   grid->SetDimensions(6, 6, 6);
   grid->SetPoints(points);
   vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetTolerance(0);
   filter->SetInputData(grid);
   filter->Update();
   const auto report = checkOutput(filter->GetOutput());
@@ -79,21 +80,83 @@ TEST(Filter, DuplicatesAreMergedAndReported)
   p.insert(p.end(), p.begin(), p.begin() + 3 * 50);
   auto cloud = toPolyData(p);
   vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetTolerance(0);
   vtkNew<vtkTest::ErrorObserver> observer;
   filter->AddObserver(vtkCommand::WarningEvent, observer);
   filter->SetInputData(cloud);
   filter->Update();
   EXPECT_EQ(filter->GetNumberOfDuplicatePoints(), 50);
   EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 500);
-  EXPECT_EQ(observer->CheckWarningMessage("50 exact duplicate points were merged"), 0);
+  EXPECT_EQ(observer->CheckWarningMessage("50 of 550 points are not vertices of the "
+                                         "tetrahedralization (they remain in the output, unused): "
+                                         "50 exact duplicates (merged"),
+    0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 550);
+}
+
+/// Input points used by at least one output cell.
+std::size_t UsedPoints(vtkUnstructuredGrid* grid)
+{
+  const std::vector<std::uint32_t> ids = fd3test::tetrahedra(grid);
+  std::vector<bool> used(static_cast<std::size_t>(grid->GetNumberOfPoints()));
+  for (std::uint32_t id : ids)
+    used[id] = true;
+  return static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+}
+
+double FieldValue(vtkUnstructuredGrid* grid, const char* name)
+{
+  vtkDataArray* array = grid->GetFieldData()->GetArray(name);
+  return array ? array->GetTuple1(0) : -1;
+}
+
+// A dense cloud (nearest neighbours 1e-4 apart, far below 0.001 of the diagonal, as in LiDAR
+// tiles): the defaults keep every point. A Tolerance that skips points says how many in one
+// warning, with every other cause of left-out points, and in the getters and the field data.
+TEST(Filter, DefaultsKeepEveryPointAndToleranceReportsWhatItSkips)
+{
+  fd3test::Points p = fd3test::clusters(20000, 20, 1e-3, 7);
+  vtkNew<vtkFastDelaunay3D> filter;
+  int warnings = 0;
+  vtkNew<vtkCallbackCommand> countWarnings;
+  countWarnings->SetClientData(&warnings);
+  countWarnings->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+  filter->AddObserver(vtkCommand::WarningEvent, countWarnings);
+  vtkNew<vtkTest::ErrorObserver> observer;
+  filter->AddObserver(vtkCommand::WarningEvent, observer);
+  filter->SetInputData(toPolyData(p));
+  filter->Update();
+  EXPECT_EQ(warnings, 0);
+  EXPECT_EQ(UsedPoints(filter->GetOutput()), 20000u);
+  EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 20000);
+  EXPECT_EQ(filter->GetOutput()->GetFieldData()->GetNumberOfArrays(), 0);
+
+  p.insert(p.end(), p.begin(), p.begin() + 3 * 30); // 30 exact duplicates
+  p.insert(p.end(), {std::nan(""), 0.5, 0.5});
+  filter->SetInputData(toPolyData(p));
+  filter->SetTolerance(0.001);
+  filter->Update();
+  const std::size_t distinctFinite = 20000;
+  const std::size_t used = UsedPoints(filter->GetOutput());
+  const vtkIdType skipped = filter->GetNumberOfSkippedPoints();
+  EXPECT_GT(skipped, 10000) << "most cluster points lie within 0.001 of the diagonal";
+  EXPECT_EQ(static_cast<std::size_t>(skipped), distinctFinite - used);
+  EXPECT_EQ(filter->GetNumberOfInsertedPoints(), static_cast<vtkIdType>(used));
+  EXPECT_EQ(warnings, 1);
+  EXPECT_EQ(observer->CheckWarningMessage(std::to_string(20031 - used) + " of 20031 points are not " +
+              "vertices of the tetrahedralization (they remain in the output, unused): 30 exact " +
+              "duplicates (merged: points at one position make one vertex); " +
+              std::to_string(skipped) + " within Tolerance of an inserted point (Tolerance 0 " +
+              "keeps them); 1 with NaN or infinite coordinates (no position to triangulate)"),
+    0);
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "NumberOfSkippedPoints"), skipped);
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "NumberOfDuplicatePoints"), 30);
+  EXPECT_EQ(FieldValue(filter->GetOutput(), "NumberOfInvalidPoints"), 1);
 }
 
 TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
 {
   vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetTolerance(0);
   vtkNew<vtkTest::ErrorObserver> observer;
   filter->AddObserver(vtkCommand::WarningEvent, observer);
   filter->AddObserver(vtkCommand::ErrorEvent, observer);
@@ -120,13 +183,13 @@ TEST(Filter, BadInputGetsAMessageAndAWellDefinedOutput)
   EXPECT_EQ(observer->CheckWarningMessage("fewer than 4 distinct points"), 0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 
-  // NaN and Inf: an error that counts them; the rest is tetrahedralized.
+  // NaN and Inf: a warning that counts them; the rest is tetrahedralized.
   fd3test::Points bad = fd3test::uniformCube(200, 2);
   bad[0] = std::nan("");
   bad[31] = -INFINITY;
   filter->SetInputData(toPolyData(bad));
   filter->Update();
-  EXPECT_EQ(observer->CheckErrorMessage("2 of 200 points have NaN or infinite coordinates"), 0);
+  EXPECT_EQ(observer->CheckWarningMessage("2 with NaN or infinite coordinates"), 0);
   EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 198);
   EXPECT_GT(filter->GetOutput()->GetNumberOfCells(), 0);
 }
@@ -138,7 +201,6 @@ TEST(Filter, EveryKindOfDatasetAndCellsWithoutPoints)
   image->SetDimensions(5, 5, 5);
   image->SetSpacing(0.5, 0.25, 1.0);
   vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetTolerance(0);
   filter->SetInputData(image);
   filter->Update();
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 125);
@@ -173,7 +235,6 @@ TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
 {
   auto cloud = toPolyData(fd3test::uniformCube(60000, 6));
   vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetTolerance(0);
   filter->SetInputData(cloud);
   vtkNew<vtkCallbackCommand> abortOnProgress;
   abortOnProgress->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
@@ -200,7 +261,6 @@ TEST(Filter, InternalFailureLeavesAnEmptyOutputAndTheFilterRunsAgain)
 {
   auto cloud = toPolyData(fd3test::uniformCube(60000, 8));
   vtkNew<vtkFastDelaunay3D> filter;
-  filter->SetTolerance(0);
   filter->SetInputData(cloud);
   vtkNew<vtkTest::ErrorObserver> observer;
   filter->AddObserver(vtkCommand::ErrorEvent, observer);

@@ -11,6 +11,7 @@ menu = hints.FindNestedElementByName("ShowInMenu")
 assert menu is not None and menu.GetAttribute("category") == "Delaunay"
 
 delaunay = FastDelaunay3D(Input=Sphere(ThetaResolution=40, PhiResolution=40))
+assert delaunay.Tolerance == 0.0, "the default keeps every distinct point"
 for name in delaunay.ListProperties():
     documentation = delaunay.GetProperty(name).SMProperty.GetDocumentation()
     assert documentation is not None and documentation.GetDescription().strip(), name

@@ -8,7 +8,7 @@ from paraview.simple import *
 
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
 source = PointSource(NumberOfPoints=20000, Radius=1.0)
-delaunay = FastDelaunay3D(Input=source, Tolerance=0)
+delaunay = FastDelaunay3D(Input=source)
 ranks = ProcessIdScalars(Input=delaunay)
 ranks.UpdatePipeline()
 info = ranks.GetDataInformation()

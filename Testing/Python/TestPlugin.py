@@ -54,7 +54,7 @@ b = servermanager.Fetch(volume_brio).GetCellData().GetArray("Volume").GetValue(0
 assert abs(a - b) <= 1e-9 * abs(b), (a, b)
 # Image data: the proxy accepts any dataset and tetrahedralizes its (implicit) points.
 wavelet = Wavelet(WholeExtent=[0, 6, 0, 6, 0, 6])
-image_tets = FastDelaunay3D(Input=wavelet, Tolerance=0)
+image_tets = FastDelaunay3D(Input=wavelet)
 image_tets.UpdatePipeline()
 image_info = image_tets.GetDataInformation()
 assert image_info.GetNumberOfPoints() == 7 ** 3

@@ -15,7 +15,6 @@ source.SetNumberOfPoints(2000)
 source.SetRadius(1.0)
 delaunay = vtkFastDelaunay3D()
 delaunay.SetInputConnection(source.GetOutputPort())
-delaunay.SetTolerance(0)
 delaunay.Update()
 output = delaunay.GetOutput()
 assert output.GetNumberOfPoints() == 2000

@@ -16,12 +16,14 @@ os.makedirs(out_dir, exist_ok=True)
 
 reader = XMLPolyDataReader(FileName=[input_file])
 reader.UpdatePipeline()
-delaunay = FastDelaunay3D(Input=reader)
+delaunay = FastDelaunay3D(Input=reader, ComputeStatistics=1)  # default properties otherwise
 start = time.perf_counter()
 delaunay.UpdatePipeline()
 seconds = time.perf_counter() - start
 
 info = delaunay.GetDataInformation()
+figures = servermanager.Fetch(delaunay).GetFieldData()
+used = int(figures.GetArray("NumberOfInsertedPoints").GetValue(0))
 stem = os.path.splitext(os.path.basename(input_file))[0]
 vtu = os.path.join(out_dir, stem + ".vtu")
 png = os.path.join(out_dir, stem + ".png")
@@ -30,7 +32,7 @@ SaveData(vtu, proxy=delaunay)
 view = show_knot(FastDelaunay3D, reader, 800, 600)
 SaveScreenshot(png, view, ImageResolution=[800, 600])
 
-print("points:      %d" % info.GetNumberOfPoints())
+print("points:      %d (%d used as vertices)" % (info.GetNumberOfPoints(), used))
 print("tetrahedra:  %d" % info.GetNumberOfCells())
 print("seconds:     %.3f (FastDelaunay3D UpdatePipeline, pvbatch)" % seconds)
 print("wrote:       %s, %s" % (vtu, png))
