@@ -1,8 +1,9 @@
-// FastDelaunay3D benchmark: Core alone, vtkFastDelaunay3D through VTK, vtkDelaunay3D, and CGAL's
-// Delaunay_triangulation_3 when built with it, on deterministic point sets, in one run.
+// FastDelaunay3D benchmark: Core alone, vtkFastDelaunay3D through VTK, vtkDelaunay3D, and, when
+// built with them, CGAL's Delaunay_triangulation_3 and TetGen, on deterministic point sets, in one
+// run.
 //
-//   Benchmark [--kinds cube,ball,...] [--sizes 10000,100000] [--vtk-limit 60] [--validate-limit N]
-//             [--markdown FILE] [--csv FILE]
+//   Benchmark [--kinds cube,ball,...] [--sizes 10000,100000] [--methods Core,CGAL,...]
+//             [--vtk-limit 60] [--validate-limit N] [--markdown FILE] [--csv FILE]
 //   Benchmark --table1 [--markdown FILE]     the paper's Table 1 for this kernel
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
@@ -21,6 +22,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #endif
+#ifdef FD3_BENCHMARK_WITH_TETGEN
+#include <tetgen.h>
+#endif
 
 #include <malloc.h>
 #include <sys/wait.h>
@@ -31,6 +35,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -51,6 +56,7 @@ struct Measurement
   double peakMiB = 0;
   double conversionSeconds = 0; // the filter's time outside the kernel (VTK arrays in and out)
   double walk = 0;
+  double maxWalk = 0;
   int valid = -1; // 1 valid, 0 invalid, -1 not checked
   std::string note;
 };
@@ -107,8 +113,8 @@ Measurement measure(Work work, double limit)
     if (m.peakMiB == 0)
       m.peakMiB = peakSoFarMiB();
     char line[256];
-    const int n = std::snprintf(line, sizeof line, "%.6f %.0f %.1f %d %.6f %.4f", m.seconds,
-      m.tetrahedra, m.peakMiB, m.valid, m.conversionSeconds, m.walk);
+    const int n = std::snprintf(line, sizeof line, "%.6f %.0f %.1f %d %.6f %.4f %.0f", m.seconds,
+      m.tetrahedra, m.peakMiB, m.valid, m.conversionSeconds, m.walk, m.maxWalk);
     if (write(fds[1], line, static_cast<std::size_t>(n)) < 0)
       _exit(2);
     _exit(0);
@@ -137,8 +143,8 @@ Measurement measure(Work work, double limit)
     m.note = "failed";
     return m;
   }
-  std::sscanf(line, "%lf %lf %lf %d %lf %lf", &m.seconds, &m.tetrahedra, &m.peakMiB, &m.valid,
-    &m.conversionSeconds, &m.walk);
+  std::sscanf(line, "%lf %lf %lf %d %lf %lf %lf", &m.seconds, &m.tetrahedra, &m.peakMiB, &m.valid,
+    &m.conversionSeconds, &m.walk, &m.maxWalk);
   m.ran = true;
   return m;
 }
@@ -158,6 +164,7 @@ Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
   m.seconds = since(t0);
   m.tetrahedra = static_cast<double>(r.numberOfTetrahedra());
   m.walk = r.stats.meanWalk();
+  m.maxWalk = static_cast<double>(r.stats.maxWalkSteps);
   m.peakMiB = peakSoFarMiB(); // before the validator's own memory
   m.valid = validity(p, r.tetrahedra, validateLimit);
   return m;
@@ -177,7 +184,11 @@ Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit)
   filter->Update();
   m.seconds = since(t0);
   if constexpr (std::is_same_v<Filter, vtkFastDelaunay3D>)
+  {
     m.conversionSeconds = m.seconds - filter->GetKernelSeconds();
+    m.walk = filter->GetMeanWalkLength();
+    m.maxWalk = static_cast<double>(filter->GetMaxWalkLength());
+  }
   m.tetrahedra = static_cast<double>(filter->GetOutput()->GetNumberOfCells());
   m.peakMiB = peakSoFarMiB();
   m.valid = validity(p, fd3test::tetrahedra(filter->GetOutput()), validateLimit);
@@ -210,6 +221,30 @@ Measurement runCgal(const fd3test::Points& p, std::size_t validateLimit)
       tets.insert(tets.end(), {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
                                 c->vertex(3)->info()});
     }
+    m.valid = validity(p, tets, validateLimit);
+  }
+  return m;
+}
+#endif
+
+#ifdef FD3_BENCHMARK_WITH_TETGEN
+Measurement runTetgen(const fd3test::Points& p, std::size_t validateLimit)
+{
+  tetgenio in, out;
+  in.firstnumber = 0;
+  in.numberofpoints = static_cast<int>(p.size() / 3);
+  in.pointlist = new REAL[p.size()];
+  std::copy(p.begin(), p.end(), in.pointlist);
+  Measurement m;
+  const auto t0 = Clock::now();
+  char switches[] = "Qz"; // Delaunay tetrahedralization of the points, quiet, ids from 0
+  tetrahedralize(switches, &in, &out);
+  m.seconds = since(t0);
+  m.tetrahedra = out.numberoftetrahedra;
+  m.peakMiB = peakSoFarMiB();
+  if (p.size() / 3 <= validateLimit)
+  {
+    std::vector<std::uint32_t> tets(out.tetrahedronlist, out.tetrahedronlist + 4 * out.numberoftetrahedra);
     m.valid = validity(p, tets, validateLimit);
   }
   return m;
@@ -288,10 +323,32 @@ int table1(const std::string& markdownFile)
   return 0;
 }
 
+/// A method that the benchmark can time.
+struct Method
+{
+  std::string name;
+  std::function<Measurement(const fd3test::Points&, std::size_t)> run; // empty: not built
+};
+
+std::vector<Method> allMethods()
+{
+  std::vector<Method> methods = {{"Core", runCore},
+    {"vtkFastDelaunay3D", runVtkFilter<vtkFastDelaunay3D>},
+    {"vtkDelaunay3D", runVtkFilter<vtkDelaunay3D>}, {"CGAL", {}}, {"TetGen", {}}};
+#ifdef FD3_BENCHMARK_WITH_CGAL
+  methods[3].run = runCgal;
+#endif
+#ifdef FD3_BENCHMARK_WITH_TETGEN
+  methods[4].run = runTetgen;
+#endif
+  return methods;
+}
+
 int main(int argc, char* argv[])
 {
-  std::vector<std::string> kinds = {"cube", "ball", "sphere", "lattice", "clusters", "slab", "torus"};
+  std::vector<std::string> kinds = fd3test::pointSetNames();
   std::vector<std::size_t> sizes = {10000, 100000, 1000000};
+  std::vector<Method> methods = allMethods();
   double vtkLimit = 60;
   std::size_t validateLimit = 200000;
   std::string markdownFile, csvFile;
@@ -312,6 +369,15 @@ int main(int argc, char* argv[])
       for (const std::string& s : split(value))
         sizes.push_back(static_cast<std::size_t>(std::stod(s)));
     }
+    else if (key == "--methods")
+    {
+      const std::vector<std::string> wanted = split(value);
+      methods.erase(std::remove_if(methods.begin(), methods.end(),
+                      [&](const Method& m) {
+                        return std::find(wanted.begin(), wanted.end(), m.name) == wanted.end();
+                      }),
+        methods.end());
+    }
     else if (key == "--vtk-limit")
       vtkLimit = std::stod(value);
     else if (key == "--validate-limit")
@@ -330,12 +396,19 @@ int main(int argc, char* argv[])
   if (paperTable)
     return table1(markdownFile);
 
+  auto column = [&](const char* name) {
+    const auto it = std::find_if(
+      methods.begin(), methods.end(), [&](const Method& m) { return m.name == name; });
+    return it == methods.end() ? -1 : static_cast<int>(it - methods.begin());
+  };
+  const int ratioColumns[3] = {column("Core"), column("vtkDelaunay3D"), column("CGAL")};
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". Kernel single-threaded; peak memory is each run's own "
-     << "(above its input). Speed-up columns: the other method's time over this one's.\n\n"
-     << "| points | n | method | seconds | points/s | tets/s | peak MiB | B/point | vs Core | vs vtkDelaunay3D | vs CGAL | exact validity |\n"
-     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
-  csv << "kind,n,method,seconds,tetrahedra,peak_mib,valid,conversion_seconds\n";
+     << "(above its input). Walk: tetrahedra visited per point location, mean and max. Speed-up "
+     << "columns: the other method's time over this one's.\n\n"
+     << "| points | n | method | seconds | points/s | tets/s | peak MiB | B/point | walk | max walk | vs Core | vs vtkDelaunay3D | vs CGAL | exact validity |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  csv << "kind,n,method,seconds,tetrahedra,peak_mib,valid,conversion_seconds,walk,max_walk\n";
   const double hugeLimit = 1e9;
   for (const std::string& kind : kinds)
   {
@@ -344,45 +417,48 @@ int main(int argc, char* argv[])
     {
       const fd3test::Points p = fd3test::generate(kind, size, 1);
       const std::size_t n = p.size() / 3;
-      std::vector<std::pair<std::string, Measurement>> rows;
-      rows.emplace_back("Core", measure([&] { return runCore(p, validateLimit); }, hugeLimit));
-      rows.emplace_back(
-        "vtkFastDelaunay3D",
-        measure([&] { return runVtkFilter<vtkFastDelaunay3D>(p, validateLimit); }, hugeLimit));
-      Measurement vtk;
-      if (vtkSecondsPerPoint * n * 1.5 <= vtkLimit) // vtkDelaunay3D grows faster than linearly
+      std::vector<Measurement> rows;
+      for (const Method& method : methods)
       {
-        vtk = measure([&] { return runVtkFilter<vtkDelaunay3D>(p, validateLimit); }, vtkLimit);
-        if (vtk.ran)
-          vtkSecondsPerPoint = vtk.seconds / n;
+        Measurement m;
+        if (!method.run)
+          m.note = "not built";
+        else if (method.name != "vtkDelaunay3D")
+          m = measure([&] { return method.run(p, validateLimit); }, hugeLimit);
+        else if (vtkSecondsPerPoint * n * 1.5 > vtkLimit) // it grows faster than linearly
+          m.note = "skipped (over " + std::to_string(int(vtkLimit)) + " s)";
         else
-          vtkSecondsPerPoint = vtkLimit; // stop trying larger sizes
+        {
+          m = measure([&] { return method.run(p, validateLimit); }, vtkLimit);
+          vtkSecondsPerPoint = m.ran ? m.seconds / n : vtkLimit; // a time-out stops larger sizes
+        }
+        rows.push_back(m);
       }
-      else
-        vtk.note = "skipped (over " + std::to_string(int(vtkLimit)) + " s)";
-      rows.emplace_back("vtkDelaunay3D", vtk);
-#ifdef FD3_BENCHMARK_WITH_CGAL
-      rows.emplace_back("CGAL", measure([&] { return runCgal(p, validateLimit); }, hugeLimit));
-#else
-      Measurement cgal;
-      cgal.note = "not built";
-      rows.emplace_back("CGAL", cgal);
-#endif
-      auto speedup = [&](const Measurement& m, std::size_t other) {
-        const Measurement& o = rows[other].second;
+      auto speedup = [&](const Measurement& m, int other) {
+        if (other < 0)
+          return std::string("-");
+        const Measurement& o = rows[other];
         return (m.ran && o.ran) ? cell(m, "%.2fx", o.seconds / m.seconds) : std::string("-");
       };
-      for (const auto& [method, m] : rows)
+      for (std::size_t i = 0; i < methods.size(); ++i)
       {
-        md << "| " << kind << " | " << n << " | " << method << " | " << cell(m, "%.3f", m.seconds)
-           << " | " << cell(m, "%.3g", n / m.seconds) << " | " << cell(m, "%.3g", m.tetrahedra / m.seconds)
-           << " | " << cell(m, "%.0f", m.peakMiB) << " | " << cell(m, "%.0f", m.peakMiB * 1048576.0 / n)
-           << " | " << speedup(m, 0) << " | " << speedup(m, 2) << " | " << speedup(m, 3) << " | "
+        const Measurement& m = rows[i];
+        const bool walks = m.walk > 0;
+        md << "| " << kind << " | " << n << " | " << methods[i].name << " | "
+           << cell(m, "%.3f", m.seconds) << " | " << cell(m, "%.3g", n / m.seconds) << " | "
+           << cell(m, "%.3g", m.tetrahedra / m.seconds) << " | " << cell(m, "%.0f", m.peakMiB)
+           << " | " << cell(m, "%.0f", m.peakMiB * 1048576.0 / n) << " | "
+           << (walks ? cell(m, "%.1f", m.walk) : "-") << " | "
+           << (walks ? cell(m, "%.0f", m.maxWalk) : "-") << " | " << speedup(m, ratioColumns[0])
+           << " | " << speedup(m, ratioColumns[1]) << " | " << speedup(m, ratioColumns[2]) << " | "
            << (m.valid == 1 ? "valid" : (m.valid == 0 ? "INVALID" : "-")) << " |\n";
-        csv << kind << ',' << n << ',' << method << ',' << (m.ran ? m.seconds : -1) << ','
-            << m.tetrahedra << ',' << m.peakMiB << ',' << m.valid << ',' << m.conversionSeconds << '\n';
-        std::cerr << kind << " " << n << " " << method << ": "
-                  << (m.ran ? std::to_string(m.seconds) + " s" : m.note) << "\n";
+        csv << kind << ',' << n << ',' << methods[i].name << ',' << (m.ran ? m.seconds : -1) << ','
+            << m.tetrahedra << ',' << m.peakMiB << ',' << m.valid << ',' << m.conversionSeconds
+            << ',' << m.walk << ',' << m.maxWalk << '\n';
+        std::cerr << kind << " " << n << " " << methods[i].name << ": "
+                  << (m.ran ? std::to_string(m.seconds) + " s" : m.note)
+                  << (walks ? ", walk " + std::to_string(m.walk) + " max " + std::to_string(m.maxWalk) : "")
+                  << "\n";
       }
     }
   }

@@ -129,6 +129,146 @@ Points torusSurface(std::size_t n, std::uint64_t seed)
   return p;
 }
 
+Points cylinderSurface(std::size_t n, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), height(0, 1);
+  Points p;
+  p.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double t = angle(rng);
+    p.insert(p.end(), {0.5 * std::cos(t), 0.5 * std::sin(t), height(rng)});
+  }
+  return p;
+}
+
+namespace
+{
+/// A direction uniform on the unit sphere.
+std::array<double, 3> randomDirection(std::mt19937_64& rng)
+{
+  std::normal_distribution<double> normal;
+  for (;;)
+  {
+    const double x = normal(rng), y = normal(rng), z = normal(rng);
+    const double r = std::sqrt(x * x + y * y + z * z);
+    if (r > 1e-6)
+      return {x / r, y / r, z / r};
+  }
+}
+} // namespace
+
+Points noisySphereShell(std::size_t n, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> noise(-1e-3, 1e-3);
+  Points p;
+  p.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto d = randomDirection(rng);
+    const double r = 1 + noise(rng);
+    p.insert(p.end(), {r * d[0], r * d[1], r * d[2]});
+  }
+  return p;
+}
+
+Points overlappingScans(std::size_t n, std::uint64_t seed)
+{
+  constexpr int kScans = 5;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> offset(-1e-4, 1e-4), angleOf(0.5e-4, 1.5e-4);
+  Points p;
+  p.reserve(3 * n);
+  for (int scan = 0; scan < kScans; ++scan)
+  {
+    // A small rotation (angle ~1e-4 about a random axis, Rodrigues' formula) and translation.
+    const auto axis = randomDirection(rng);
+    const double angle = angleOf(rng), c = std::cos(angle), s = std::sin(angle);
+    const double shift[3] = {offset(rng), offset(rng), offset(rng)};
+    const std::size_t count = n / kScans + (scan < static_cast<int>(n % kScans) ? 1 : 0);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const auto d = randomDirection(rng);
+      const double bump = 1 + 0.15 * std::sin(5 * d[0]) * std::cos(4 * d[1]) * std::sin(3 * d[2] + 1);
+      const double q[3] = {bump * d[0], bump * d[1], bump * d[2]};
+      const double along = axis[0] * q[0] + axis[1] * q[1] + axis[2] * q[2];
+      const double cross[3] = {axis[1] * q[2] - axis[2] * q[1], axis[2] * q[0] - axis[0] * q[2],
+        axis[0] * q[1] - axis[1] * q[0]};
+      for (int a = 0; a < 3; ++a)
+        p.push_back(q[a] * c + cross[a] * s + axis[a] * along * (1 - c) + shift[a]);
+    }
+  }
+  return p;
+}
+
+Points lidarTerrain(std::size_t n, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  const double side = std::sqrt(0.25 * double(n)); // metres, for 4 points per square metre
+  std::uniform_real_distribution<double> u(0, side);
+  const double x0 = 512345.0, y0 = 498765.0;
+  auto snap = [](double x) { return std::round(x * 100) / 100; }; // 1 cm
+  Points p;
+  p.reserve(3 * n);
+  const std::size_t repeated = n / 100;
+  while (p.size() < 3 * (n - repeated))
+  {
+    const double x = u(rng), y = u(rng);
+    const double z = 100 + 8 * std::sin(x / 37.0) * std::cos(y / 53.0) + 3 * std::sin((x + 2 * y) / 11.0) +
+      0.5 * std::cos(x / 3.1 - y / 4.3);
+    p.insert(p.end(), {snap(x0 + x), snap(y0 + y), snap(z)});
+  }
+  std::uniform_int_distribution<std::size_t> pick(0, n - repeated - 1);
+  for (std::size_t i = 0; i < repeated; ++i)
+  {
+    const std::size_t k = pick(rng);
+    p.insert(p.end(), {p[3 * k], p[3 * k + 1], p[3 * k + 2]});
+  }
+  return p;
+}
+
+Points molecularShell(std::size_t n, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.15, 0.15);
+  constexpr double kThickness = 4;
+  // Lattice sites in the shell: about 4 pi R^2 * thickness, with 5% to spare for the subsample.
+  const double inner = std::sqrt(1.05 * double(n) / (4 * M_PI * kThickness));
+  const double outer = inner + kThickness;
+  const long reach = static_cast<long>(std::ceil(outer));
+  std::vector<std::array<long, 3>> sites;
+  for (long i = -reach; i <= reach; ++i)
+    for (long j = -reach; j <= reach; ++j)
+    {
+      const double ij = double(i * i + j * j);
+      if (ij > outer * outer)
+        continue;
+      for (long k = -reach; k <= reach; ++k)
+      {
+        const double r2 = ij + double(k * k);
+        if (r2 >= inner * inner && r2 <= outer * outer)
+          sites.push_back({i, j, k});
+      }
+    }
+  std::shuffle(sites.begin(), sites.end(), rng);
+  if (sites.size() > n)
+    sites.resize(n);
+  Points p;
+  p.reserve(3 * sites.size());
+  for (const auto& s : sites)
+    p.insert(p.end(), {s[0] + jitter(rng), s[1] + jitter(rng), s[2] + jitter(rng)});
+  return p;
+}
+
+const std::vector<std::string>& pointSetNames()
+{
+  static const std::vector<std::string> names = {"cube", "ball", "sphere", "lattice", "clusters",
+    "slab", "torus", "cylinder", "noisyshell", "scans", "terrain", "molshell"};
+  return names;
+}
+
 Points generate(const std::string& kind, std::size_t n, std::uint64_t seed)
 {
   if (kind == "cube")
@@ -145,6 +285,16 @@ Points generate(const std::string& kind, std::size_t n, std::uint64_t seed)
     return thinSlab(n, 1e-3, seed);
   if (kind == "torus")
     return torusSurface(n, seed);
+  if (kind == "cylinder")
+    return cylinderSurface(n, seed);
+  if (kind == "noisyshell")
+    return noisySphereShell(n, seed);
+  if (kind == "scans")
+    return overlappingScans(n, seed);
+  if (kind == "terrain")
+    return lidarTerrain(n, seed);
+  if (kind == "molshell")
+    return molecularShell(n, seed);
   throw std::invalid_argument("unknown point set: " + kind);
 }
 

@@ -26,7 +26,24 @@ Points thinSlab(std::size_t n, double thickness, std::uint64_t seed);
 /// Points on a curved surface (a torus), like the surface samples of the paper's examples.
 Points torusSurface(std::size_t n, std::uint64_t seed);
 
-/// Generator by name ("cube", "ball", "sphere", "lattice", "clusters", "slab", "torus").
+/// Points on a cylinder x^2 + y^2 = 0.25, z in [0, 1), rounded to doubles (a pipe, a tunnel).
+Points cylinderSurface(std::size_t n, std::uint64_t seed);
+/// Points on the unit sphere with uniform radial noise of +-1e-3 (a noisy scan of a shell).
+Points noisySphereShell(std::size_t n, std::uint64_t seed);
+/// One smooth closed surface (a bumpy sphere) scanned 5 times, n/5 points each, every scan moved
+/// by its own rigid motion of about 1e-4 (rotation and translation): overlapping registered scans.
+Points overlappingScans(std::size_t n, std::uint64_t seed);
+/// Airborne-LiDAR-like terrain: a smooth height field sampled at about 4 points per square metre,
+/// x and y near 5e5 and z near 100 (metres), every coordinate snapped to a 1 cm grid, and 1% of
+/// the points repeated exactly (multiple returns).
+Points lidarTerrain(std::size_t n, std::uint64_t seed);
+/// A thin spherical shell (4 spacings thick) of points at molecule-like spacing: a jittered cubic
+/// lattice (spacing 1, jitter +-0.15), so no two points are closer than 0.7.
+Points molecularShell(std::size_t n, std::uint64_t seed);
+
+/// Every generator's name, as generate() takes it.
+const std::vector<std::string>& pointSetNames();
+/// Generator by name (see pointSetNames()).
 Points generate(const std::string& kind, std::size_t n, std::uint64_t seed);
 
 } // namespace fd3test
