@@ -2,6 +2,7 @@
 // tetrahedra first, then the lower-dimensional simplices that no kept simplex already covers.
 // Unlike vtkDelaunay3D, whose bounding octahedron makes the hull faces it reports depend on cell
 // numbering, every hull face is a candidate triangle here: the hull is exact.
+#include "TetMesh.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Measures.h"
 
@@ -18,8 +19,6 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b)
 }
 
 constexpr int kEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
-// Face f of a tetrahedron, listed so that its normal points out of the tetrahedron.
-constexpr int kOutwardFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 } // namespace
 
 AlphaComplex alphaComplex(
@@ -61,8 +60,8 @@ AlphaComplex alphaComplex(
       const std::uint32_t across = triangulation.neighbors[4 * t + f];
       if (across != kNoNeighbor && (kept[across >> 2] || (across >> 2) < t))
         continue;
-      const std::uint32_t face[3] = {tv[4 * t + kOutwardFace[f][0]], tv[4 * t + kOutwardFace[f][1]],
-        tv[4 * t + kOutwardFace[f][2]]};
+      const std::uint32_t face[3] = {tv[4 * t + kFaceVertices[f][0]], tv[4 * t + kFaceVertices[f][1]],
+        tv[4 * t + kFaceVertices[f][2]]};
       if (triangleCircumradius2(p(face[0]), p(face[1]), p(face[2])) <= alpha2)
       {
         complex.triangles.insert(complex.triangles.end(), face, face + 3);

@@ -6,25 +6,18 @@
 namespace fd3
 {
 
-void BackgroundGrid::build(const double* xyz, std::size_t count, double pointsPerCell)
+void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCell)
 {
   cells_.clear();
   if (pointsPerCell <= 0 || count == 0)
     return;
-  double lo[3] = {xyz[0], xyz[1], xyz[2]}, hi[3] = {xyz[0], xyz[1], xyz[2]};
-  for (std::size_t i = 1; i < count; ++i)
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], xyz[3 * i + a]);
-      hi[a] = std::max(hi[a], xyz[3 * i + a]);
-    }
   // Cells as close to cubes as the box allows, about count / pointsPerCell of them; flat axes get one.
   const double cellsWanted = std::max(1.0, double(count) / pointsPerCell);
   double extent[3], volume = 1.0;
   int flatAxes = 0;
   for (int a = 0; a < 3; ++a)
   {
-    extent[a] = hi[a] - lo[a];
+    extent[a] = box.extent(a);
     if (extent[a] > 0)
       volume *= extent[a];
     else
@@ -35,7 +28,7 @@ void BackgroundGrid::build(const double* xyz, std::size_t count, double pointsPe
   {
     const double n = extent[a] > 0 && cellSize > 0 ? std::ceil(extent[a] / cellSize) : 1.0;
     dims_[a] = static_cast<int>(std::clamp(n, 1.0, 2048.0));
-    origin_[a] = lo[a];
+    origin_[a] = box.lo[a];
     inverseSize_[a] = extent[a] > 0 ? dims_[a] / extent[a] : 0.0;
   }
   cells_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2], kEmpty);

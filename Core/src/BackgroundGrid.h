@@ -4,6 +4,8 @@
 #ifndef fd3_BackgroundGrid_h
 #define fd3_BackgroundGrid_h
 
+#include "Geometry.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -15,8 +17,9 @@ class BackgroundGrid
 public:
   static constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
 
-  /// Sizes the grid for about `pointsPerCell` of the `count` points per cell; 0 disables it.
-  void build(const double* xyz, std::size_t count, double pointsPerCell);
+  /// Sizes the grid over `box` for about `pointsPerCell` of the `count` points per cell; 0
+  /// disables it.
+  void build(std::size_t count, const Box& box, double pointsPerCell);
   bool enabled() const { return !cells_.empty(); }
 
   void markInserted(const double* p, std::uint32_t vertex) { cells_[cellIndex(p)] = vertex; }

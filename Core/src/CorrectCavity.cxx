@@ -11,6 +11,8 @@
 // verifies the outcome in the tests.
 #include "Triangulator.h"
 
+#include "fd3/Measures.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,34 +53,28 @@ double Triangulator::newTetShape(const BoundaryFacet& facet, VertId v)
   double longest = 0;
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j)
-    {
-      const double dx = q[i][0] - q[j][0], dy = q[i][1] - q[j][1], dz = q[i][2] - q[j][2];
-      longest = std::max(longest, dx * dx + dy * dy + dz * dz);
-    }
-  const double ux = q[1][0] - q[0][0], uy = q[1][1] - q[0][1], uz = q[1][2] - q[0][2];
-  const double vx = q[2][0] - q[0][0], vy = q[2][1] - q[0][1], vz = q[2][2] - q[0][2];
-  const double wx = q[3][0] - q[0][0], wy = q[3][1] - q[0][1], wz = q[3][2] - q[0][2];
-  const double sixVolume = (uy * vz - uz * vy) * wx + (uz * vx - ux * vz) * wy + (ux * vy - uy * vx) * wz;
+      longest = std::max(longest, distance2(q[i], q[j]));
   // The regular tetrahedron of edge L has six times its volume equal to L^3 / sqrt(2).
-  return sixVolume * std::sqrt(2.0) / (longest * std::sqrt(longest));
+  return sixVolume(q[0], q[1], q[2], q[3]) * std::sqrt(2.0) / (longest * std::sqrt(longest));
 }
 
 void Triangulator::giveBack(TetId t)
 {
   mesh_.setFlags(t, kNotInCavity);
-  rejected_.push_back(t);
+  cavity_.rejected.push_back(t);
 }
 
 void Triangulator::collectBoundary()
 {
-  cavity_.erase(std::remove_if(cavity_.begin(), cavity_.end(),
-                  [&](TetId t) { return mesh_.flags(t) != kInCavity; }),
-    cavity_.end());
-  boundary_.clear();
-  for (TetId t : cavity_)
+  std::vector<TetId>& tets = cavity_.tets;
+  tets.erase(std::remove_if(tets.begin(), tets.end(),
+               [&](TetId t) { return mesh_.flags(t) != kInCavity; }),
+    tets.end());
+  cavity_.boundary.clear();
+  for (TetId t : tets)
     for (int f = 0; f < 4; ++f)
       if (mesh_.flags(tetOf(mesh_.neighbor(t, f))) != kInCavity)
-        boundary_.push_back({t, f});
+        cavity_.boundary.push_back({t, f});
 }
 
 // A ghost kept only because its hull face is coplanar with the point (the tie rule of
@@ -86,7 +82,7 @@ void Triangulator::collectBoundary()
 bool Triangulator::dropOrphanGhosts(VertId v)
 {
   bool changed = false;
-  for (TetId t : cavity_)
+  for (TetId t : cavity_.tets)
   {
     if (mesh_.flags(t) != kInCavity || !mesh_.isGhost(t) ||
       mesh_.flags(tetOf(mesh_.neighbor(t, 3))) == kInCavity)
@@ -102,15 +98,16 @@ bool Triangulator::dropOrphanGhosts(VertId v)
   return changed;
 }
 
-// A vertex of the core that lies on none of its boundary facets would disappear.
-bool Triangulator::releaseEnclosedVertex(VertId v)
+// A vertex of the core that lies on none of its boundary facets would disappear: one of its
+// tetrahedra is given back, which keeps the vertex in the mesh.
+bool Triangulator::keepEnclosedVertex(VertId v)
 {
   ++stamp_;
-  for (const BoundaryFacet& b : boundary_)
+  for (const BoundaryFacet& b : cavity_.boundary)
     for (int i = 0; i < 4; ++i)
       if (i != b.face && mesh_.vertex(b.inner, i) != kInfinite)
         vertexStamp_[mesh_.vertex(b.inner, i)] = stamp_;
-  for (TetId t : cavity_)
+  for (TetId t : cavity_.tets)
     for (int i = 0; i < 4; ++i)
     {
       const VertId u = mesh_.vertex(t, i);
@@ -132,7 +129,7 @@ void Triangulator::correctCavity(VertId v)
   for (bool changed = true; changed;)
   {
     changed = false;
-    for (const BoundaryFacet& b : boundary_)
+    for (const BoundaryFacet& b : cavity_.boundary)
     {
       if (mesh_.flags(b.inner) != kInCavity || mesh_.isGhost(b.inner))
         continue;
@@ -144,7 +141,7 @@ void Triangulator::correctCavity(VertId v)
     }
     changed |= dropOrphanGhosts(v);
     if (!changed)
-      changed = releaseEnclosedVertex(v);
+      changed = keepEnclosedVertex(v);
     if (changed)
       collectBoundary();
   }

@@ -1,12 +1,20 @@
-// Growing the core: from the base, through adjacency, every tetrahedron whose circumsphere
-// contains the new point (exact insphere, ties broken symbolically). Starting from the base keeps
-// the core connected, the paper's remedy for inconsistent sphere tests.
+// Growing the cavity (the paper's core): from a tetrahedron in conflict, through adjacency, every
+// tetrahedron whose circumsphere contains the new point (exact insphere, ties broken
+// symbolically). With exact predicates the conflict zone is connected, so growing it from any of
+// its tetrahedra finds all of it.
 #include "Triangulator.h"
 
 #include "fd3/Measures.h"
 
 namespace fd3
 {
+
+bool Triangulator::isBeyondHullFace(TetId ghost, VertId v)
+{
+  VertId tv[4];
+  mesh_.vertices(ghost, tv);
+  return predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v)) > 0;
+}
 
 bool Triangulator::inConflict(TetId t, VertId v)
 {
@@ -28,34 +36,33 @@ bool Triangulator::inConflict(TetId t, VertId v)
 // looking there is enough to honour the tolerance.
 VertId Triangulator::vertexWithin(double distance2, VertId v) const
 {
-  for (const BoundaryFacet& b : boundary_)
+  for (const BoundaryFacet& b : cavity_.boundary)
     for (int i = 0; i < 4; ++i)
     {
       const VertId u = mesh_.vertex(b.inner, i);
       if (i != b.face && u != kInfinite && fd3::distance2(point(u), point(v)) < distance2)
         return u;
     }
-  return kInfinite;
+  return kNoVertex;
 }
 
 void Triangulator::undoCavity()
 {
-  for (TetId t : cavity_)
+  for (TetId t : cavity_.tets)
     mesh_.setFlags(t, 0);
-  for (TetId t : rejected_)
+  for (TetId t : cavity_.rejected)
     mesh_.setFlags(t, 0);
 }
 
 void Triangulator::digCavity(TetId base, VertId v)
 {
   cavity_.clear();
-  rejected_.clear();
-  boundary_.clear();
+  std::vector<TetId>& tets = cavity_.tets;
   mesh_.setFlags(base, kInCavity);
-  cavity_.push_back(base);
-  for (std::size_t i = 0; i < cavity_.size(); ++i)
+  tets.push_back(base);
+  for (std::size_t i = 0; i < tets.size(); ++i)
   {
-    const TetId t = cavity_[i];
+    const TetId t = tets[i];
     for (int f = 0; f < 4; ++f)
       mesh_.prefetch(tetOf(mesh_.neighbor(t, f)));
     for (int f = 0; f < 4; ++f)
@@ -69,16 +76,16 @@ void Triangulator::digCavity(TetId base, VertId v)
         if (inConflict(n, v))
         {
           mesh_.setFlags(n, kInCavity);
-          cavity_.push_back(n);
+          tets.push_back(n);
           continue;
         }
         mesh_.setFlags(n, kNotInCavity);
-        rejected_.push_back(n);
+        cavity_.rejected.push_back(n);
       }
-      boundary_.push_back({t, f});
+      cavity_.boundary.push_back({t, f});
     }
   }
-  stats_.cavityTetrahedra += cavity_.size();
+  stats_.cavityTetrahedra += tets.size();
 }
 
 } // namespace fd3

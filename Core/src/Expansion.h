@@ -57,7 +57,7 @@ struct Expansion
 {
   const double* c;
   int n;
-  double sign() const { return c[n - 1] > 0 ? 1.0 : (c[n - 1] < 0 ? -1.0 : 0.0); }
+  int sign() const { return (c[n - 1] > 0) - (c[n - 1] < 0); }
 };
 
 /// Scratch memory for one exact evaluation: a bump allocator that is reset by the caller, so the

@@ -1,25 +1,57 @@
-// Filling the core: one new tetrahedron per boundary facet, joining the facet to the new point,
+// Filling the cavity: one new tetrahedron per boundary facet, joining the facet to the new point,
 // linked to its neighbours without any search over the mesh. The neighbour across a new face
-// (p, u, v) is the other new tetrahedron on the boundary edge uv: found in a small table of the
+// (p, u, w) is the other new tetrahedron on the boundary edge uw: found in a table of the
 // boundary's directed edges (the paper's one-to-one correspondence of section 3.3 between new
-// tetrahedra and boundary facets), or, for cavities with too many boundary vertices for the table,
-// by rotating about uv through the deleted tetrahedra. Measured on 1M uniform points (GCC 12):
-// the fill phase takes 0.78 s with the table, 1.45 s with rotation alone.
+// tetrahedra and boundary facets), or, for cavities with more boundary vertices than the table
+// takes, by rotating about uw through the deleted tetrahedra as the paper does. The table grows
+// with the cavity: surface samples make cavities of hundreds of tetrahedra (cylinder, 1M points:
+// 74 deleted per insertion on average), and rotating about their long edges cost more than the
+// rest of the insertion.
 #include "Triangulator.h"
+
+#include <array>
 
 namespace fd3
 {
+namespace
+{
+// The interior faces of a new tetrahedron whose vertex g is the new point: each face f != g, with
+// the directed boundary edge a->b it holds (its outward order kFaceVertices[f], rotated to start
+// at g). The two new tetrahedra on one boundary edge hold it in opposite directions.
+struct InteriorFace
+{
+  int face, a, b;
+};
+constexpr std::array<std::array<InteriorFace, 3>, 4> interiorFaces()
+{
+  std::array<std::array<InteriorFace, 3>, 4> table{};
+  for (int g = 0; g < 4; ++g)
+  {
+    int j = 0;
+    for (int f = 0; f < 4; ++f)
+    {
+      if (f == g)
+        continue;
+      const int* v = kFaceVertices[f];
+      const int r = v[0] == g ? 0 : (v[1] == g ? 1 : 2);
+      table[g][j++] = {f, v[(r + 1) % 3], v[(r + 2) % 3]};
+    }
+  }
+  return table;
+}
+constexpr auto kInterior = interiorFaces();
+} // namespace
 
 void Triangulator::fillCavity(VertId v)
 {
-  created_.clear();
-  // Pass 1: create the tetrahedra and link them across the core's boundary. The new tetrahedron of
-  // facet (t, f) is t with vertex f replaced by v, which keeps the orientation positive because v
-  // sees the facet from t's side. The deleted t's slot for face f is pointed at the new
-  // tetrahedron, which is how pass 2 recognizes a boundary facet and finds its tetrahedron.
-  for (std::size_t i = 0; i < boundary_.size(); ++i)
+  std::vector<TetId>& created = cavity_.created;
+  created.clear();
+  // Pass 1: create the tetrahedra and link them across the cavity's boundary. The new tetrahedron
+  // of facet (t, f) is t with vertex f replaced by v, which keeps the orientation positive because
+  // v sees the facet from t's side. The deleted t's slot for face f is pointed at the new
+  // tetrahedron, which is how the rotation recognizes a boundary facet and finds its tetrahedron.
+  for (const BoundaryFacet& b : cavity_.boundary)
   {
-    const BoundaryFacet b = boundary_[i];
     const TetId n = mesh_.allocate();
     VertId tv[4];
     mesh_.vertices(b.inner, tv);
@@ -35,91 +67,94 @@ void Triangulator::fillCavity(VertId v)
     mesh_.create(n, nv);
     mesh_.link(faceCode(n, b.face), mesh_.neighbor(b.inner, b.face));
     mesh_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
-    created_.push_back(n);
+    created.push_back(n);
   }
   // Pass 2: link the new tetrahedra to each other (which also points vertexTet_ at them).
   if (!linkByEdgeTable())
   {
-    for (std::size_t i = 0; i < created_.size(); ++i)
+    for (std::size_t i = 0; i < created.size(); ++i)
     {
       VertId nv[4];
-      mesh_.vertices(created_[i], nv);
+      mesh_.vertices(created[i], nv);
       for (int k = 0; k < 4; ++k)
         if (nv[k] != kInfinite)
-          vertexTet_[nv[k]] = created_[i];
+          vertexTet_[nv[k]] = created[i];
       for (int f = 0; f < 4; ++f)
-        if (f != boundary_[i].face && mesh_.neighbor(created_[i], f) == kUnlinked)
+        if (f != cavity_.boundary[i].face && mesh_.neighbor(created[i], f) == kUnlinked)
           linkAroundEdge(i, f);
     }
   }
 
-  for (TetId t : cavity_)
+  for (TetId t : cavity_.tets)
     mesh_.release(t);
-  for (TetId t : rejected_)
+  for (TetId t : cavity_.rejected)
     mesh_.setFlags(t, 0);
-  lastCreated_ = created_.back();
 }
 
-// Each interior face (p, a, b) of the new tetrahedra holds one edge ab of the core's boundary, and
-// the two tetrahedra on it see that edge in opposite directions (their faces are oriented
-// outwards). So: record every new face at its directed edge a->b, then link it to the face recorded
-// at b->a. The edges are indexed by local numbers of the boundary's vertices.
+// Every new face is recorded at its directed edge a->b and linked to the face recorded at b->a.
+// Edges are indexed by local numbers of the boundary's vertices, given on first sight through
+// localNumber_ without a branch (a new vertex takes number `count`, which only advances then).
+// Returns false, changing nothing, when the boundary has more than kMaxLocalVertices vertices.
 bool Triangulator::linkByEdgeTable()
 {
-  // The interior faces f of a new tetrahedron whose vertex g is the new point, each with the
-  // directed edge a->b it holds: the face's outward order (a cyclic order of kOutwardFace[f]) read
-  // from the new point on.
-  struct InteriorFace
-  {
-    int f, a, b;
-  };
-  static constexpr InteriorFace kInterior[4][3] = {
-    {{1, 3, 2}, {2, 1, 3}, {3, 2, 1}},
-    {{0, 2, 3}, {2, 3, 0}, {3, 0, 2}},
-    {{0, 3, 1}, {1, 0, 3}, {3, 1, 0}},
-    {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}};
-  interiorFaces_.resize(3 * created_.size());
-  // Local numbers live in vertexTet_ while the table is built (every boundary vertex needs a new
-  // entry there anyway): no lookup structure of its own, and no branch on whether a vertex was
-  // met before. The ghost vertex uses the extra last entry; the new point is numbered too.
-  const VertId ghostEntry = static_cast<VertId>(vertexTet_.size() - 1);
+  const std::vector<TetId>& created = cavity_.created;
+  std::vector<std::uint16_t>& local = cavity_.localNumbers;
+  std::vector<VertId>& vertexOf = cavity_.localVertex;
+  std::vector<TetId>& firstTet = cavity_.localTet;
+  local.resize(4 * created.size());
+  vertexOf.resize(Cavity::kMaxLocalVertices + 4);
+  firstTet.resize(Cavity::kMaxLocalVertices + 4);
+  const VertId ghostEntry = static_cast<VertId>(localNumber_.size() - 1); // kInfinite's number
   std::uint32_t count = 0;
   bool fits = true;
-  for (std::size_t i = 0; i < created_.size() && fits; ++i)
+  for (std::size_t i = 0; i < created.size() && fits; ++i)
   {
-    const TetId n = created_[i];
-    const int g = boundary_[i].face;
-    std::uint32_t local[4];
     VertId nv[4];
-    mesh_.vertices(n, nv);
+    mesh_.vertices(created[i], nv);
     for (int k = 0; k < 4; ++k)
     {
       const VertId u = nv[k] == kInfinite ? ghostEntry : nv[k];
-      const TetId entry = vertexTet_[u];
-      const bool seen = (entry & kLocalMark) != 0;
-      local[k] = seen ? entry & ~kLocalMark : count;
-      vertexTet_[u] = kLocalMark | local[k];
-      localVertex_[count] = u;
-      localTet_[count] = n;
-      count += !seen;
+      const std::uint16_t seen = localNumber_[u];
+      const bool isNew = seen == kNoLocal;
+      const auto number = static_cast<std::uint16_t>(isNew ? count : seen);
+      localNumber_[u] = number;
+      local[4 * i + k] = number;
+      vertexOf[count] = u;
+      firstTet[count] = created[i];
+      count += isNew;
     }
-    fits = count <= kMaxLocalVertices;
-    if (!fits)
-      break;
+    fits = count <= Cavity::kMaxLocalVertices;
+  }
+  // The width of the table is a power of two >= count, so small cavities use a small corner of it.
+  std::uint32_t width = 16;
+  while (width < count)
+    width *= 2;
+  if (fits && cavity_.edgeFace.size() < std::size_t(width) * width)
+    cavity_.edgeFace.resize(std::size_t(width) * width);
+  cavity_.interiorFaces.resize(3 * created.size());
+  for (std::size_t i = 0; i < created.size() && fits; ++i)
+  {
+    const int g = cavity_.boundary[i].face;
     for (int j = 0; j < 3; ++j)
     {
       const InteriorFace& face = kInterior[g][j];
-      const std::uint32_t a = local[face.a], b = local[face.b];
-      edgeFace_[a * kMaxLocalVertices + b] = faceCode(n, face.f);
-      interiorFaces_[3 * i + j] = {faceCode(n, face.f), b * kMaxLocalVertices + a};
+      const std::uint32_t a = local[4 * i + face.a], b = local[4 * i + face.b];
+      cavity_.edgeFace[a * width + b] = faceCode(created[i], face.face);
+      cavity_.interiorFaces[3 * i + j] = {faceCode(created[i], face.face), b * width + a};
     }
   }
+  // Hand the numbers back; each vertex's entry in vertexTet_ becomes a new tetrahedron of its.
   for (std::uint32_t k = 0; k < count; ++k)
-    vertexTet_[localVertex_[k]] = localTet_[k];
+  {
+    const VertId u = vertexOf[k];
+    localNumber_[u] = kNoLocal;
+    if (u != ghostEntry)
+      vertexTet_[u] = firstTet[k];
+  }
   if (!fits)
     return false;
-  for (const auto& [face, reversed] : interiorFaces_)
-    mesh_.setNeighbor(face, edgeFace_[reversed]);
+  for (const auto& [face, reversed] : cavity_.interiorFaces)
+    mesh_.setNeighbor(face, cavity_.edgeFace[reversed]);
   return true;
 }
 
@@ -128,12 +163,12 @@ bool Triangulator::linkByEdgeTable()
 // uw, until a boundary facet is met: the new tetrahedron built on it is the neighbour.
 void Triangulator::linkAroundEdge(std::size_t i, int face)
 {
-  const BoundaryFacet& facet = boundary_[i];
+  const BoundaryFacet& facet = cavity_.boundary[i];
   // Local indices of u and w (the same in t and in its new tetrahedron): the two of 0..3 that are
   // neither `face` nor `facet.face`, as the two bit positions left in a 4-bit mask.
   const unsigned rest = 15u & ~(1u << face) & ~(1u << facet.face);
-  int iu = __builtin_ctz(rest);
-  int iw = __builtin_ctz(rest & (rest - 1));
+  int iu = countTrailingZeros(rest);
+  int iw = countTrailingZeros(rest & (rest - 1));
   const VertId u = mesh_.vertex(facet.inner, iu);
   const VertId w = mesh_.vertex(facet.inner, iw);
 
@@ -147,7 +182,7 @@ void Triangulator::linkAroundEdge(std::size_t i, int face)
     {
       // (t, g) is a boundary facet and `next` its new tetrahedron: t with vertex g replaced by the
       // new point, whose face on (point, u, w) is opposite t's fourth vertex.
-      mesh_.link(faceCode(created_[i], face), faceCode(next, 6 - g - iu - iw));
+      mesh_.link(faceCode(cavity_.created[i], face), faceCode(next, 6 - g - iu - iw));
       return;
     }
     VertId nv[4];

@@ -1,5 +1,7 @@
 #include "InsertionOrder.h"
 
+#include "Platform.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -7,6 +9,12 @@
 
 namespace fd3
 {
+namespace
+{
+// Curve resolution of one sorting level, and the smallest run of equal keys worth sorting again
+// inside its own box (smaller runs are ordered by their coordinates).
+constexpr int kHilbertBits = 10;
+constexpr std::size_t kRunWorthRefining = 8;
 
 // Skilling's transform ("Programming the Hilbert curve", 2004): coordinates -> transposed Hilbert
 // index, whose bits interleaved from the top give the position along the curve.
@@ -44,88 +52,8 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, in
   return key;
 }
 
-std::vector<std::uint32_t> insertionOrder(const double* xyz, std::vector<std::uint32_t> ids,
-  InsertionOrder order, std::uint64_t seed)
-{
-  if (order == InsertionOrder::Input)
-    return ids;
-  std::mt19937_64 rng(seed);
-  if (order == InsertionOrder::Random)
-  {
-    std::shuffle(ids.begin(), ids.end(), rng);
-    return ids;
-  }
-  if (ids.empty())
-    return ids;
-
-  // BRIO rounds: round r holds about half the points of round r + 1; the smallest goes first.
-  const int rounds = std::clamp(static_cast<int>(std::log2(double(ids.size()) / 64.0)), 1, 63);
-  std::vector<std::uint64_t> keys(ids.size());
-  for (std::uint64_t& key : keys)
-  {
-    const int laterRoundsSkipped =
-      std::min(static_cast<int>(__builtin_ctzll(rng() | (1ull << 62))), rounds - 1);
-    key = static_cast<std::uint64_t>(rounds - 1 - laterRoundsSkipped);
-  }
-  radixSort(keys, ids, 6);
-  for (std::size_t begin = 0; begin < ids.size();)
-  {
-    std::size_t end = begin;
-    while (end < ids.size() && keys[end] == keys[begin])
-      ++end;
-    hilbertSort(xyz, ids.data() + begin, end - begin);
-    begin = end;
-  }
-  return ids;
-}
-
-// Sorts ids along a Hilbert curve over their bounding box, 10 bits per axis, then sorts again
-// every run of points that fell into one curve cell, inside that run's own box: the resolution
-// adapts to the points, so tight clusters (even of spread 1e-12) are ordered as well as the rest.
-void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count)
-{
-  constexpr int kBits = 10;
-  constexpr std::size_t kRunWorthRefining = 8;
-  if (count < 2)
-    return;
-  double lo[3], hi[3];
-  for (int a = 0; a < 3; ++a)
-    lo[a] = hi[a] = xyz[3 * std::size_t(ids[0]) + a];
-  for (std::size_t i = 1; i < count; ++i)
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], xyz[3 * std::size_t(ids[i]) + a]);
-      hi[a] = std::max(hi[a], xyz[3 * std::size_t(ids[i]) + a]);
-    }
-  const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  if (!(span > 0))
-    return; // all points equal (duplicates): any order
-  const double toGrid = ((1u << kBits) - 1) / span;
-  std::vector<std::uint64_t> keys(count);
-  std::vector<std::uint32_t> values(ids, ids + count);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double* p = xyz + 3 * std::size_t(values[i]);
-    std::uint32_t q[3];
-    for (int a = 0; a < 3; ++a)
-      q[a] = static_cast<std::uint32_t>((p[a] - lo[a]) * toGrid);
-    keys[i] = hilbertIndex(q[0], q[1], q[2], kBits);
-  }
-  radixSort(keys, values, 3 * kBits);
-  std::copy(values.begin(), values.end(), ids);
-  for (std::size_t begin = 0; begin < count;)
-  {
-    std::size_t end = begin + 1;
-    while (end < count && keys[end] == keys[begin])
-      ++end;
-    if (end - begin >= kRunWorthRefining && end - begin < count)
-      hilbertSort(xyz, ids + begin, end - begin);
-    begin = end;
-  }
-}
-
-// Least-significant-digit radix sort of `values` by `keys` (stable), over the low `bits` bits.
-// std::sort costs n log n comparisons; this is three linear passes for our 36-bit keys.
+// Least-significant-digit radix sort of `values` by `keys` (stable), over the low `bits` bits:
+// linear passes instead of std::sort's n log n comparisons.
 void radixSort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values, int bits)
 {
   constexpr int kDigit = 12;
@@ -149,6 +77,118 @@ void radixSort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& val
     keys.swap(keyBuffer);
     values.swap(valueBuffer);
   }
+}
+
+bool lexicographicallyLess(const double* xyz, std::uint32_t a, std::uint32_t b)
+{
+  const double* p = xyz + 3 * std::size_t(a);
+  const double* q = xyz + 3 * std::size_t(b);
+  return std::lexicographical_compare(p, p + 3, q, q + 3);
+}
+
+// Sorts ids along a Hilbert curve over `box`, kHilbertBits per axis, then every run of points
+// that fell into one curve cell: inside the run's own box when it is long enough (the resolution
+// adapts to the points, so tight clusters, even of spread 1e-12, are ordered as well as the rest),
+// else by coordinates. Every sort is stable, so equal points end up side by side, in input order.
+void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box)
+{
+  const double span = box.largestExtent();
+  if (count < 2 || !(span > 0))
+    return; // one point, or copies of one point
+  const double toGrid = ((1u << kHilbertBits) - 1) / span;
+  std::vector<std::uint64_t> keys(count);
+  std::vector<std::uint32_t> values(ids, ids + count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double* p = xyz + 3 * std::size_t(values[i]);
+    std::uint32_t q[3];
+    for (int a = 0; a < 3; ++a)
+      q[a] = static_cast<std::uint32_t>((p[a] - box.lo[a]) * toGrid);
+    keys[i] = hilbertIndex(q[0], q[1], q[2], kHilbertBits);
+  }
+  radixSort(keys, values, 3 * kHilbertBits);
+  std::copy(values.begin(), values.end(), ids);
+  for (std::size_t begin = 0; begin < count;)
+  {
+    std::size_t end = begin + 1;
+    while (end < count && keys[end] == keys[begin])
+      ++end;
+    // The extreme points of the widest axis never share a cell, so a run is shorter than count.
+    if (end - begin >= kRunWorthRefining)
+      hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin));
+    else
+      std::stable_sort(ids + begin, ids + end,
+        [xyz](std::uint32_t a, std::uint32_t b) { return lexicographicallyLess(xyz, a, b); });
+    begin = end;
+  }
+}
+
+bool samePoint(const double* xyz, std::uint32_t a, std::uint32_t b)
+{
+  const double* p = xyz + 3 * std::size_t(a);
+  const double* q = xyz + 3 * std::size_t(b);
+  return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+}
+
+/// Keeps the first of every run of equal points in `sorted` and lists the others as duplicates.
+void mergeDuplicates(const double* xyz, std::vector<std::uint32_t>& sorted,
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& duplicates)
+{
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+  {
+    if (kept > 0 && samePoint(xyz, sorted[kept - 1], sorted[i]))
+      duplicates.emplace_back(sorted[i], sorted[kept - 1]);
+    else
+      sorted[kept++] = sorted[i];
+  }
+  sorted.resize(kept);
+}
+
+/// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
+/// each round keeps the curve order of `sorted` (a stable counting sort by round).
+std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted, std::mt19937_64& rng)
+{
+  const int rounds = std::clamp(static_cast<int>(std::log2(double(sorted.size()) / 64.0)), 1, 63);
+  std::vector<std::uint8_t> roundOf(sorted.size());
+  std::vector<std::size_t> start(rounds + 1, 0);
+  for (std::uint8_t& round : roundOf)
+  {
+    const int laterRoundsSkipped = std::min(countTrailingZeros(rng() | (1ull << 62)), rounds - 1);
+    round = static_cast<std::uint8_t>(rounds - 1 - laterRoundsSkipped);
+    ++start[round + 1];
+  }
+  for (int r = 0; r < rounds; ++r)
+    start[r + 1] += start[r];
+  std::vector<std::uint32_t> order(sorted.size());
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    order[start[roundOf[i]]++] = sorted[i];
+  return order;
+}
+} // namespace
+
+InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, const Box& box,
+  InsertionOrder order, std::uint64_t seed)
+{
+  InsertionPlan plan;
+  hilbertSort(xyz, ids.data(), ids.size(), box);
+  mergeDuplicates(xyz, ids, plan.duplicates);
+  std::mt19937_64 rng(seed);
+  switch (order)
+  {
+    case InsertionOrder::Brio:
+      plan.order = brioRounds(ids, rng);
+      break;
+    case InsertionOrder::Input:
+      std::sort(ids.begin(), ids.end());
+      plan.order = std::move(ids);
+      break;
+    case InsertionOrder::Random:
+      std::shuffle(ids.begin(), ids.end(), rng);
+      plan.order = std::move(ids);
+      break;
+  }
+  return plan;
 }
 
 } // namespace fd3

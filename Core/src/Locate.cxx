@@ -1,47 +1,94 @@
-// Finding the base: the tetrahedron that contains the new point (or a ghost tetrahedron whose hull
-// face the point lies strictly beyond).
+// Finding where the new point goes: a tetrahedron in conflict with it, from which the cavity is
+// grown. The paper walks to the base, the tetrahedron that contains the point, because an inexact
+// insphere test could make a cavity grown from elsewhere disconnected. Our predicates are exact, so
+// on a Delaunay mesh the conflict zone is connected and contains the base: the walk stops at the
+// first tetrahedron in conflict that it meets. On surface samples, where thin tetrahedra fan out
+// around every vertex, that is most often the start itself (cylinder, 100k points: 5.8 steps
+// instead of 17). A volume threshold leaves the mesh short of Delaunay, so the walk then goes on
+// to the base, which the core correction needs.
 #include "Triangulator.h"
+
+#include "fd3/Measures.h"
+
+#include <algorithm>
 
 namespace fd3
 {
 namespace
 {
-// Layers of the onion searched before giving up on the grid; a point far from every inserted
-// one (early BRIO rounds) starts from the last created tetrahedron instead.
+// Layers of the onion searched before giving up on the grid (early BRIO rounds, where the points
+// inserted so far are far apart).
 constexpr int kMaxOnionLayers = 3;
+// Steps after which the walk draws its first face at random: a safety net against cycles, which
+// the distance order cannot have on a Delaunay mesh but might on one built with a volume threshold.
+constexpr std::size_t kOrderedSteps = 1000;
 } // namespace
 
-TetId Triangulator::startTet(VertId v)
+// The start: a tetrahedron of the inserted vertex nearest to the point among two candidates, the
+// one the grid's onion search finds and the last inserted one (the curve order puts it close). On a
+// surface sample the grid's cells are sized for volume and hold many points each, so the last
+// vertex is often nearer; on volume data the grid's usually is.
+TetId Triangulator::startTet(VertId v) const
 {
-  TetId t = lastCreated_;
+  VertId start = lastInserted_;
   if (grid_.enabled())
   {
     const VertId near = grid_.nearestInserted(point(v), kMaxOnionLayers);
-    if (near != BackgroundGrid::kEmpty)
-      t = vertexTet_[near];
+    if (near != BackgroundGrid::kEmpty &&
+      distance2(point(near), point(v)) < distance2(point(start), point(v)))
+      start = near;
   }
-  return mesh_.isGhost(t) ? tetOf(mesh_.neighbor(t, 3)) : t;
+  return vertexTet_[start];
 }
 
-// The paper's random walk: from the current tetrahedron, cross a face that separates it from the
-// point, chosen at random among the separating ones (a random first face, then cyclic order).
-// The randomness is what keeps the walk from cycling; it is seeded, so runs are reproducible.
+// The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold,
+// contains the point or is a ghost whose hull face the point lies beyond), cross one of its faces
+// that separates it from the point. The faces are tried in order of decreasing distance from the
+// point to the vertex they leave behind, so the tetrahedra close in on the point. Measured on 100k
+// points (mean steps to the base, before the walk stopped at the first conflict): torus 31 -> 7.7,
+// cylinder 405 -> 17 (max 11,306 -> 93) against a random first face, uniform cube 6.0 -> 5.4.
 TetId Triangulator::walk(TetId t, VertId v)
 {
   const double* p = point(v);
+  const bool toFirstConflict = options_.volumeThreshold <= 0;
   int entryFace = -1;
   std::size_t steps = 0;
-  while (!mesh_.isGhost(t))
+  for (;;)
   {
     ++steps;
+    if (mesh_.isGhost(t))
+    {
+      if (toFirstConflict ? inConflict(t, v) : isBeyondHullFace(t, v))
+        break;
+      // Continue from the finite tetrahedron behind the hull face.
+      const FaceCode inside = mesh_.neighbor(t, 3);
+      t = tetOf(inside);
+      entryFace = faceOf(inside);
+      continue;
+    }
+    if (toFirstConflict && inConflict(t, v))
+      break;
     VertId tv[4];
     mesh_.vertices(t, tv);
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
-    const int first = static_cast<int>(nextRandom() & 3u);
+    int order[4] = {0, 1, 2, 3};
+    if (steps < kOrderedSteps)
+    {
+      double d[4];
+      for (int k = 0; k < 4; ++k)
+        d[k] = distance2(q[k], p);
+      std::sort(order, order + 4, [&d](int a, int b) { return d[a] > d[b]; });
+    }
+    else
+    {
+      const int first = static_cast<int>(nextRandom() & 3u);
+      for (int k = 0; k < 4; ++k)
+        order[k] = (first + k) & 3;
+    }
     int exit = -1;
     for (int k = 0; k < 4 && exit < 0; ++k)
     {
-      const int f = (first + k) & 3;
+      const int f = order[k];
       if (f == entryFace)
         continue;
       const double* saved = q[f];
@@ -50,6 +97,7 @@ TetId Triangulator::walk(TetId t, VertId v)
         exit = f;
       q[f] = saved;
     }
+    // No face separates t from the point: t contains it (the base).
     if (exit < 0)
       break;
     const FaceCode next = mesh_.neighbor(t, exit);

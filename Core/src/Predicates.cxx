@@ -1,5 +1,8 @@
 #include "Predicates.h"
 
+#include "DoubleDouble.h"
+#include "Platform.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -8,6 +11,8 @@ namespace fd3
 namespace
 {
 using filter::signOf;
+
+#ifdef FD3_HAVE_INT128
 using Int128 = __int128;
 
 Int128 det3(const std::int64_t u[3], const std::int64_t v[3], const std::int64_t w[3])
@@ -17,30 +22,46 @@ Int128 det3(const std::int64_t u[3], const std::int64_t v[3], const std::int64_t
   const Int128 cz = Int128(v[0]) * w[1] - Int128(v[1]) * w[0];
   return u[0] * cx + u[1] * cy + u[2] * cz;
 }
+#endif
+
+// Bound on the error of the double-double insphere determinant, relative to its permanent
+// (DoubleDouble.h): along the expression, products add 8 u^2 and sums 3 u^2 to the relative error
+// of their operands, which gives 11 u^2 for the 2x2 minors, 25 u^2 for the 3x3 minors, 14 u^2 for
+// the lifts and 53 u^2 for the determinant. Doubled, for the rounding of the permanent itself and
+// higher-order terms.
+constexpr double kUnitRoundoff = filter::kEpsilon;
+constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
+// Below this permanent the low parts could reach the subnormal range: left to the exact stage.
+constexpr double kDoubleDoubleSmallest = 0x1p-600;
 } // namespace
 
-void Predicates::adaptTo(const double* xyz, std::size_t count)
+void Predicates::adaptTo(const double* xyz, std::size_t count, const Box& box)
 {
   constexpr int kNoGrid = -4096;
   int lowest = 4096, highest = kNoGrid; // the grid: |x| < 2^highest, x a multiple of 2^lowest
-  double largest = 0;
-  for (std::size_t i = 0; i < 3 * count; ++i)
+  for (std::size_t i = 0; i < 3 * count && lowest != kNoGrid; ++i)
   {
-    largest = std::max(largest, std::fabs(xyz[i]));
-    if (xyz[i] == 0.0 || lowest == kNoGrid)
+    if (xyz[i] == 0.0)
       continue;
     int exponent;
     const double mantissa = std::frexp(xyz[i], &exponent);
     // The lowest set bit of the 53-bit significand gives the finest grid this value needs.
     const auto significand = static_cast<std::uint64_t>(std::ldexp(std::fabs(mantissa), 53));
-    lowest = std::min(lowest, exponent - 53 + __builtin_ctzll(significand));
+    lowest = std::min(lowest, exponent - 53 + countTrailingZeros(significand));
     highest = std::max(highest, exponent);
     if (highest - lowest > kIntegerGridBits)
-      lowest = kNoGrid; // keep scanning for the extent only
+      lowest = kNoGrid;
   }
+  double largest = 0;
+  for (int a = 0; a < 3; ++a)
+    largest = std::max({largest, std::fabs(box.lo[a]), std::fabs(box.hi[a])});
   const bool onGrid = lowest != kNoGrid && lowest <= highest;
   const int gridBits = onGrid ? highest - lowest : kIntegerGridBits + 1;
+#ifdef FD3_HAVE_INT128
   inverseGridUnit_ = onGrid ? std::ldexp(1.0, -lowest) : 0.0;
+#else
+  inverseGridUnit_ = 0.0; // no 128-bit integers: the exact stage uses expansions
+#endif
   // Static bounds: the semi-static ones with every difference at its largest possible value,
   // 2 * largest (exact: a power-of-two multiple of a double). Tiny extents, where products could
   // underflow, keep the semi-static filter with its underflow guard.
@@ -64,7 +85,7 @@ void Predicates::adaptTo(const double* xyz, std::size_t count)
 
 // On the grid, coordinates are integers below 2^21 in magnitude, so differences are exact doubles
 // and integers below 2^22: 3x3 minors stay below 2^69, lifts below 2^46, the insphere determinant
-// below 2^118, and orient3d below 2^69 -- all exact in __int128.
+// below 2^118, and orient3d below 2^69 -- all exact in 128-bit integers.
 template <int N>
 void Predicates::gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const
 {
@@ -100,6 +121,7 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
 int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;
+#ifdef FD3_HAVE_INT128
   if (inverseGridUnit_ > 0)
   {
     const double* rows[3] = {b, c, d};
@@ -107,6 +129,7 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
     gridDifferences<3>(rows, a, q);
     return signOf(det3(q[0], q[1], q[2]));
   }
+#endif
   const double* rows[3] = {b, c, d};
   checkUnderflow(rows, 3, a);
   arena_.reset();
@@ -117,13 +140,61 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
     v[k] = arena_.fromDifference(c[k], a[k]);
     w[k] = arena_.fromDifference(d[k], a[k]);
   }
-  return static_cast<int>(minor3(u, v, w).sign());
+  return minor3(u, v, w).sign();
+}
+
+// The insphere determinant over exact differences (each a double-double), in double-double
+// arithmetic, decided when it clears its error bound; else the exact stage.
+int Predicates::inSphereDoubleDouble(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  ++doubleDoubleInSphereCalls;
+  const double* rows[4] = {a, b, c, d};
+  DoubleDouble x[4][3];
+  double m[4][3]; // |x|, for the permanent
+  for (int r = 0; r < 4; ++r)
+    for (int k = 0; k < 3; ++k)
+    {
+      x[r][k] = DoubleDouble::difference(rows[r][k], e[k]);
+      m[r][k] = std::fabs(x[r][k].hi);
+    }
+  // 2x2 minors of the x and y columns, rows (i, j).
+  auto minor2 = [&](int i, int j) { return x[i][0] * x[j][1] - x[j][0] * x[i][1]; };
+  auto minor2Permanent = [&](int i, int j) { return m[i][0] * m[j][1] + m[j][0] * m[i][1]; };
+  const DoubleDouble ab = minor2(0, 1), bc = minor2(1, 2), cd = minor2(2, 3), da = minor2(3, 0),
+                     ac = minor2(0, 2), bd = minor2(1, 3);
+  const double abP = minor2Permanent(0, 1), bcP = minor2Permanent(1, 2), cdP = minor2Permanent(2, 3),
+               daP = minor2Permanent(3, 0), acP = minor2Permanent(0, 2), bdP = minor2Permanent(1, 3);
+  // 3x3 minors with the z column, as in the float evaluation (Predicates.h).
+  const DoubleDouble abc = x[0][2] * bc - x[1][2] * ac + x[2][2] * ab;
+  const DoubleDouble bcd = x[1][2] * cd - x[2][2] * bd + x[3][2] * bc;
+  const DoubleDouble cda = x[2][2] * da + x[3][2] * ac + x[0][2] * cd;
+  const DoubleDouble dab = x[3][2] * ab + x[0][2] * bd + x[1][2] * da;
+  const double abcP = m[0][2] * bcP + m[1][2] * acP + m[2][2] * abP;
+  const double bcdP = m[1][2] * cdP + m[2][2] * bdP + m[3][2] * bcP;
+  const double cdaP = m[2][2] * daP + m[3][2] * acP + m[0][2] * cdP;
+  const double dabP = m[3][2] * abP + m[0][2] * bdP + m[1][2] * daP;
+  DoubleDouble lift[4];
+  double liftP[4];
+  for (int r = 0; r < 4; ++r)
+  {
+    lift[r] = x[r][0] * x[r][0] + x[r][1] * x[r][1] + x[r][2] * x[r][2];
+    liftP[r] = m[r][0] * m[r][0] + m[r][1] * m[r][1] + m[r][2] * m[r][2];
+  }
+  const DoubleDouble det = (lift[3] * abc - lift[2] * dab) + (lift[1] * cda - lift[0] * bcd);
+  const double permanent = (liftP[3] * abcP + liftP[2] * dabP) + (liftP[1] * cdaP + liftP[0] * bcdP);
+  const double value = det.value();
+  const double bound = kInSphereDoubleDouble * permanent;
+  if ((value > bound || -value > bound) && permanent > kDoubleDoubleSmallest)
+    return -signOf(value);
+  return inSphereExact(a, b, c, d, e);
 }
 
 int Predicates::inSphereExact(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   ++exactInSphereCalls;
+#ifdef FD3_HAVE_INT128
   if (inverseGridUnit_ > 0)
   {
     const double* rows[4] = {a, b, c, d};
@@ -136,6 +207,7 @@ int Predicates::inSphereExact(
       lift[3] * det3(q[0], q[1], q[2]) - lift[2] * det3(q[0], q[1], q[3]);
     return -signOf(det);
   }
+#endif
   ExpansionArena& x = arena_;
   x.reset();
   const double* rows[4] = {a, b, c, d};
@@ -155,7 +227,7 @@ int Predicates::inSphereExact(
   const Expansion m3 = minor3(diff[0], diff[1], diff[2]);
   const Expansion det = x.add(x.subtract(x.multiply(lift[1], m1), x.multiply(lift[0], m0)),
     x.subtract(x.multiply(lift[3], m3), x.multiply(lift[2], m2)));
-  return -static_cast<int>(det.sign());
+  return -det.sign();
 }
 
 bool Predicates::collinear(const double* a, const double* b, const double* c)

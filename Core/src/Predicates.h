@@ -1,7 +1,8 @@
-// Geometric predicates of the kernel, each in two layers: a floating-point evaluation with a
-// rigorous error bound (decides almost every call), then exact expansion arithmetic. The float
-// layer is inline here because it runs tens of times per insertion inside the cavity search; the
-// exact layer is rare and lives in Predicates.cxx.
+// Geometric predicates of the kernel, in layers: a floating-point evaluation with a rigorous error
+// bound (decides almost every call), then, for insphere, a double-double evaluation with its own
+// bound (decides the near-degenerate cases that thin tetrahedra on surface samples make in
+// numbers), then exact arithmetic. The float layer is inline here because it runs tens of times
+// per insertion inside the cavity search; the others are rare and live in Predicates.cxx.
 // Signs follow VTK's tetrahedron convention:
 //   orient3d(a,b,c,d) > 0  iff  (b-a) x (c-a) . (d-a) > 0,
 //   inSphere(a,b,c,d,e) > 0 iff e lies strictly inside the circumsphere of the positive tet abcd.
@@ -11,6 +12,7 @@
 #define fd3_Predicates_h
 
 #include "Expansion.h"
+#include "Geometry.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -33,7 +35,7 @@ constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * k
 constexpr double kUnderflowGuard = 1e-250;
 
 template <typename T>
-int signOf(T x) // for doubles here, and __int128 in the exact stage
+int signOf(T x) // for doubles here, and 128-bit integers in the exact stage
 {
   return (x > 0) - (x < 0);
 }
@@ -54,20 +56,22 @@ public:
   /// towards the first vertex: a fan of about 2 tetrahedra per point instead of a dense tangle.
   int inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::uint32_t e);
 
-  /// Tunes the predicates to a point set; every point passed from then on must belong to it.
-  /// From the set's extent come static error bounds, checked before the semi-static ones (one
-  /// comparison decides almost every call on well-spread points). When every coordinate is an
-  /// integer multiple of one power of two u, below 2^kIntegerGridBits u in magnitude (lattices,
-  /// image and integer data), the exact stage runs in __int128 instead of expansions, and below
-  /// 2^kFloatExactOrientBits u (orient3d) or 2^kFloatExactInSphereBits u (insphere) the float
-  /// evaluation itself is exact, so even a tie costs no more than the float evaluation.
-  void adaptTo(const double* xyz, std::size_t count);
+  /// Tunes the predicates to a point set within `box`; every point passed from then on must
+  /// belong to it. From the set's extent come static error bounds, checked before the semi-static
+  /// ones (one comparison decides almost every call on well-spread points). When every coordinate
+  /// is an integer multiple of one power of two u, below 2^kIntegerGridBits u in magnitude
+  /// (lattices, image and integer data), the exact stage runs in 128-bit integers instead of
+  /// expansions (where the compiler has them), and below 2^kFloatExactOrientBits u (orient3d) or
+  /// 2^kFloatExactInSphereBits u (insphere) the float evaluation itself is exact, so even a tie
+  /// costs no more than the float evaluation.
+  void adaptTo(const double* xyz, std::size_t count, const Box& box);
   static constexpr int kIntegerGridBits = 21;
   static constexpr int kFloatExactOrientBits = 15;
   static constexpr int kFloatExactInSphereBits = 8;
 
   std::size_t exactOrientCalls = 0;
-  std::size_t exactInSphereCalls = 0;
+  std::size_t doubleDoubleInSphereCalls = 0; ///< insphere calls past the float filters
+  std::size_t exactInSphereCalls = 0;        ///< of those, the ones double-double left open
   std::size_t symbolicTies = 0;
   /// Exact evaluations where a non-zero coordinate difference was below kSmallestSafeDifference:
   /// products of five such differences may underflow, and exactness is no longer guaranteed.
@@ -78,6 +82,7 @@ private:
   template <int N>
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
+  int inSphereDoubleDouble(const double* a, const double* b, const double* c, const double* d, const double* e);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
   void checkUnderflow(const double* const rows[], int count, const double* origin);
@@ -154,7 +159,7 @@ inline int Predicates::inSphere(
   const double bound = filter::kInSphereSemiStatic * scale;
   if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
     return -filter::signOf(det);
-  return inSphereExact(a, b, c, d, e);
+  return inSphereDoubleDouble(a, b, c, d, e);
 }
 
 } // namespace fd3

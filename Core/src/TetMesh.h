@@ -1,17 +1,23 @@
 // The tetrahedral mesh: one 32-byte record per tetrahedron in a flat array, so that visiting a
 // tetrahedron (its flags, vertices and neighbours) costs one cache line:
 //   record t = [v0 v1 v2 v3 | n0 n1 n2 n3]
-//   v_i  vertex i (vertex ids are insertion ranks; v0's top two bits hold the flags below);
+//   v_i  vertex i: a VertId, the vertex's insertion rank, which indexes the kernel's own
+//        (normalized, reordered) points; the output maps ranks back to input ids. v0's top two
+//        bits hold the flags below;
 //   n_f  = 4*t' + f': t' shares the face of t opposite vertex f, and f' is the vertex of t'
 //        opposite that face (the paper's adjacency table, navigable in O(1) both ways).
 // Invariants (checked by Triangulator::checkMesh):
 //   * every live tetrahedron is positively oriented (VTK convention);
 //   * the convex hull is closed by ghost tetrahedra whose vertex 3 is kInfinite, oriented as if
 //     kInfinite were a point far beyond their hull face;
-//   * neighbor(neighbor(c)) == c for every face code c of a live tetrahedron;
-//   * freed slots are flagged kDead and listed in freeSlots; flags are 0 between insertions.
+//   * neighbor(neighbor(c)) == c for every face code c of a live tetrahedron, and the two faces
+//     carry the same three vertices;
+//   * freed slots are flagged kDead and listed once in the free list; every other slot is live;
+//     flags are 0 between insertions.
 #ifndef fd3_TetMesh_h
 #define fd3_TetMesh_h
+
+#include "Platform.h"
 
 #include <cstdint>
 #include <stdexcept>
@@ -24,7 +30,8 @@ using TetId = std::uint32_t;
 using VertId = std::uint32_t;
 using FaceCode = std::uint32_t; // 4*tet + face
 
-constexpr VertId kInfinite = 0xFFFFFFFFu;
+constexpr VertId kInfinite = 0xFFFFFFFFu; // the ghost vertex, at infinity
+constexpr VertId kNoVertex = 0xFFFFFFFEu; // "none found"
 constexpr FaceCode kUnlinked = 0xFFFFFFFFu;
 constexpr int kVertexIdBits = 30;
 constexpr std::uint32_t kMaxVertices = 1u << kVertexIdBits;
@@ -42,6 +49,10 @@ inline FaceCode faceCode(TetId t, int f)
 {
   return (t << 2) | static_cast<FaceCode>(f);
 }
+
+/// The vertices of face f of a tetrahedron (the face opposite vertex f), ordered so that its normal
+/// (right-hand rule) points out of the tetrahedron: (face, f) is an odd permutation of (0, 1, 2, 3).
+constexpr int kFaceVertices[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 enum TetFlag : std::uint32_t
 {
@@ -91,7 +102,7 @@ public:
 
   /// Starts loading t's record, which the caller will need soon (hides memory latency while
   /// the cavity is grown breadth-first).
-  void prefetch(TetId t) const { __builtin_prefetch(&records_[8 * std::size_t(t)]); }
+  void prefetch(TetId t) const { fd3::prefetch(&records_[8 * std::size_t(t)]); }
 
   bool isGhost(TetId t) const { return records_[8 * std::size_t(t) + 3] == kInfinite; }
   bool isDead(TetId t) const { return flags(t) == kDead; }
@@ -135,6 +146,8 @@ public:
   }
 
   void reserve(std::size_t tets) { records_.reserve(8 * tets); }
+  std::size_t capacity() const { return records_.capacity() / 8; }
+  const std::vector<TetId>& freeSlots() const { return freeSlots_; }
 
   /// Hands the records over (for in-place output conversion); the mesh is empty afterwards.
   /// Record t occupies words 8t..8t+7, v0 carrying the flags in its top bits.

@@ -5,12 +5,10 @@
 #include "fd3/Delaunay.h"
 
 #include <algorithm>
-#include <cassert>
-#include <array>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
-#include <cmath>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -35,21 +33,12 @@ struct Normalization
   double shift[3] = {0, 0, 0};
   double scale = 1.0;
 
-  Normalization(const double* xyz, const std::vector<std::uint32_t>& ids)
+  Normalization(const double* xyz, const std::vector<std::uint32_t>& ids, const Box& box)
   {
-    double lo[3], hi[3];
-    for (int a = 0; a < 3; ++a)
-      lo[a] = hi[a] = xyz[3 * std::size_t(ids[0]) + a];
-    for (std::uint32_t id : ids)
-      for (int a = 0; a < 3; ++a)
-      {
-        lo[a] = std::min(lo[a], xyz[3 * std::size_t(id) + a]);
-        hi[a] = std::max(hi[a], xyz[3 * std::size_t(id) + a]);
-      }
     double extent = 0;
     for (int a = 0; a < 3; ++a)
     {
-      const double center = lo[a] + (hi[a] - lo[a]) / 2;
+      const double center = box.lo[a] + box.extent(a) / 2;
       bool exact = std::isfinite(center);
       for (std::size_t i = 0; i < ids.size() && exact; ++i)
       {
@@ -58,7 +47,7 @@ struct Normalization
         exact = err == 0.0;
       }
       shift[a] = exact ? center : 0.0;
-      extent = std::max({extent, std::fabs(lo[a] - shift[a]), std::fabs(hi[a] - shift[a])});
+      extent = std::max({extent, std::fabs(box.lo[a] - shift[a]), std::fabs(box.hi[a] - shift[a])});
     }
     int exponent = 0;
     std::frexp(extent, &exponent);
@@ -70,17 +59,14 @@ struct Normalization
     for (int a = 0; a < 3; ++a)
       out[a] = (p[a] - shift[a]) * scale;
   }
+  Box apply(const Box& box) const
+  {
+    Box out;
+    apply(box.lo, out.lo);
+    apply(box.hi, out.hi);
+    return out;
+  }
 };
-
-std::size_t countDistinct(const double* xyz, const std::vector<std::uint32_t>& ids)
-{
-  std::vector<std::array<double, 3>> pts;
-  pts.reserve(ids.size());
-  for (std::uint32_t id : ids)
-    pts.push_back({xyz[3 * std::size_t(id)], xyz[3 * std::size_t(id) + 1], xyz[3 * std::size_t(id) + 2]});
-  std::sort(pts.begin(), pts.end());
-  return static_cast<std::size_t>(std::unique(pts.begin(), pts.end()) - pts.begin());
-}
 
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
 /// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
@@ -124,22 +110,23 @@ void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, boo
   Triangulation& out)
 {
   const std::size_t slots = mesh.slots();
+  constexpr std::uint32_t kDropped = 0xFFFFFFFFu; // dead or ghost: not in the output
   std::vector<std::uint32_t> newId;
   if (withNeighbors)
   {
-    newId.assign(slots, kNoNeighbor);
+    newId.assign(slots, kDropped);
     std::uint32_t kept = 0;
     for (TetId t = 0; t < slots; ++t)
       if (!mesh.isDead(t) && !mesh.isGhost(t))
         newId[t] = kept++;
     out.neighbors.resize(4 * std::size_t(kept));
     for (TetId t = 0; t < slots; ++t)
-      if (const std::uint32_t k = newId[t]; k != kNoNeighbor)
+      if (const std::uint32_t k = newId[t]; k != kDropped)
         for (int f = 0; f < 4; ++f)
         {
           const FaceCode code = mesh.neighbor(t, f);
           const std::uint32_t n = newId[tetOf(code)];
-          out.neighbors[4 * std::size_t(k) + f] = n == kNoNeighbor ? kNoNeighbor : faceCode(n, faceOf(code));
+          out.neighbors[4 * std::size_t(k) + f] = n == kDropped ? kNoNeighbor : faceCode(n, faceOf(code));
         }
     std::vector<std::uint32_t>().swap(newId);
   }
@@ -170,13 +157,17 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
 
   std::vector<std::uint32_t> ids;
   ids.reserve(count);
+  Box box;
   for (std::size_t i = 0; i < count; ++i)
   {
-    if (std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]))
-      ids.push_back(static_cast<std::uint32_t>(i));
-    else
-      ++stats.nonFinitePoints;
+    if (!isFinite(xyz + 3 * i))
+      continue;
+    if (ids.empty())
+      box = Box::around(xyz + 3 * i);
+    box.include(xyz + 3 * i);
+    ids.push_back(static_cast<std::uint32_t>(i));
   }
+  stats.nonFinitePoints = count - ids.size();
   if (ids.empty())
   {
     out.status = Status::Empty;
@@ -185,14 +176,13 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   if (ids.size() >= kMaxVertices)
     throw std::length_error("fd3::triangulate: more than 2^30 points");
 
-  const Normalization norm(xyz, ids);
-  std::vector<std::uint32_t> order =
-    insertionOrder(xyz, std::move(ids), options.order, options.randomSeed);
+  const Normalization norm(xyz, ids, box);
+  InsertionPlan plan = planInsertion(xyz, std::move(ids), box, options.order, options.randomSeed);
+  stats.duplicatesMerged = plan.duplicates.size();
+  std::vector<std::uint32_t>& order = plan.order;
   if (!moveFirstTetrahedronToFront(xyz, norm, order))
   {
-    const std::size_t distinct = countDistinct(xyz, order);
-    stats.duplicatesMerged = order.size() - distinct;
-    out.status = distinct < 4 ? Status::TooFewPoints : Status::Degenerate;
+    out.status = order.size() < 4 ? Status::TooFewPoints : Status::Degenerate;
     stats.secondsTotal = secondsSince(start);
     return out;
   }
@@ -208,9 +198,9 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
 
   Options normalizedOptions = options;
   normalizedOptions.tolerance = options.tolerance * norm.scale;
-  Triangulator triangulator(std::move(normalized), normalizedOptions, stats);
+  Triangulator triangulator(std::move(normalized), norm.apply(box), normalizedOptions, stats);
   triangulator.start();
-  std::vector<std::pair<VertId, VertId>> duplicates; // (vertex, the earlier vertex it is merged into)
+  std::vector<std::pair<VertId, VertId>> skipped; // (vertex, the inserted vertex within tolerance)
   constexpr VertId kProgressInterval = 1u << 14;
   for (VertId v = 4; v < order.size(); ++v)
   {
@@ -219,20 +209,24 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
       out.status = Status::Aborted;
       return out;
     }
-    const Triangulator::Outcome outcome = triangulator.insert(v);
-    if (outcome == Triangulator::Outcome::Inserted)
-      continue;
-    duplicates.emplace_back(v, triangulator.duplicateOf());
-    if (outcome == Triangulator::Outcome::Duplicate)
-      ++stats.duplicatesMerged;
-    else
-      ++stats.closePointsSkipped;
+    if (!triangulator.insert(v))
+      skipped.emplace_back(v, triangulator.vertexWithinTolerance());
   }
+  stats.closePointsSkipped = skipped.size();
 #ifndef NDEBUG
-  // Debug builds verify every invariant of the mesh before handing it out.
-  const std::string problems = triangulator.checkMesh();
-  assert(problems.empty() && "fd3: mesh invariants violated");
+  constexpr bool kDebugBuild = true;
+#else
+  constexpr bool kDebugBuild = false;
 #endif
+  if (options.checkMesh || kDebugBuild)
+  {
+    out.checkReport = triangulator.checkMesh();
+    if (!out.checkReport.empty())
+    {
+      out.status = Status::CheckFailed;
+      return out;
+    }
+  }
   const Predicates& predicates = triangulator.predicates();
   stats.exactOrient = predicates.exactOrientCalls;
   stats.exactInSphere = predicates.exactInSphereCalls;
@@ -242,11 +236,13 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   const auto outputStart = Clock::now();
   triangulator.releaseWorkspace();
   extractOutput(triangulator.mesh(), order, options.computeNeighbors, out);
-  out.representative.assign(count, kNoNeighbor);
+  out.representative.assign(count, kNoPoint);
   for (std::uint32_t id : order)
     out.representative[id] = id;
-  for (const auto& [copy, original] : duplicates)
-    out.representative[order[copy]] = order[original];
+  for (const auto& [vertex, near] : skipped)
+    out.representative[order[vertex]] = order[near];
+  for (const auto& [copy, original] : plan.duplicates)
+    out.representative[copy] = out.representative[original];
   stats.tetrahedra = out.numberOfTetrahedra();
   stats.secondsOutput = secondsSince(outputStart);
   stats.secondsTotal = secondsSince(start);
@@ -267,6 +263,8 @@ const char* toString(Status status)
       return "all points are collinear or coplanar";
     case Status::Aborted:
       return "aborted";
+    case Status::CheckFailed:
+      return "the kernel's mesh check failed (a bug; please report it)";
   }
   return "unknown";
 }

@@ -1,14 +1,13 @@
 #include "Triangulator.h"
 
-#include <array>
 #include <chrono>
-#include <sstream>
 #include <utility>
 
 namespace fd3
 {
 
-Triangulator::Triangulator(std::vector<double> xyz, const Options& options, Statistics& stats)
+Triangulator::Triangulator(
+  std::vector<double> xyz, const Box& box, const Options& options, Statistics& stats)
   : xyz_(std::move(xyz))
   , options_(options)
   , stats_(stats)
@@ -16,21 +15,20 @@ Triangulator::Triangulator(std::vector<double> xyz, const Options& options, Stat
 {
   const std::size_t n = xyz_.size() / 3;
   mesh_.reserve(7 * n + 64);
-  vertexTet_.assign(n + 1, 0);
-  grid_.build(xyz_.data(), n, options.pointsPerCell);
-  predicates_.adaptTo(xyz_.data(), n);
+  vertexTet_.assign(n, 0);
+  localNumber_.assign(n + 1, kNoLocal); // the last entry numbers kInfinite
+  grid_.build(n, box, options.pointsPerCell);
+  predicates_.adaptTo(xyz_.data(), n, box);
 }
 
 void Triangulator::releaseWorkspace()
 {
   std::vector<double>().swap(xyz_);
   std::vector<TetId>().swap(vertexTet_);
+  std::vector<std::uint16_t>().swap(localNumber_);
   std::vector<std::uint32_t>().swap(vertexStamp_);
   grid_ = BackgroundGrid();
-  for (auto* scratch : {&cavity_, &rejected_, &created_})
-    std::vector<TetId>().swap(*scratch);
-  std::vector<BoundaryFacet>().swap(boundary_);
-  std::vector<std::pair<FaceCode, std::uint32_t>>().swap(interiorFaces_);
+  cavity_.release();
 }
 
 std::uint32_t Triangulator::nextRandom()
@@ -50,14 +48,14 @@ void Triangulator::start()
     std::swap(v[0], v[1]);
   const TetId t = mesh_.allocate();
   mesh_.create(t, v);
-  // Ghost i sits on the face opposite v[i], listed so that (face, v[i]) is an odd permutation of
-  // t: the face normal then points away from v[i], out of the hull.
-  static constexpr int kOutwardFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  // Ghost i sits on the face opposite v[i], in its outward order: the face normal then points away
+  // from v[i], out of the hull.
   TetId ghost[4];
   for (int i = 0; i < 4; ++i)
   {
     ghost[i] = mesh_.allocate();
-    const VertId face[4] = {v[kOutwardFace[i][0]], v[kOutwardFace[i][1]], v[kOutwardFace[i][2]], kInfinite};
+    const int* f = kFaceVertices[i];
+    const VertId face[4] = {v[f[0]], v[f[1]], v[f[2]], kInfinite};
     mesh_.create(ghost[i], face);
     mesh_.link(faceCode(t, i), faceCode(ghost[i], 3));
   }
@@ -83,7 +81,7 @@ void Triangulator::start()
     if (grid_.enabled())
       grid_.markInserted(point(v[i]), v[i]);
   }
-  lastCreated_ = t;
+  lastInserted_ = 3;
   stats_.insertedPoints = 4;
 }
 
@@ -117,29 +115,19 @@ private:
 };
 } // namespace
 
-Triangulator::Outcome Triangulator::insert(VertId v)
+bool Triangulator::insert(VertId v)
 {
   PhaseClock clock(v % kSampling == 0);
   const TetId base = locate(v);
   clock.lap(stats_.secondsLocate);
-  for (int i = 0; i < 4; ++i)
-  {
-    const VertId u = mesh_.vertex(base, i);
-    if (u != kInfinite && point(u)[0] == point(v)[0] && point(u)[1] == point(v)[1] &&
-      point(u)[2] == point(v)[2])
-    {
-      duplicateOf_ = u;
-      return Outcome::Duplicate;
-    }
-  }
   digCavity(base, v);
   if (options_.tolerance > 0)
   {
-    if (const VertId near = vertexWithin(options_.tolerance * options_.tolerance, v); near != kInfinite)
+    nearVertex_ = vertexWithin(options_.tolerance * options_.tolerance, v);
+    if (nearVertex_ != kNoVertex)
     {
       undoCavity();
-      duplicateOf_ = near;
-      return Outcome::TooClose;
+      return false;
     }
   }
   correctCavity(v);
@@ -148,59 +136,9 @@ Triangulator::Outcome Triangulator::insert(VertId v)
   clock.lap(stats_.secondsFill);
   if (grid_.enabled())
     grid_.markInserted(point(v), v);
+  lastInserted_ = v;
   ++stats_.insertedPoints;
-  return Outcome::Inserted;
-}
-
-std::string Triangulator::checkMesh()
-{
-  std::ostringstream err;
-  for (TetId t = 0; t < mesh_.slots(); ++t)
-  {
-    if (mesh_.isDead(t))
-      continue;
-    VertId tv[4], nv[4];
-    mesh_.vertices(t, tv);
-    if (mesh_.flags(t) != 0)
-      err << "tet " << t << " has stale cavity flags\n";
-    for (int f = 0; f < 4; ++f)
-    {
-      const FaceCode back = mesh_.neighbor(t, f);
-      if (back == kUnlinked || mesh_.isDead(tetOf(back)) || mesh_.across(back) != faceCode(t, f))
-      {
-        err << "tet " << t << " face " << f << ": adjacency not symmetric\n";
-        continue;
-      }
-      // The shared face must carry the same three vertices.
-      mesh_.vertices(tetOf(back), nv);
-      for (int k = 0; k < 4; ++k)
-      {
-        if (k == f)
-          continue;
-        bool found = false;
-        for (int m = 0; m < 4; ++m)
-          found |= (m != faceOf(back) && nv[m] == tv[k]);
-        if (!found)
-          err << "tet " << t << " face " << f << ": neighbour does not share the face\n";
-      }
-    }
-    if (mesh_.isGhost(t))
-      continue;
-    if (predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])) <= 0)
-      err << "tet " << t << " not positively oriented\n";
-    for (int f = 0; f < 4 && options_.volumeThreshold <= 0; ++f)
-    {
-      const FaceCode back = mesh_.neighbor(t, f);
-      const TetId n = tetOf(back);
-      if (mesh_.isGhost(n))
-        continue;
-      const VertId opposite = mesh_.vertex(n, faceOf(back));
-      if (predicates_.inSphere(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]),
-            point(opposite)) > 0)
-        err << "tet " << t << " face " << f << ": not locally Delaunay\n";
-    }
-  }
-  return err.str();
+  return true;
 }
 
 } // namespace fd3

@@ -1,72 +1,60 @@
 // Bowyer-Watson insertion as in the paper "Fast Delaunay triangulation in three dimensions":
-//   insert(p) = locate (grid + onion search, random walk to the base)
-//             -> digCavity (the core, grown from the base through adjacency with insphere)
+//   insert(p) = locate (grid + onion search for a start, a walk to a tetrahedron in conflict)
+//             -> digCavity (the core, grown through adjacency with exact insphere)
 //             -> correctCavity (visibility and volume threshold: the core made star-shaped)
-//             -> fillCavity (new tetrahedra linked by rotating about the core's boundary edges).
+//             -> fillCavity (new tetrahedra linked through the boundary's edges, no search).
 // Each step lives in the source file named after it.
 #ifndef fd3_Triangulator_h
 #define fd3_Triangulator_h
 
 #include "BackgroundGrid.h"
+#include "Cavity.h"
+#include "Geometry.h"
 #include "Predicates.h"
 #include "TetMesh.h"
 #include "fd3/Delaunay.h"
 
 #include <cstdint>
-#include <utility>
+#include <string>
 #include <vector>
 
 namespace fd3
 {
 
-/// A face of the cavity's boundary: face `face` of the deleted tetrahedron `inner`.
-struct BoundaryFacet
-{
-  TetId inner;
-  int face;
-};
-
 class Triangulator
 {
 public:
-  /// `xyz` holds the normalized points by insertion rank (vertex id).
-  Triangulator(std::vector<double> xyz, const Options& options, Statistics& stats);
+  /// `xyz` holds the normalized points by insertion rank (vertex id), all distinct, within `box`.
+  Triangulator(std::vector<double> xyz, const Box& box, const Options& options, Statistics& stats);
 
   /// Builds the first tetrahedron from vertices 0..3, which must be affinely independent.
   void start();
 
-  enum class Outcome
-  {
-    Inserted,
-    Duplicate,  ///< an exact copy of an earlier vertex
-    TooClose    ///< within the tolerance of an earlier vertex
-  };
-  /// Inserts vertex v; every vertex below v must have been handled before.
-  Outcome insert(VertId v);
-
-  /// The earlier vertex that made insert() return Duplicate or TooClose.
-  VertId duplicateOf() const { return duplicateOf_; }
+  /// Inserts vertex v; every vertex below v must have been handled before. Returns false when v
+  /// is within the tolerance of an inserted vertex (vertexWithinTolerance()) and was left out.
+  bool insert(VertId v);
+  VertId vertexWithinTolerance() const { return nearVertex_; }
 
   const Predicates& predicates() const { return predicates_; }
   TetMesh& mesh() { return mesh_; }
-  const TetMesh& mesh() const { return mesh_; }
-  const std::vector<double>& points() const { return xyz_; }
 
-  /// Frees the points, the grid and the scratch buffers: only the mesh is left for the output.
+  /// Frees the points, the grid and the scratch: only the mesh is left for the output.
   void releaseWorkspace();
 
-  /// Exhaustive structural and geometric check of the invariants listed in TetMesh.h and of the
-  /// local Delaunay property (unless a volume threshold was used). Returns an empty string when valid.
-  std::string checkMesh();
+  /// Exhaustive check of the invariants listed in TetMesh.h, of vertexTet_ and, unless a volume
+  /// threshold was used, of the local Delaunay property. Returns an empty string when all hold,
+  /// else one line per violation (the first few of each kind).
+  std::string checkMesh() const;
 
 private:
   const double* point(VertId v) const { return xyz_.data() + 3 * std::size_t(v); }
 
   // Locate.cxx
-  TetId startTet(VertId v);
+  TetId startTet(VertId v) const;
   TetId walk(TetId from, VertId v);
   TetId locate(VertId v);
   // DigCavity.cxx
+  bool isBeyondHullFace(TetId ghost, VertId v);
   bool inConflict(TetId t, VertId v);
   VertId vertexWithin(double distance2, VertId v) const;
   void undoCavity();
@@ -78,7 +66,7 @@ private:
   void giveBack(TetId t);
   void collectBoundary();
   bool dropOrphanGhosts(VertId v);
-  bool releaseEnclosedVertex(VertId v);
+  bool keepEnclosedVertex(VertId v);
   // FillCavity.cxx
   void fillCavity(VertId v);
   bool linkByEdgeTable();
@@ -92,26 +80,16 @@ private:
   Predicates predicates_;
   TetMesh mesh_;
   BackgroundGrid grid_;
-  // A live tetrahedron incident to each inserted vertex; one more entry stands for kInfinite.
+  // A live tetrahedron incident to each inserted vertex.
   std::vector<TetId> vertexTet_;
-  TetId lastCreated_ = 0;
-  VertId duplicateOf_ = 0;
+  // Each boundary vertex's local number while fillCavity links the new tetrahedra (kNoLocal
+  // otherwise): an entry per vertex, so that numbering costs one load and one store.
+  static constexpr std::uint16_t kNoLocal = 0xFFFF;
+  std::vector<std::uint16_t> localNumber_;
+  Cavity cavity_;
+  VertId lastInserted_ = 0;
+  VertId nearVertex_ = kNoVertex;
   std::uint64_t rng_;
-
-  // Per-insertion scratch, reused so that the steady state allocates nothing.
-  std::vector<TetId> cavity_;
-  std::vector<TetId> rejected_;
-  std::vector<BoundaryFacet> boundary_;
-  std::vector<TetId> created_;
-  // linkByEdgeTable's: the boundary's vertices by local number, with a new tetrahedron on each
-  // (while the table is built, vertexTet_ holds kLocalMark | local number for them), the face code
-  // at each directed boundary edge, and each new interior face with the entry of its reversed edge.
-  static constexpr std::uint32_t kMaxLocalVertices = 64;
-  static constexpr TetId kLocalMark = 0x80000000u; // above any tetrahedron id (< 2^30)
-  std::vector<VertId> localVertex_ = std::vector<VertId>(kMaxLocalVertices + 4);
-  std::vector<TetId> localTet_ = std::vector<TetId>(kMaxLocalVertices + 4);
-  std::vector<FaceCode> edgeFace_ = std::vector<FaceCode>(kMaxLocalVertices * kMaxLocalVertices);
-  std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
   std::uint32_t stamp_ = 0;
 };

@@ -15,6 +15,14 @@ namespace
 using fd3test::exactInSphere;
 using fd3test::exactOrient3d;
 
+fd3::Box boxOf(const std::vector<double>& xyz)
+{
+  fd3::Box box = fd3::Box::around(xyz.data());
+  for (std::size_t i = 3; i < xyz.size(); i += 3)
+    box.include(&xyz[i]);
+  return box;
+}
+
 // Squared distance from e to the circumcentre, minus the squared circumradius, in rationals:
 // a definition of "inside" independent of any determinant formula.
 int insideByCircumcentre(const double* a, const double* b, const double* c, const double* d,
@@ -191,7 +199,7 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   const std::size_t sphereFirst = 2000, sphereCount = xyz.size() / 3 - sphereFirst;
   ASSERT_GE(sphereCount, 40u);
   fd3::Predicates predicates;
-  predicates.adaptTo(xyz.data(), xyz.size() / 3);
+  predicates.adaptTo(xyz.data(), xyz.size() / 3, boxOf(xyz));
   std::uniform_int_distribution<std::size_t> point(0, sphereFirst - 1), onSphere(0, sphereCount - 1);
   int orientTies = 0, sphereTies = 0;
   for (int trial = 0; trial < 20000; ++trial)
@@ -225,7 +233,7 @@ TEST(Predicates, AdaptedStaticFilterAgreesWithRationals)
   for (double& x : xyz)
     x = uniform(rng);
   fd3::Predicates predicates;
-  predicates.adaptTo(xyz.data(), xyz.size() / 3);
+  predicates.adaptTo(xyz.data(), xyz.size() / 3, boxOf(xyz));
   for (int trial = 0; trial < 20000; ++trial)
   {
     const double* a = &xyz[3 * (trial % 1000)];
@@ -244,6 +252,55 @@ TEST(Predicates, AdaptedStaticFilterAgreesWithRationals)
       ASSERT_EQ(predicates.inSphere(a, b, c, d, e), exactInSphere(a, b, c, d, e));
   }
   EXPECT_GT(predicates.exactOrientCalls, 0u);
+}
+
+// Near-degenerate inspheres off any grid, as thin tetrahedra on surface samples make them: five
+// points rounded onto one sphere, and four points near one circle (a sliver) with any fifth. The
+// float filters cannot decide them, double-double decides almost all, and every verdict is exact.
+TEST(Predicates, DoubleDoubleStageDecidesNearDegenerateInSpheres)
+{
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  auto onSphere = [&](double radius, const double centre[3], double* out) {
+    double r = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      out[k] = normal(rng);
+      r += out[k] * out[k];
+    }
+    for (int k = 0; k < 3; ++k)
+      out[k] = centre[k] + radius * out[k] / std::sqrt(r);
+  };
+  fd3::Predicates predicates;
+  int decided = 0;
+  for (int trial = 0; trial < 4000; ++trial)
+  {
+    double p[5][3];
+    const double centre[3] = {0.3 * uniform(rng), 0.3 * uniform(rng), 0.3 * uniform(rng)};
+    const double radius = std::ldexp(0.5, -(trial % 20));
+    for (auto& q : p)
+      onSphere(radius, centre, q);
+    if (trial % 2)
+    {
+      // A sliver: the four points of the tetrahedron near one circle of the sphere (z = centre).
+      for (int i = 0; i < 4; ++i)
+        p[i][2] = centre[2] + radius * 1e-9 * uniform(rng);
+    }
+    if (exactOrient3d(p[0], p[1], p[2], p[3]) < 0)
+      std::swap(p[0], p[1]);
+    if (exactOrient3d(p[0], p[1], p[2], p[3]) == 0)
+      continue;
+    const std::size_t before = predicates.doubleDoubleInSphereCalls;
+    ASSERT_EQ(predicates.inSphere(p[0], p[1], p[2], p[3], p[4]),
+      exactInSphere(p[0], p[1], p[2], p[3], p[4]))
+      << "trial " << trial;
+    decided += predicates.doubleDoubleInSphereCalls > before;
+  }
+  EXPECT_GT(decided, 1000) << "the float filters should leave these open";
+  EXPECT_LT(predicates.exactInSphereCalls * 20, predicates.doubleDoubleInSphereCalls)
+    << predicates.exactInSphereCalls << " of " << predicates.doubleDoubleInSphereCalls
+    << " went on to the exact stage";
 }
 
 TEST(Predicates, ExactTiesOnIntegerLattice)

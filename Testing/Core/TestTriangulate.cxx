@@ -42,7 +42,11 @@ TEST(Triangulate, LatticeIsFullOfTies)
   for (int k : {2, 3, 5, 10})
   {
     const auto r = triangulateAndCheck(fd3test::lattice(k));
-    EXPECT_EQ(r.stats.tetrahedra, 0u + 0 * k + r.stats.tetrahedra); // count checked by validity
+    // The 8 corners of every unit cube are cospherical with nothing inside their sphere, so each
+    // cube is triangulated on its own, into 5 or 6 tetrahedra.
+    const std::size_t cubes = std::size_t(k - 1) * (k - 1) * (k - 1);
+    EXPECT_GE(r.stats.tetrahedra, 5 * cubes);
+    EXPECT_LE(r.stats.tetrahedra, 6 * cubes);
     if (k > 2)
       EXPECT_GT(r.stats.symbolicTies, 0u);
   }
@@ -56,6 +60,18 @@ TEST(Triangulate, PointsExactlyOnASphere)
   EXPECT_GT(r.stats.symbolicTies, 0u);
   // The perturbation pulls every tetrahedron to the first vertex: about 2 per point.
   EXPECT_LT(r.stats.tetrahedra, 3u * 2000);
+}
+
+// Every point set of the benchmark (volume, surface, scan, terrain, lattice, exact sphere), exactly
+// Delaunay, with a short walk.
+TEST(Triangulate, EveryBenchmarkPointSet)
+{
+  for (const std::string& kind : fd3test::pointSetNames())
+  {
+    SCOPED_TRACE(kind);
+    const auto r = triangulateAndCheck(fd3test::generate(kind, 10000, 2));
+    EXPECT_LE(r.stats.meanWalk(), 12.0);
+  }
 }
 
 TEST(Triangulate, DuplicatesAreMergedAndCounted)
@@ -180,7 +196,7 @@ TEST(Triangulate, NonFinitePointsAreSkippedAndCounted)
   p[3 * 50 + 2] = INFINITY;
   const auto r = triangulateAndCheck(p);
   EXPECT_EQ(r.stats.nonFinitePoints, 2u);
-  EXPECT_EQ(r.representative[7], fd3::kNoNeighbor);
+  EXPECT_EQ(r.representative[7], fd3::kNoPoint);
 }
 
 // Scaling by a power of two and an exact shift keep every predicate's sign: huge, tiny and

@@ -27,7 +27,8 @@ enum class Status
   Empty,          ///< no finite input point
   TooFewPoints,   ///< fewer than 4 distinct finite points
   Degenerate,     ///< all distinct points collinear or coplanar: no tetrahedron exists
-  Aborted         ///< the progress callback asked to stop
+  Aborted,        ///< the progress callback asked to stop
+  CheckFailed     ///< Options::checkMesh found a broken invariant (a bug): see checkReport
 };
 
 struct Options
@@ -44,14 +45,17 @@ struct Options
   InsertionOrder order = InsertionOrder::Brio;
   std::uint64_t randomSeed = 1;
   /// Points closer than this (in input units) to an already inserted point are skipped and left
-  /// unused, like exact duplicates (vtkDelaunay3D's Tolerance, times the bounding-box diagonal).
-  /// 0 skips exact duplicates only, and every distinct point is a vertex.
+  /// unused (vtkDelaunay3D's Tolerance, times the bounding-box diagonal). 0: every distinct point
+  /// is a vertex (exact duplicates are always merged).
   double tolerance = 0.0;
   /// Also return the neighbour table. Without it the tetrahedra are compacted in place in the
   /// mesh's own memory, which lowers the peak (the VTK filter does not need neighbours).
   bool computeNeighbors = true;
   /// Called now and then with the fraction of points inserted; return false to abort.
   std::function<bool(double)> progress;
+  /// Check every invariant of the mesh and its local Delaunay property once all points are in
+  /// (exact, and as long as the triangulation itself); always on in debug builds.
+  bool checkMesh = false;
 };
 
 /// Figures of one run. Times are wall-clock seconds per phase.
@@ -80,7 +84,8 @@ struct Statistics
   double meanCavity() const { return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0; }
 };
 
-constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu;
+constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu; ///< a hull face in Triangulation::neighbors
+constexpr std::uint32_t kNoPoint = 0xFFFFFFFFu;    ///< a non-finite point's representative
 
 struct Triangulation
 {
@@ -92,11 +97,13 @@ struct Triangulation
   /// and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull.
   /// Empty unless Options::computeNeighbors.
   std::vector<std::uint32_t> neighbors;
-  /// For each input point: the input id of the point it was merged into or skipped for (exact
-  /// duplicate, or closer than the tolerance; itself when inserted),
-  /// or kNoNeighbor for a non-finite point. Empty when the status is not Ok.
+  /// For each input point: the input id of the vertex it was merged into (exact duplicate) or
+  /// skipped for (closer than the tolerance); itself when it is a vertex; kNoPoint when not finite.
+  /// Empty when the status is not Ok.
   std::vector<std::uint32_t> representative;
   Statistics stats;
+  /// With Status::CheckFailed: what Options::checkMesh found, a line per violation.
+  std::string checkReport;
 
   std::size_t numberOfTetrahedra() const { return tetrahedra.size() / 4; }
 };

@@ -1,0 +1,54 @@
+// The scratch of one insertion, in a type of its own: the cavity (the paper's core) and its
+// boundary, the new tetrahedra, and the table that links them. It is reused from one insertion
+// to the next, so that the steady state allocates nothing.
+#ifndef fd3_Cavity_h
+#define fd3_Cavity_h
+
+#include "TetMesh.h"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace fd3
+{
+
+/// A face of the cavity's boundary: face `face` of the deleted tetrahedron `inner`.
+struct BoundaryFacet
+{
+  TetId inner;
+  int face;
+};
+
+struct Cavity
+{
+  std::vector<TetId> tets;     ///< in conflict with the new point: flagged kInCavity, to delete
+  std::vector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
+  std::vector<BoundaryFacet> boundary;
+  std::vector<TetId> created;  ///< created[i] is the new tetrahedron on boundary[i]
+
+  // The edge table of FillCavity.cxx. Boundary vertices get local numbers 0..count-1 (kept in the
+  // triangulator's per-vertex localNumber array during the fill); edgeFace[a * width + b] is the
+  // new face on the directed boundary edge a->b, width being the smallest power of two >= count.
+  // Every entry read was written in the same insertion, so the table is never cleared.
+  static constexpr std::uint32_t kMaxLocalVertices = 512;
+  std::vector<VertId> localVertex;           ///< the vertex of each local number
+  std::vector<TetId> localTet;               ///< a new tetrahedron of each local number
+  std::vector<FaceCode> edgeFace;            ///< grown on demand, up to kMaxLocalVertices^2
+  std::vector<std::uint16_t> localNumbers;   ///< 4 per new tetrahedron
+  std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces; ///< face, entry of its reversed edge
+
+  void clear()
+  {
+    tets.clear();
+    rejected.clear();
+    boundary.clear();
+    created.clear();
+  }
+  /// Gives the memory back (the kernel's output phase needs it more).
+  void release() { *this = Cavity(); }
+};
+
+} // namespace fd3
+
+#endif

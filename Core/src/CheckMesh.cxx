@@ -1,0 +1,142 @@
+// The kernel's built-in check (Options::checkMesh, on in debug builds): every invariant that
+// TetMesh.h states, the per-vertex entry points, and the local Delaunay property, decided with the
+// kernel's own exact predicates. The tests' independent oracle is Testing/Validation; this check
+// looks inside the mesh, where a broken invariant shows before it corrupts an output.
+#include "Triangulator.h"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+namespace fd3
+{
+namespace
+{
+/// Collects violations, keeping the first few of each kind.
+class Report
+{
+public:
+  std::ostream& add(const char* kind)
+  {
+    const int seen = ++count_[kind];
+    if (seen <= kShown)
+      return text_ << kind << ": ";
+    discard_.str("");
+    return discard_;
+  }
+  std::string str() const
+  {
+    std::ostringstream out;
+    out << text_.str();
+    for (const auto& [kind, count] : count_)
+      if (count > kShown)
+        out << kind << ": " << count - kShown << " more\n";
+    return out.str();
+  }
+
+private:
+  static constexpr int kShown = 5;
+  std::ostringstream text_, discard_;
+  std::map<std::string, int> count_;
+};
+} // namespace
+
+std::string Triangulator::checkMesh() const
+{
+  Predicates predicates = predicates_; // a copy: the check leaves the run's counters alone
+  Report report;
+  const std::size_t slots = mesh_.slots();
+  std::vector<char> listedFree(slots, 0);
+  for (TetId t : mesh_.freeSlots())
+  {
+    if (t >= slots || !mesh_.isDead(t))
+      report.add("free list") << "slot " << t << " is listed but live\n";
+    else if (listedFree[t]++)
+      report.add("free list") << "slot " << t << " is listed twice\n";
+  }
+  std::vector<char> isVertex(vertexTet_.size(), 0);
+  for (TetId t = 0; t < slots; ++t)
+  {
+    if (mesh_.isDead(t))
+    {
+      if (!listedFree[t])
+        report.add("free list") << "dead slot " << t << " is not listed\n";
+      continue;
+    }
+    if (mesh_.flags(t) != 0)
+      report.add("flags") << "tet " << t << " keeps cavity flags\n";
+    VertId tv[4];
+    mesh_.vertices(t, tv);
+    for (int k = 0; k < 4; ++k)
+    {
+      if (tv[k] == kInfinite && k != 3)
+        report.add("ghost") << "tet " << t << " has the ghost vertex at " << k << "\n";
+      else if (tv[k] != kInfinite && tv[k] >= vertexTet_.size())
+        report.add("vertex") << "tet " << t << " has vertex " << tv[k] << " out of range\n";
+      else if (tv[k] != kInfinite)
+        isVertex[tv[k]] = 1;
+    }
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceCode back = mesh_.neighbor(t, f);
+      if (back == kUnlinked || tetOf(back) >= slots || mesh_.isDead(tetOf(back)) ||
+        mesh_.across(back) != faceCode(t, f))
+      {
+        report.add("adjacency") << "tet " << t << " face " << f << " is not linked both ways\n";
+        continue;
+      }
+      VertId nv[4];
+      mesh_.vertices(tetOf(back), nv);
+      for (int k = 0; k < 4; ++k)
+      {
+        bool shared = k == f;
+        for (int m = 0; m < 4; ++m)
+          shared |= m != faceOf(back) && nv[m] == tv[k];
+        if (!shared)
+          report.add("adjacency") << "tet " << t << " face " << f << " differs from its neighbour's\n";
+      }
+    }
+    if (mesh_.isGhost(t))
+    {
+      // The hull face points outwards: the finite tetrahedron behind it lies on its negative side.
+      const FaceCode inside = mesh_.neighbor(t, 3);
+      const VertId w = mesh_.vertex(tetOf(inside), faceOf(inside));
+      if (w == kInfinite ||
+        predicates.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(w)) >= 0)
+        report.add("ghost") << "tet " << t << " does not face out of the hull\n";
+      continue;
+    }
+    if (predicates.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])) <= 0)
+      report.add("orientation") << "tet " << t << " is not positively oriented\n";
+    if (options_.volumeThreshold > 0)
+      continue;
+    for (int f = 0; f < 4; ++f)
+    {
+      const FaceCode back = mesh_.neighbor(t, f);
+      const VertId opposite = mesh_.vertex(tetOf(back), faceOf(back));
+      if (opposite != kInfinite &&
+        predicates.inSphere(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]),
+          point(opposite)) > 0)
+        report.add("Delaunay") << "tet " << t << " face " << f << " is not locally Delaunay\n";
+    }
+  }
+  std::size_t vertices = 0;
+  for (VertId u = 0; u < vertexTet_.size(); ++u)
+  {
+    if (!isVertex[u])
+      continue;
+    ++vertices;
+    const TetId t = vertexTet_[u];
+    VertId tv[4];
+    if (t < slots && !mesh_.isDead(t))
+      mesh_.vertices(t, tv);
+    if (t >= slots || mesh_.isDead(t) || std::count(tv, tv + 4, u) != 1)
+      report.add("vertexTet") << "vertex " << u << " points to tet " << t << ", not one of its own\n";
+  }
+  if (vertices != stats_.insertedPoints)
+    report.add("vertices") << vertices << " vertices in the mesh, " << stats_.insertedPoints
+                           << " inserted\n";
+  return report.str();
+}
+
+} // namespace fd3
