@@ -9,7 +9,8 @@
 #                       and the paper's Table 1 into output/table1.md
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run), then the same
 #                       suite built with AddressSanitizer + UndefinedBehaviorSanitizer (Debug:
-#                       the kernel's own mesh check on) in build-asan
+#                       the kernel's own mesh check on; the portable fallbacks of the compiler
+#                       intrinsics instead of the intrinsics) in build-asan
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -51,7 +52,7 @@ case "${1:-build}" in
   test)
     (cd build && "${xvfb[@]}" ctest -j2 --output-on-failure)
     cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
-      -DFD3_SANITIZE=ON -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+      -DFD3_SANITIZE=ON -DFD3_PORTABLE=ON -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
     cmake --build build-asan -j2
     (cd build-asan && ASAN_OPTIONS=detect_leaks=1 "${xvfb[@]}" ctest -j2 --output-on-failure) ;;
   *) echo "usage: $0 [build|demo|test|benchmark [sizes]]" >&2; exit 2 ;;

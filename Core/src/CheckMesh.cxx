@@ -54,7 +54,7 @@ std::string Triangulator::checkMesh() const
     else if (listedFree[t]++)
       report.add("free list") << "slot " << t << " is listed twice\n";
   }
-  std::vector<char> isVertex(vertexTet_.size(), 0);
+  std::vector<char> isVertex(vertexCount(), 0);
   for (TetId t = 0; t < slots; ++t)
   {
     if (mesh_.isDead(t))
@@ -71,7 +71,7 @@ std::string Triangulator::checkMesh() const
     {
       if (tv[k] == kInfinite && k != 3)
         report.add("ghost") << "tet " << t << " has the ghost vertex at " << k << "\n";
-      else if (tv[k] != kInfinite && tv[k] >= vertexTet_.size())
+      else if (tv[k] != kInfinite && tv[k] >= vertexCount())
         report.add("vertex") << "tet " << t << " has vertex " << tv[k] << " out of range\n";
       else if (tv[k] != kInfinite)
         isVertex[tv[k]] = 1;
@@ -121,17 +121,19 @@ std::string Triangulator::checkMesh() const
     }
   }
   std::size_t vertices = 0;
-  for (VertId u = 0; u < vertexTet_.size(); ++u)
+  for (VertId u = 0; u < vertexCount(); ++u)
   {
     if (!isVertex[u])
       continue;
     ++vertices;
-    const TetId t = vertexTet_[u];
+    const TetId t = vertices_[u].tet;
     VertId tv[4];
     if (t < slots && !mesh_.isDead(t))
       mesh_.vertices(t, tv);
     if (t >= slots || mesh_.isDead(t) || std::count(tv, tv + 4, u) != 1)
-      report.add("vertexTet") << "vertex " << u << " points to tet " << t << ", not one of its own\n";
+      report.add("vertex tet") << "vertex " << u << " points to tet " << t << ", not one of its own\n";
+    if (vertices_[u].localNumber != Vertex::kNoLocal)
+      report.add("vertex local number") << "vertex " << u << " keeps a local number\n";
   }
   if (vertices != stats_.insertedPoints)
     report.add("vertices") << vertices << " vertices in the mesh, " << stats_.insertedPoints

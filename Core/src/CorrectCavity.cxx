@@ -125,7 +125,7 @@ void Triangulator::correctCavity(VertId v)
   if (options_.volumeThreshold <= 0)
     return;
   if (vertexStamp_.empty())
-    vertexStamp_.assign(xyz_.size() / 3, 0);
+    vertexStamp_.assign(vertexCount(), 0);
   for (bool changed = true; changed;)
   {
     changed = false;

@@ -21,7 +21,7 @@ bool Triangulator::inConflict(TetId t, VertId v)
   VertId tv[4];
   mesh_.vertices(t, tv);
   if (tv[3] != kInfinite)
-    return predicates_.inSphereSoS(xyz_.data(), tv, v) > 0;
+    return inSphereSoS(tv, v) > 0;
   // A ghost's circumsphere is the open half-space beyond its hull face. A point on the face's
   // plane takes the verdict of the finite tetrahedron behind the face, so that the two never
   // disagree and no flat tetrahedron is created.
@@ -29,7 +29,7 @@ bool Triangulator::inConflict(TetId t, VertId v)
   if (side != 0)
     return side > 0;
   mesh_.vertices(tetOf(mesh_.neighbor(t, 3)), tv);
-  return predicates_.inSphereSoS(xyz_.data(), tv, v) > 0;
+  return inSphereSoS(tv, v) > 0;
 }
 
 // The point's nearest inserted neighbour is a Delaunay neighbour of it, so a vertex of the cavity:
@@ -60,11 +60,23 @@ void Triangulator::digCavity(TetId base, VertId v)
   std::vector<TetId>& tets = cavity_.tets;
   mesh_.setFlags(base, kInCavity);
   tets.push_back(base);
+  for (int f = 0; f < 4; ++f)
+    mesh_.prefetch(tetOf(mesh_.neighbor(base, f)));
   for (std::size_t i = 0; i < tets.size(); ++i)
   {
     const TetId t = tets[i];
+    // The neighbours' records were requested when t joined; now their points, all at once.
     for (int f = 0; f < 4; ++f)
-      mesh_.prefetch(tetOf(mesh_.neighbor(t, f)));
+    {
+      const TetId n = tetOf(mesh_.neighbor(t, f));
+      if (mesh_.flags(n) != 0)
+        continue;
+      VertId nv[4];
+      mesh_.vertices(n, nv);
+      for (int k = 0; k < 4; ++k)
+        if (nv[k] != kInfinite)
+          fd3::prefetch(point(nv[k]));
+    }
     for (int f = 0; f < 4; ++f)
     {
       const TetId n = tetOf(mesh_.neighbor(t, f));
@@ -77,6 +89,8 @@ void Triangulator::digCavity(TetId base, VertId v)
         {
           mesh_.setFlags(n, kInCavity);
           tets.push_back(n);
+          for (int g = 0; g < 4; ++g)
+            mesh_.prefetch(tetOf(mesh_.neighbor(n, g)));
           continue;
         }
         mesh_.setFlags(n, kNotInCavity);

@@ -69,7 +69,7 @@ void Triangulator::fillCavity(VertId v)
     mesh_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
     created.push_back(n);
   }
-  // Pass 2: link the new tetrahedra to each other (which also points vertexTet_ at them).
+  // Pass 2: link the new tetrahedra to each other (which also points each vertex at one).
   if (!linkByEdgeTable())
   {
     for (std::size_t i = 0; i < created.size(); ++i)
@@ -78,7 +78,7 @@ void Triangulator::fillCavity(VertId v)
       mesh_.vertices(created[i], nv);
       for (int k = 0; k < 4; ++k)
         if (nv[k] != kInfinite)
-          vertexTet_[nv[k]] = created[i];
+          vertices_[nv[k]].tet = created[i];
       for (int f = 0; f < 4; ++f)
         if (f != cavity_.boundary[i].face && mesh_.neighbor(created[i], f) == kUnlinked)
           linkAroundEdge(i, f);
@@ -93,7 +93,7 @@ void Triangulator::fillCavity(VertId v)
 
 // Every new face is recorded at its directed edge a->b and linked to the face recorded at b->a.
 // Edges are indexed by local numbers of the boundary's vertices, given on first sight through
-// localNumber_ without a branch (a new vertex takes number `count`, which only advances then).
+// localNumber() without a branch (a new vertex takes number `count`, which only advances then).
 // Returns false, changing nothing, when the boundary has more than kMaxLocalVertices vertices.
 bool Triangulator::linkByEdgeTable()
 {
@@ -104,7 +104,6 @@ bool Triangulator::linkByEdgeTable()
   local.resize(4 * created.size());
   vertexOf.resize(Cavity::kMaxLocalVertices + 4);
   firstTet.resize(Cavity::kMaxLocalVertices + 4);
-  const VertId ghostEntry = static_cast<VertId>(localNumber_.size() - 1); // kInfinite's number
   std::uint32_t count = 0;
   bool fits = true;
   for (std::size_t i = 0; i < created.size() && fits; ++i)
@@ -113,11 +112,11 @@ bool Triangulator::linkByEdgeTable()
     mesh_.vertices(created[i], nv);
     for (int k = 0; k < 4; ++k)
     {
-      const VertId u = nv[k] == kInfinite ? ghostEntry : nv[k];
-      const std::uint16_t seen = localNumber_[u];
-      const bool isNew = seen == kNoLocal;
-      const auto number = static_cast<std::uint16_t>(isNew ? count : seen);
-      localNumber_[u] = number;
+      const VertId u = nv[k];
+      std::uint16_t& entry = localNumber(u);
+      const bool isNew = entry == Vertex::kNoLocal;
+      const auto number = static_cast<std::uint16_t>(isNew ? count : entry);
+      entry = number;
       local[4 * i + k] = number;
       vertexOf[count] = u;
       firstTet[count] = created[i];
@@ -143,13 +142,13 @@ bool Triangulator::linkByEdgeTable()
       cavity_.interiorFaces[3 * i + j] = {faceCode(created[i], face.face), b * width + a};
     }
   }
-  // Hand the numbers back; each vertex's entry in vertexTet_ becomes a new tetrahedron of its.
+  // Hand the numbers back; each vertex gets one of its new tetrahedra.
   for (std::uint32_t k = 0; k < count; ++k)
   {
     const VertId u = vertexOf[k];
-    localNumber_[u] = kNoLocal;
-    if (u != ghostEntry)
-      vertexTet_[u] = firstTet[k];
+    localNumber(u) = Vertex::kNoLocal;
+    if (u != kInfinite)
+      vertices_[u].tet = firstTet[k];
   }
   if (!fits)
     return false;

@@ -2,10 +2,11 @@
 // grown. The paper walks to the base, the tetrahedron that contains the point, because an inexact
 // insphere test could make a cavity grown from elsewhere disconnected. Our predicates are exact, so
 // on a Delaunay mesh the conflict zone is connected and contains the base: the walk stops at the
-// first tetrahedron in conflict that it meets. On surface samples, where thin tetrahedra fan out
-// around every vertex, that is most often the start itself (cylinder, 100k points: 5.8 steps
-// instead of 17). A volume threshold leaves the mesh short of Delaunay, so the walk then goes on
-// to the base, which the core correction needs.
+// first tetrahedron that it meets in conflict, as far as the float filter of insphere can tell
+// (near-ties are left to the walk: the base is in conflict anyway). On surface samples, where thin
+// tetrahedra fan out around every vertex, that is most often the start itself (cylinder, 100k
+// points: 5.8 steps instead of 17). A volume threshold leaves the mesh short of Delaunay, so the
+// walk then goes on to the base, which the core correction needs.
 #include "Triangulator.h"
 
 #include "fd3/Measures.h"
@@ -38,7 +39,7 @@ TetId Triangulator::startTet(VertId v) const
       distance2(point(near), point(v)) < distance2(point(start), point(v)))
       start = near;
   }
-  return vertexTet_[start];
+  return vertices_[start].tet;
 }
 
 // The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold,
@@ -66,11 +67,11 @@ TetId Triangulator::walk(TetId t, VertId v)
       entryFace = faceOf(inside);
       continue;
     }
-    if (toFirstConflict && inConflict(t, v))
-      break;
     VertId tv[4];
     mesh_.vertices(t, tv);
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
+    if (toFirstConflict && predicates_.inSphereFiltered(q[0], q[1], q[2], q[3], p) > 0)
+      break;
     int order[4] = {0, 1, 2, 3};
     if (steps < kOrderedSteps)
     {

@@ -35,16 +35,17 @@ constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
 } // namespace
 
-void Predicates::adaptTo(const double* xyz, std::size_t count, const Box& box)
+void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box)
 {
   constexpr int kNoGrid = -4096;
   int lowest = 4096, highest = kNoGrid; // the grid: |x| < 2^highest, x a multiple of 2^lowest
   for (std::size_t i = 0; i < 3 * count && lowest != kNoGrid; ++i)
   {
-    if (xyz[i] == 0.0)
+    const double x = xyz[i / 3 * stride + i % 3];
+    if (x == 0.0)
       continue;
     int exponent;
-    const double mantissa = std::frexp(xyz[i], &exponent);
+    const double mantissa = std::frexp(x, &exponent);
     // The lowest set bit of the 53-bit significand gives the finest grid this value needs.
     const auto significand = static_cast<std::uint64_t>(std::ldexp(std::fabs(mantissa), 53));
     lowest = std::min(lowest, exponent - 53 + countTrailingZeros(significand));
@@ -83,9 +84,10 @@ void Predicates::adaptTo(const double* xyz, std::size_t count, const Box& box)
     inSphereStatic_ = 0;
 }
 
-// On the grid, coordinates are integers below 2^21 in magnitude, so differences are exact doubles
-// and integers below 2^22: 3x3 minors stay below 2^69, lifts below 2^46, the insphere determinant
-// below 2^118, and orient3d below 2^69 -- all exact in 128-bit integers.
+// On the grid, coordinates are integers below 2^23 in magnitude, so differences are exact doubles
+// and integers below 2^24: 2x2 minors stay below 2^49, 3x3 minors (orient3d) below 3 * 2^73, lifts
+// below 3 * 2^48, and the insphere determinant, four products of a lift and a 3x3 minor, below
+// 36 * 2^123 < 2^127 -- all exact in 128-bit integers.
 template <int N>
 void Predicates::gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const
 {
@@ -144,10 +146,13 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
 }
 
 // The insphere determinant over exact differences (each a double-double), in double-double
-// arithmetic, decided when it clears its error bound; else the exact stage.
+// arithmetic, decided when it clears its error bound; else the exact stage. Points on an integer
+// grid go straight to the exact stage, which is as cheap there and also settles exact ties.
 int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
+  if (inverseGridUnit_ > 0)
+    return inSphereExact(a, b, c, d, e);
   ++doubleDoubleInSphereCalls;
   const double* rows[4] = {a, b, c, d};
   DoubleDouble x[4][3];
@@ -250,14 +255,10 @@ bool Predicates::collinear(const double* a, const double* b, const double* c)
   return true;
 }
 
-int Predicates::inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::uint32_t e)
+// A tie of inSphere between the positive tetrahedron `tet` (points p) and point e (at pe), broken.
+int Predicates::symbolicInSphere(
+  const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e)
 {
-  const double* p[4] = {xyz + 3 * std::size_t(tet[0]), xyz + 3 * std::size_t(tet[1]),
-    xyz + 3 * std::size_t(tet[2]), xyz + 3 * std::size_t(tet[3])};
-  const double* pe = xyz + 3 * std::size_t(e);
-  const int s = inSphere(p[0], p[1], p[2], p[3], pe);
-  if (s != 0)
-    return s;
   ++symbolicTies;
   // Lowering the lift of point v by delta_v changes (plane - lift)(e) by
   //   delta_e - sum_{v in tet} delta_v * lambda_v(e),

@@ -46,17 +46,23 @@ class Predicates
 public:
   int orient3d(const double* a, const double* b, const double* c, const double* d);
   int inSphere(const double* a, const double* b, const double* c, const double* d, const double* e);
+  /// inSphere's float stage alone: its sign when the float filters prove it, else 0 (undecided).
+  int inSphereFiltered(
+    const double* a, const double* b, const double* c, const double* d, const double* e) const;
   /// Exactly: is c on the line through a and b (or a == b)?
   bool collinear(const double* a, const double* b, const double* c);
 
   /// inSphere with ties broken by symbolic perturbation: the lifted coordinate |p|^2 of every point
   /// is lowered by an infinitesimal that is larger for a smaller vertex id. Never returns 0 for a
-  /// non-degenerate tetrahedron. `xyz` holds the points by vertex id; `tet` is positively oriented.
+  /// non-degenerate tetrahedron. p[i] are the points of the vertices `tet` (positively oriented),
+  /// pe that of vertex e.
   /// Smaller ids (inserted earlier) dominate, which on cospherical input pulls every tetrahedron
   /// towards the first vertex: a fan of about 2 tetrahedra per point instead of a dense tangle.
-  int inSphereSoS(const double* xyz, const std::uint32_t tet[4], std::uint32_t e);
+  int inSphereSoS(
+    const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e);
 
-  /// Tunes the predicates to a point set within `box`; every point passed from then on must
+  /// Tunes the predicates to a point set within `box` (point i at xyz + i * stride); every point
+  /// passed from then on must
   /// belong to it. From the set's extent come static error bounds, checked before the semi-static
   /// ones (one comparison decides almost every call on well-spread points). When every coordinate
   /// is an integer multiple of one power of two u, below 2^kIntegerGridBits u in magnitude
@@ -64,8 +70,8 @@ public:
   /// expansions (where the compiler has them), and below 2^kFloatExactOrientBits u (orient3d) or
   /// 2^kFloatExactInSphereBits u (insphere) the float evaluation itself is exact, so even a tie
   /// costs no more than the float evaluation.
-  void adaptTo(const double* xyz, std::size_t count, const Box& box);
-  static constexpr int kIntegerGridBits = 21;
+  void adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box);
+  static constexpr int kIntegerGridBits = 23;
   static constexpr int kFloatExactOrientBits = 15;
   static constexpr int kFloatExactInSphereBits = 8;
 
@@ -83,6 +89,7 @@ private:
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereDoubleDouble(const double* a, const double* b, const double* c, const double* d, const double* e);
+  int symbolicInSphere(const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
   void checkUnderflow(const double* const rows[], int count, const double* origin);
@@ -122,8 +129,8 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
   return orient3dExact(a, b, c, d);
 }
 
-inline int Predicates::inSphere(
-  const double* a, const double* b, const double* c, const double* d, const double* e)
+inline int Predicates::inSphereFiltered(
+  const double* a, const double* b, const double* c, const double* d, const double* e) const
 {
   const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
   const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
@@ -146,7 +153,7 @@ inline int Predicates::inSphere(
   if (det > inSphereStatic_ || -det > inSphereStatic_)
     return -filter::signOf(det);
   if (floatExactInSphere_)
-    return 0;
+    return -filter::signOf(det);
 
   // Semi-static filter: each lift is at most 3 m^2 (m the largest difference) and each 3x3
   // permanent at most 6 mx my mz, so the permanent is at most 72 m^2 mx my mz and Shewchuk's bound
@@ -159,7 +166,23 @@ inline int Predicates::inSphere(
   const double bound = filter::kInSphereSemiStatic * scale;
   if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
     return -filter::signOf(det);
+  return 0;
+}
+
+inline int Predicates::inSphere(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  const int filtered = inSphereFiltered(a, b, c, d, e);
+  if (filtered != 0 || floatExactInSphere_)
+    return filtered;
   return inSphereDoubleDouble(a, b, c, d, e);
+}
+
+inline int Predicates::inSphereSoS(
+  const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e)
+{
+  const int s = inSphere(p[0], p[1], p[2], p[3], pe);
+  return s != 0 ? s : symbolicInSphere(p, tet, pe, e);
 }
 
 } // namespace fd3

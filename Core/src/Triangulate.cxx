@@ -186,9 +186,9 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     stats.secondsTotal = secondsSince(start);
     return out;
   }
-  std::vector<double> normalized(3 * order.size());
+  std::vector<Vertex> vertices(order.size() + 1, Vertex{{0, 0, 0}, 0, Vertex::kNoLocal});
   for (std::size_t i = 0; i < order.size(); ++i)
-    norm.apply(xyz + 3 * std::size_t(order[i]), normalized.data() + 3 * i);
+    norm.apply(xyz + 3 * std::size_t(order[i]), vertices[i].xyz);
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
   // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its
@@ -198,7 +198,7 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
 
   Options normalizedOptions = options;
   normalizedOptions.tolerance = options.tolerance * norm.scale;
-  Triangulator triangulator(std::move(normalized), norm.apply(box), normalizedOptions, stats);
+  Triangulator triangulator(std::move(vertices), norm.apply(box), normalizedOptions, stats);
   triangulator.start();
   std::vector<std::pair<VertId, VertId>> skipped; // (vertex, the inserted vertex within tolerance)
   constexpr VertId kProgressInterval = 1u << 14;

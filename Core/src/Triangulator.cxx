@@ -7,25 +7,21 @@ namespace fd3
 {
 
 Triangulator::Triangulator(
-  std::vector<double> xyz, const Box& box, const Options& options, Statistics& stats)
-  : xyz_(std::move(xyz))
+  std::vector<Vertex> vertices, const Box& box, const Options& options, Statistics& stats)
+  : vertices_(std::move(vertices))
   , options_(options)
   , stats_(stats)
   , rng_(options.randomSeed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
 {
-  const std::size_t n = xyz_.size() / 3;
+  const std::size_t n = vertexCount();
   mesh_.reserve(7 * n + 64);
-  vertexTet_.assign(n, 0);
-  localNumber_.assign(n + 1, kNoLocal); // the last entry numbers kInfinite
   grid_.build(n, box, options.pointsPerCell);
-  predicates_.adaptTo(xyz_.data(), n, box);
+  predicates_.adaptTo(vertices_[0].xyz, n, sizeof(Vertex) / sizeof(double), box);
 }
 
 void Triangulator::releaseWorkspace()
 {
-  std::vector<double>().swap(xyz_);
-  std::vector<TetId>().swap(vertexTet_);
-  std::vector<std::uint16_t>().swap(localNumber_);
+  std::vector<Vertex>().swap(vertices_);
   std::vector<std::uint32_t>().swap(vertexStamp_);
   grid_ = BackgroundGrid();
   cavity_.release();
@@ -77,7 +73,7 @@ void Triangulator::start()
     }
   for (int i = 0; i < 4; ++i)
   {
-    vertexTet_[v[i]] = t;
+    vertices_[v[i]].tet = t;
     if (grid_.enabled())
       grid_.markInserted(point(v[i]), v[i]);
   }

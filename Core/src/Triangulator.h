@@ -21,11 +21,26 @@
 namespace fd3
 {
 
+/// One vertex of the kernel, by insertion rank: its normalized coordinates, a live tetrahedron
+/// incident to it, and its local number while a cavity is filled (kNoLocal otherwise). 32 bytes on
+/// a 32-byte boundary: the coordinates that an insphere test loads bring the rest into cache, which
+/// the fill that follows needs (fill phase 4% faster on 400k uniform points than with separate
+/// arrays).
+struct alignas(32) Vertex
+{
+  static constexpr std::uint16_t kNoLocal = 0xFFFF;
+  double xyz[3];
+  TetId tet;
+  std::uint16_t localNumber;
+};
+static_assert(sizeof(Vertex) == 32, "a vertex fills half a cache line");
+
 class Triangulator
 {
 public:
-  /// `xyz` holds the normalized points by insertion rank (vertex id), all distinct, within `box`.
-  Triangulator(std::vector<double> xyz, const Box& box, const Options& options, Statistics& stats);
+  /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
+  /// `box`, and one more entry that stands for kInfinite in local numbering.
+  Triangulator(std::vector<Vertex> vertices, const Box& box, const Options& options, Statistics& stats);
 
   /// Builds the first tetrahedron from vertices 0..3, which must be affinely independent.
   void start();
@@ -41,19 +56,30 @@ public:
   /// Frees the points, the grid and the scratch: only the mesh is left for the output.
   void releaseWorkspace();
 
-  /// Exhaustive check of the invariants listed in TetMesh.h, of vertexTet_ and, unless a volume
+  /// Exhaustive check of the invariants listed in TetMesh.h, of the vertices' records and, unless a volume
   /// threshold was used, of the local Delaunay property. Returns an empty string when all hold,
   /// else one line per violation (the first few of each kind).
   std::string checkMesh() const;
 
 private:
-  const double* point(VertId v) const { return xyz_.data() + 3 * std::size_t(v); }
+  const double* point(VertId v) const { return vertices_[v].xyz; }
+  std::size_t vertexCount() const { return vertices_.size() - 1; }
+  /// The local-number entry of u, kInfinite's being the last.
+  std::uint16_t& localNumber(VertId u)
+  {
+    return vertices_[u == kInfinite ? vertices_.size() - 1 : u].localNumber;
+  }
 
   // Locate.cxx
   TetId startTet(VertId v) const;
   TetId walk(TetId from, VertId v);
   TetId locate(VertId v);
   // DigCavity.cxx
+  int inSphereSoS(const VertId tet[4], VertId e)
+  {
+    const double* p[4] = {point(tet[0]), point(tet[1]), point(tet[2]), point(tet[3])};
+    return predicates_.inSphereSoS(p, tet, point(e), e);
+  }
   bool isBeyondHullFace(TetId ghost, VertId v);
   bool inConflict(TetId t, VertId v);
   VertId vertexWithin(double distance2, VertId v) const;
@@ -74,18 +100,12 @@ private:
 
   std::uint32_t nextRandom();
 
-  std::vector<double> xyz_;
+  std::vector<Vertex> vertices_;
   Options options_;
   Statistics& stats_;
   Predicates predicates_;
   TetMesh mesh_;
   BackgroundGrid grid_;
-  // A live tetrahedron incident to each inserted vertex.
-  std::vector<TetId> vertexTet_;
-  // Each boundary vertex's local number while fillCavity links the new tetrahedra (kNoLocal
-  // otherwise): an entry per vertex, so that numbering costs one load and one store.
-  static constexpr std::uint16_t kNoLocal = 0xFFFF;
-  std::vector<std::uint16_t> localNumber_;
   Cavity cavity_;
   VertId lastInserted_ = 0;
   VertId nearVertex_ = kNoVertex;

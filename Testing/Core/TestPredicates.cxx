@@ -199,7 +199,7 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   const std::size_t sphereFirst = 2000, sphereCount = xyz.size() / 3 - sphereFirst;
   ASSERT_GE(sphereCount, 40u);
   fd3::Predicates predicates;
-  predicates.adaptTo(xyz.data(), xyz.size() / 3, boxOf(xyz));
+  predicates.adaptTo(xyz.data(), xyz.size() / 3, 3, boxOf(xyz));
   std::uniform_int_distribution<std::size_t> point(0, sphereFirst - 1), onSphere(0, sphereCount - 1);
   int orientTies = 0, sphereTies = 0;
   for (int trial = 0; trial < 20000; ++trial)
@@ -221,7 +221,7 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   EXPECT_GT(sphereTies, 10);
 }
 
-INSTANTIATE_TEST_SUITE_P(GridBits, AdaptedPredicates, ::testing::Values(3, 8, 9, 15, 16, 21, 22, 40));
+INSTANTIATE_TEST_SUITE_P(GridBits, AdaptedPredicates, ::testing::Values(3, 8, 9, 15, 16, 23, 24, 40));
 
 // Off any grid, an adapted set decides well-spread points with its static bounds and the rest
 // with the semi-static filter and expansions; agreement with GMP on nearly degenerate input.
@@ -233,7 +233,7 @@ TEST(Predicates, AdaptedStaticFilterAgreesWithRationals)
   for (double& x : xyz)
     x = uniform(rng);
   fd3::Predicates predicates;
-  predicates.adaptTo(xyz.data(), xyz.size() / 3, boxOf(xyz));
+  predicates.adaptTo(xyz.data(), xyz.size() / 3, 3, boxOf(xyz));
   for (int trial = 0; trial < 20000; ++trial)
   {
     const double* a = &xyz[3 * (trial % 1000)];
@@ -330,7 +330,10 @@ TEST(Predicates, SymbolicPerturbationNeverTiesAndIsAntisymmetricAcrossAFace)
       std::swap(t[0], t[1]);
     for (std::uint32_t e = 0; e < 8; ++e)
       if (e != t[0] && e != t[1] && e != t[2] && e != t[3])
-        EXPECT_NE(predicates.inSphereSoS(xyz, t, e), 0);
+      {
+        const double* p[4] = {xyz + 3 * t[0], xyz + 3 * t[1], xyz + 3 * t[2], xyz + 3 * t[3]};
+        EXPECT_NE(predicates.inSphereSoS(p, t, xyz + 3 * e, e), 0);
+      }
   }
   EXPECT_GT(predicates.symbolicTies, 0u);
 }
