@@ -53,9 +53,6 @@ void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t strid
     if (highest - lowest > kIntegerGridBits)
       lowest = kNoGrid;
   }
-  double largest = 0;
-  for (int a = 0; a < 3; ++a)
-    largest = std::max({largest, std::fabs(box.lo[a]), std::fabs(box.hi[a])});
   const bool onGrid = lowest != kNoGrid && lowest <= highest;
   const int gridBits = onGrid ? highest - lowest : kIntegerGridBits + 1;
 #ifdef FD3_HAVE_INT128
@@ -63,13 +60,17 @@ void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t strid
 #else
   inverseGridUnit_ = 0.0; // no 128-bit integers: the exact stage uses expansions
 #endif
-  // Static bounds: the semi-static ones with every difference at its largest possible value,
-  // 2 * largest (exact: a power-of-two multiple of a double). Tiny extents, where products could
-  // underflow, keep the semi-static filter with its underflow guard.
-  const double d = 2 * largest;
-  const bool staticSafe = d * d * d * d * d > filter::kUnderflowGuard;
-  orientStatic_ = staticSafe ? filter::kOrientSemiStatic * (d * d * d) * 1.01 : HUGE_VAL;
-  inSphereStatic_ = staticSafe ? filter::kInSphereSemiStatic * (d * d * d * d * d) * 1.01 : HUGE_VAL;
+  // Static bounds: the semi-static ones with every difference at its largest possible value, the
+  // set's extent on its axis (the 1% covers the rounding of the extents and of the differences).
+  // Per axis, not the largest extent cubed: flat sets (terrain, slabs) get bounds as tight as
+  // their thickness allows. Tiny extents, where products could underflow, keep the semi-static
+  // filter with its underflow guard.
+  const double ex = box.extent(0), ey = box.extent(1), ez = box.extent(2);
+  const double m = std::max({ex, ey, ez});
+  const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
+  const bool staticSafe = orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
+  orientStatic_ = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
+  inSphereStatic_ = staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
   // On a grid of b bits, differences are integers (in units of u) below 2^(b+1). orient3d's
   // products, minors and sum then stay below 2^(3b+6) <= 2^51, and insphere's 2x2 minors below
   // 2^(2b+3), 3x3 minors below 2^(3b+6), lifts below 2^(2b+4) and determinant below

@@ -123,6 +123,10 @@ public:
       if (slots() >= kMaxTetrahedra)
         throw std::length_error("fd3: more than 2^30 tetrahedra, beyond 32-bit face codes");
       t = static_cast<TetId>(slots());
+      // Past the reserved capacity, grow by a quarter rather than std::vector's doubling: the
+      // copy then peaks at 2.25 times the records, not 3 times.
+      if (records_.size() == records_.capacity())
+        records_.reserve(records_.capacity() + records_.capacity() / 4 + 8);
       records_.resize(records_.size() + 8);
     }
     return t;
@@ -146,6 +150,8 @@ public:
   }
 
   void reserve(std::size_t tets) { records_.reserve(8 * tets); }
+  /// Slots in use: live tetrahedra, ghosts included.
+  std::size_t liveSlots() const { return slots() - freeSlots_.size(); }
   std::size_t capacity() const { return records_.capacity() / 8; }
   const std::vector<TetId>& freeSlots() const { return freeSlots_; }
 

@@ -202,8 +202,11 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   triangulator.start();
   std::vector<std::pair<VertId, VertId>> skipped; // (vertex, the inserted vertex within tolerance)
   constexpr VertId kProgressInterval = 1u << 14;
+  const VertId reserveAt = static_cast<VertId>(std::max<std::size_t>(order.size() / 32, 4096));
   for (VertId v = 4; v < order.size(); ++v)
   {
+    if (v == reserveAt)
+      triangulator.reserveForAll(order.size());
     if (v % kProgressInterval == 0 && options.progress && !options.progress(double(v) / order.size()))
     {
       out.status = Status::Aborted;

@@ -14,7 +14,7 @@ Triangulator::Triangulator(
   , rng_(options.randomSeed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
 {
   const std::size_t n = vertexCount();
-  mesh_.reserve(7 * n + 64);
+  mesh_.reserve(7 * n + 64); // uniform points make 6.7 per vertex; reserveForAll() corrects it
   grid_.build(n, box, options.pointsPerCell);
   predicates_.adaptTo(vertices_[0].xyz, n, sizeof(Vertex) / sizeof(double), box);
 }
@@ -25,6 +25,12 @@ void Triangulator::releaseWorkspace()
   std::vector<std::uint32_t>().swap(vertexStamp_);
   grid_ = BackgroundGrid();
   cavity_.release();
+}
+
+void Triangulator::reserveForAll(std::size_t count)
+{
+  const double perVertex = double(mesh_.liveSlots()) / double(stats_.insertedPoints);
+  mesh_.reserve(static_cast<std::size_t>(1.15 * perVertex * double(count)) + 64);
 }
 
 std::uint32_t Triangulator::nextRandom()

@@ -45,6 +45,11 @@ public:
   /// Builds the first tetrahedron from vertices 0..3, which must be affinely independent.
   void start();
 
+  /// Reserves the mesh for all `count` vertices, from the tetrahedra per vertex so far. Called once
+  /// a BRIO round or two are in: they are random samples of the whole set, so the ratio is close to
+  /// the final one (it grows slowly on surface samples, hence the margin).
+  void reserveForAll(std::size_t count);
+
   /// Inserts vertex v; every vertex below v must have been handled before. Returns false when v
   /// is within the tolerance of an inserted vertex (vertexWithinTolerance()) and was left out.
   bool insert(VertId v);
