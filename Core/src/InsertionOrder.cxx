@@ -16,40 +16,40 @@ namespace
 constexpr int kHilbertBits = 10;
 constexpr std::size_t kRunWorthRefining = 8;
 
-// Skilling's transform ("Programming the Hilbert curve", 2004): coordinates -> transposed Hilbert
-// index, whose bits interleaved from the top give the position along the curve.
-std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z, int bits)
+// The 10 low bits of x moved to every third bit (bit b to bit 3b).
+std::uint32_t spreadBits(std::uint32_t x)
+{
+  x = (x | (x << 16)) & 0x030000FFu;
+  x = (x | (x << 8)) & 0x0300F00Fu;
+  x = (x | (x << 4)) & 0x030C30C3u;
+  x = (x | (x << 2)) & 0x09249249u;
+  return x;
+}
+
+// Skilling's transform ("Programming the Hilbert curve", 2004): coordinates of kHilbertBits bits
+// -> transposed Hilbert index, whose bits interleaved from the top give the position along the
+// curve. Written without branches on the data (its bits are coin tosses to the predictor).
+std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
 {
   std::uint32_t X[3] = {x, y, z};
-  const std::uint32_t top = 1u << (bits - 1);
-  for (std::uint32_t q = top; q > 1; q >>= 1)
+  for (std::uint32_t q = 1u << (kHilbertBits - 1); q > 1; q >>= 1)
   {
     const std::uint32_t p = q - 1;
     for (int i = 0; i < 3; ++i)
     {
-      if (X[i] & q)
-        X[0] ^= p;
-      else
-      {
-        const std::uint32_t t = (X[0] ^ X[i]) & p;
-        X[0] ^= t;
-        X[i] ^= t;
-      }
+      // X[i] has bit q: invert the low bits of X[0]; else exchange them between X[0] and X[i].
+      const std::uint32_t has = 0u - ((X[i] & q) != 0);
+      const std::uint32_t t = (X[0] ^ X[i]) & p & ~has;
+      X[0] ^= t | (p & has);
+      X[i] ^= t;
     }
   }
   X[1] ^= X[0];
   X[2] ^= X[1];
   std::uint32_t t = 0;
-  for (std::uint32_t q = top; q > 1; q >>= 1)
-    if (X[2] & q)
-      t ^= q - 1;
-  for (auto& c : X)
-    c ^= t;
-  std::uint64_t key = 0;
-  for (int b = bits - 1; b >= 0; --b)
-    for (int i = 0; i < 3; ++i)
-      key = (key << 1) | ((X[i] >> b) & 1u);
-  return key;
+  for (std::uint32_t q = 1u << (kHilbertBits - 1); q > 1; q >>= 1)
+    t ^= (q - 1) & (0u - ((X[2] & q) != 0));
+  return (spreadBits(X[0] ^ t) << 2) | (spreadBits(X[1] ^ t) << 1) | spreadBits(X[2] ^ t);
 }
 
 // Least-significant-digit radix sort of `values` by `keys` (stable), over the low `bits` bits:
@@ -86,15 +86,46 @@ bool lexicographicallyLess(const double* xyz, std::uint32_t a, std::uint32_t b)
   return std::lexicographical_compare(p, p + 3, q, q + 3);
 }
 
+bool samePoint(const double* xyz, std::uint32_t a, std::uint32_t b)
+{
+  const double* p = xyz + 3 * std::size_t(a);
+  const double* q = xyz + 3 * std::size_t(b);
+  return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+}
+
+/// Points in a run of equal curve keys, ordered by coordinates: equal ones side by side, in input
+/// order. Marks every copy after the first as a duplicate of it (ids[i] |= kDuplicate), which only
+/// such runs can hold.
+constexpr std::uint32_t kDuplicate = 0x80000000u; // above any id (< 2^30)
+void sortRunAndMarkDuplicates(const double* xyz, std::uint32_t* ids, std::size_t count)
+{
+  std::stable_sort(ids, ids + count,
+    [xyz](std::uint32_t a, std::uint32_t b) { return lexicographicallyLess(xyz, a, b); });
+  for (std::size_t i = 1, first = 0; i < count; ++i)
+  {
+    if (samePoint(xyz, ids[first], ids[i]))
+      ids[i] |= kDuplicate;
+    else
+      first = i;
+  }
+}
+
 // Sorts ids along a Hilbert curve over `box`, kHilbertBits per axis, then every run of points
 // that fell into one curve cell: inside the run's own box when it is long enough (the resolution
 // adapts to the points, so tight clusters, even of spread 1e-12, are ordered as well as the rest),
-// else by coordinates. Every sort is stable, so equal points end up side by side, in input order.
+// else by coordinates. Every sort is stable, so equal points end up side by side, in input order;
+// all but the first of them are marked kDuplicate.
 void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box)
 {
   const double span = box.largestExtent();
-  if (count < 2 || !(span > 0))
-    return; // one point, or copies of one point
+  if (count < 2)
+    return;
+  if (!(span > 0)) // copies of one point
+  {
+    for (std::size_t i = 1; i < count; ++i)
+      ids[i] |= kDuplicate;
+    return;
+  }
   const double toGrid = ((1u << kHilbertBits) - 1) / span;
   std::vector<std::uint64_t> keys(count);
   std::vector<std::uint32_t> values(ids, ids + count);
@@ -104,7 +135,7 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
     std::uint32_t q[3];
     for (int a = 0; a < 3; ++a)
       q[a] = static_cast<std::uint32_t>((p[a] - box.lo[a]) * toGrid);
-    keys[i] = hilbertIndex(q[0], q[1], q[2], kHilbertBits);
+    keys[i] = hilbertIndex(q[0], q[1], q[2]);
   }
   radixSort(keys, values, 3 * kHilbertBits);
   std::copy(values.begin(), values.end(), ids);
@@ -116,31 +147,24 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
     // The extreme points of the widest axis never share a cell, so a run is shorter than count.
     if (end - begin >= kRunWorthRefining)
       hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin));
-    else
-      std::stable_sort(ids + begin, ids + end,
-        [xyz](std::uint32_t a, std::uint32_t b) { return lexicographicallyLess(xyz, a, b); });
+    else if (end - begin > 1)
+      sortRunAndMarkDuplicates(xyz, ids + begin, end - begin);
     begin = end;
   }
 }
 
-bool samePoint(const double* xyz, std::uint32_t a, std::uint32_t b)
-{
-  const double* p = xyz + 3 * std::size_t(a);
-  const double* q = xyz + 3 * std::size_t(b);
-  return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
-}
-
-/// Keeps the first of every run of equal points in `sorted` and lists the others as duplicates.
-void mergeDuplicates(const double* xyz, std::vector<std::uint32_t>& sorted,
+/// Keeps the first of every run of equal points in `sorted` (the unmarked one) and lists the
+/// others, marked by hilbertSort, as its duplicates.
+void mergeDuplicates(std::vector<std::uint32_t>& sorted,
   std::vector<std::pair<std::uint32_t, std::uint32_t>>& duplicates)
 {
   std::size_t kept = 0;
-  for (std::size_t i = 0; i < sorted.size(); ++i)
+  for (const std::uint32_t id : sorted)
   {
-    if (kept > 0 && samePoint(xyz, sorted[kept - 1], sorted[i]))
-      duplicates.emplace_back(sorted[i], sorted[kept - 1]);
+    if (id & kDuplicate)
+      duplicates.emplace_back(id & ~kDuplicate, sorted[kept - 1]);
     else
-      sorted[kept++] = sorted[i];
+      sorted[kept++] = id;
   }
   sorted.resize(kept);
 }
@@ -172,7 +196,7 @@ InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, c
 {
   InsertionPlan plan;
   hilbertSort(xyz, ids.data(), ids.size(), box);
-  mergeDuplicates(xyz, ids, plan.duplicates);
+  mergeDuplicates(ids, plan.duplicates);
   std::mt19937_64 rng(seed);
   switch (order)
   {

@@ -186,9 +186,18 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     stats.secondsTotal = secondsSince(start);
     return out;
   }
-  std::vector<Vertex> vertices(order.size() + 1, Vertex{{0, 0, 0}, 0, Vertex::kNoLocal});
+  // The input read in insertion order, which jumps around it: the point a few places ahead is
+  // requested early.
+  constexpr std::size_t kAhead = 16;
+  std::vector<Vertex> vertices(order.size() + 1);
   for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    if (i + kAhead < order.size())
+      prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
     norm.apply(xyz + 3 * std::size_t(order[i]), vertices[i].xyz);
+    vertices[i].localNumber = Vertex::kNoLocal;
+  }
+  vertices.back().localNumber = Vertex::kNoLocal;
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
   // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its

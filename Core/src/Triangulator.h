@@ -29,6 +29,7 @@ namespace fd3
 struct alignas(32) Vertex
 {
   static constexpr std::uint16_t kNoLocal = 0xFFFF;
+  Vertex() {} // uninitialized: the kernel writes millions of them right after allocating them
   double xyz[3];
   TetId tet;
   std::uint16_t localNumber;
