@@ -8,7 +8,8 @@ namespace fd3
 
 void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCell)
 {
-  cells_.clear();
+  cells_.reset();
+  cellCount_ = 0;
   if (pointsPerCell <= 0 || count == 0)
     return;
   // Cells as close to cubes as the box allows, about count / pointsPerCell of them; flat axes get one.
@@ -31,7 +32,10 @@ void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCe
     origin_[a] = box.lo[a];
     inverseSize_[a] = extent[a] > 0 ? dims_[a] / extent[a] : 0.0;
   }
-  cells_.assign(std::size_t(dims_[0]) * dims_[1] * dims_[2], kEmpty);
+  cellCount_ = std::size_t(dims_[0]) * dims_[1] * dims_[2];
+  cells_.reset(new std::atomic<std::uint32_t>[cellCount_]);
+  for (std::size_t i = 0; i < cellCount_; ++i)
+    cells_[i].store(kEmpty, std::memory_order_relaxed);
 }
 
 void BackgroundGrid::cellCoordinates(const double* p, int ijk[3]) const
@@ -49,10 +53,10 @@ std::uint32_t BackgroundGrid::scanRow(int i0, int i1, int j, int k) const
     return kEmpty;
   i0 = std::max(i0, 0);
   i1 = std::min(i1, dims_[0] - 1);
-  const std::uint32_t* row = cells_.data() + index(0, j, k);
+  const std::size_t row = index(0, j, k);
   for (int i = i0; i <= i1; ++i)
-    if (row[i] != kEmpty)
-      return row[i];
+    if (const std::uint32_t v = cell(row + i); v != kEmpty)
+      return v;
   return kEmpty;
 }
 
@@ -82,7 +86,7 @@ std::uint32_t BackgroundGrid::nearestInserted(const double* p, int maxLayers) co
 {
   int c[3];
   cellCoordinates(p, c);
-  if (const std::uint32_t v = cells_[index(c[0], c[1], c[2])]; v != kEmpty)
+  if (const std::uint32_t v = cell(index(c[0], c[1], c[2])); v != kEmpty)
     return v;
   const int widest = std::max({dims_[0], dims_[1], dims_[2]});
   for (int n = 1; n <= maxLayers && n < widest; ++n)

@@ -1,13 +1,15 @@
 // The paper's background grid: regular cells over the bounding box of the points, each remembering
 // the last vertex inserted in it. The walk for a new point starts from a vertex found by searching
-// the cells layer by layer outwards from the point's own cell (the "onion").
+// the cells layer by layer outwards from the point's own cell (the "onion"). Inserting threads
+// read and write cells concurrently: a cell is a relaxed atomic, and what it holds is only a hint.
 #ifndef fd3_BackgroundGrid_h
 #define fd3_BackgroundGrid_h
 
 #include "Geometry.h"
 
+#include <atomic>
 #include <cstdint>
-#include <vector>
+#include <memory>
 
 namespace fd3
 {
@@ -20,9 +22,12 @@ public:
   /// Sizes the grid over `box` for about `pointsPerCell` of the `count` points per cell; 0
   /// disables it.
   void build(std::size_t count, const Box& box, double pointsPerCell);
-  bool enabled() const { return !cells_.empty(); }
+  bool enabled() const { return cellCount_ > 0; }
 
-  void markInserted(const double* p, std::uint32_t vertex) { cells_[cellIndex(p)] = vertex; }
+  void markInserted(const double* p, std::uint32_t vertex)
+  {
+    cells_[cellIndex(p)].store(vertex, std::memory_order_relaxed);
+  }
 
   /// The vertex remembered by the first non-empty cell met when searching layer by layer outwards
   /// from p's cell, or kEmpty when the first `maxLayers` layers are all empty.
@@ -42,8 +47,10 @@ private:
   }
   std::uint32_t scanRow(int i0, int i1, int j, int k) const;
   std::uint32_t scanLayer(const int c[3], int n) const;
+  std::uint32_t cell(std::size_t i) const { return cells_[i].load(std::memory_order_relaxed); }
 
-  std::vector<std::uint32_t> cells_;
+  std::unique_ptr<std::atomic<std::uint32_t>[]> cells_;
+  std::size_t cellCount_ = 0;
   double origin_[3] = {0, 0, 0};
   double inverseSize_[3] = {0, 0, 0};
   int dims_[3] = {0, 0, 0};

@@ -43,30 +43,32 @@ private:
 
 std::string Triangulator::checkMesh() const
 {
-  Predicates predicates = predicates_; // a copy: the check leaves the run's counters alone
+  Predicates predicates = inserters_[0]->predicates(); // a copy: it leaves the counters alone
+  const TetMesh& tets = mesh_.tets;
   Report report;
-  const std::size_t slots = mesh_.slots();
+  const std::size_t slots = tets.slots();
   std::vector<char> listedFree(slots, 0);
-  for (TetId t : mesh_.freeSlots())
-  {
-    if (t >= slots || !mesh_.isDead(t))
-      report.add("free list") << "slot " << t << " is listed but live\n";
-    else if (listedFree[t]++)
-      report.add("free list") << "slot " << t << " is listed twice\n";
-  }
+  for (const auto& pool : pools_)
+    for (TetId t : pool->freeSlots())
+    {
+      if (t >= slots || !tets.isDead(t))
+        report.add("free list") << "slot " << t << " is listed but live\n";
+      else if (listedFree[t]++)
+        report.add("free list") << "slot " << t << " is listed twice\n";
+    }
   std::vector<char> isVertex(vertexCount(), 0);
   for (TetId t = 0; t < slots; ++t)
   {
-    if (mesh_.isDead(t))
+    if (tets.isDead(t))
     {
       if (!listedFree[t])
         report.add("free list") << "dead slot " << t << " is not listed\n";
       continue;
     }
-    if (mesh_.flags(t) != 0)
+    if (tets.flags(t) != 0)
       report.add("flags") << "tet " << t << " keeps cavity flags\n";
     VertId tv[4];
-    mesh_.vertices(t, tv);
+    tets.vertices(t, tv);
     for (int k = 0; k < 4; ++k)
     {
       if (tv[k] == kInfinite && k != 3)
@@ -78,15 +80,15 @@ std::string Triangulator::checkMesh() const
     }
     for (int f = 0; f < 4; ++f)
     {
-      const FaceCode back = mesh_.neighbor(t, f);
-      if (back == kUnlinked || tetOf(back) >= slots || mesh_.isDead(tetOf(back)) ||
-        mesh_.across(back) != faceCode(t, f))
+      const FaceCode back = tets.neighbor(t, f);
+      if (back == kUnlinked || tetOf(back) >= slots || tets.isDead(tetOf(back)) ||
+        tets.across(back) != faceCode(t, f))
       {
         report.add("adjacency") << "tet " << t << " face " << f << " is not linked both ways\n";
         continue;
       }
       VertId nv[4];
-      mesh_.vertices(tetOf(back), nv);
+      tets.vertices(tetOf(back), nv);
       for (int k = 0; k < 4; ++k)
       {
         bool shared = k == f;
@@ -96,11 +98,11 @@ std::string Triangulator::checkMesh() const
           report.add("adjacency") << "tet " << t << " face " << f << " differs from its neighbour's\n";
       }
     }
-    if (mesh_.isGhost(t))
+    if (tets.isGhost(t))
     {
       // The hull face points outwards: the finite tetrahedron behind it lies on its negative side.
-      const FaceCode inside = mesh_.neighbor(t, 3);
-      const VertId w = mesh_.vertex(tetOf(inside), faceOf(inside));
+      const FaceCode inside = tets.neighbor(t, 3);
+      const VertId w = tets.vertex(tetOf(inside), faceOf(inside));
       if (w == kInfinite ||
         predicates.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(w)) >= 0)
         report.add("ghost") << "tet " << t << " does not face out of the hull\n";
@@ -108,12 +110,12 @@ std::string Triangulator::checkMesh() const
     }
     if (predicates.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])) <= 0)
       report.add("orientation") << "tet " << t << " is not positively oriented\n";
-    if (options_.volumeThreshold > 0)
+    if (mesh_.options.volumeThreshold > 0)
       continue;
     for (int f = 0; f < 4; ++f)
     {
-      const FaceCode back = mesh_.neighbor(t, f);
-      const VertId opposite = mesh_.vertex(tetOf(back), faceOf(back));
+      const FaceCode back = tets.neighbor(t, f);
+      const VertId opposite = tets.vertex(tetOf(back), faceOf(back));
       if (opposite != kInfinite &&
         predicates.inSphere(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]),
           point(opposite)) > 0)
@@ -126,17 +128,17 @@ std::string Triangulator::checkMesh() const
     if (!isVertex[u])
       continue;
     ++vertices;
-    const TetId t = vertices_[u].tet;
+    const TetId t = mesh_.vertices[u].tet;
     VertId tv[4];
-    if (t < slots && !mesh_.isDead(t))
-      mesh_.vertices(t, tv);
-    if (t >= slots || mesh_.isDead(t) || std::count(tv, tv + 4, u) != 1)
+    if (t < slots && !tets.isDead(t))
+      tets.vertices(t, tv);
+    if (t >= slots || tets.isDead(t) || std::count(tv, tv + 4, u) != 1)
       report.add("vertex tet") << "vertex " << u << " points to tet " << t << ", not one of its own\n";
-    if (vertices_[u].localNumber != Vertex::kNoLocal)
+    if (mesh_.vertices[u].localNumber != Vertex::kNoLocal)
       report.add("vertex local number") << "vertex " << u << " keeps a local number\n";
   }
-  if (vertices != stats_.insertedPoints)
-    report.add("vertices") << vertices << " vertices in the mesh, " << stats_.insertedPoints
+  if (vertices != statistics().insertedPoints)
+    report.add("vertices") << vertices << " vertices in the mesh, " << statistics().insertedPoints
                            << " inserted\n";
   return report.str();
 }

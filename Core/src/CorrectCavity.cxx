@@ -9,7 +9,7 @@
 // zone of exact, symbolically perturbed predicates is star-shaped, and every point is a vertex of
 // the Delaunay triangulation. The correction then has nothing to do and is skipped; checkMesh
 // verifies the outcome in the tests.
-#include "Triangulator.h"
+#include "Inserter.h"
 
 #include "fd3/Measures.h"
 
@@ -21,12 +21,12 @@ namespace fd3
 
 // Tetrahedra whose closure holds the new point can never be given back: the point would be left
 // outside the core. Only finite ones qualify; ghosts are handled by their hull face below.
-bool Triangulator::holdsPoint(TetId t, VertId v)
+bool Inserter::holdsPoint(TetId t, VertId v)
 {
-  if (mesh_.isGhost(t))
+  if (tets_.isGhost(t))
     return false;
   VertId tv[4];
-  mesh_.vertices(t, tv);
+  tets_.vertices(t, tv);
   for (int i = 0; i < 4; ++i)
   {
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
@@ -40,10 +40,10 @@ bool Triangulator::holdsPoint(TetId t, VertId v)
 // Shape of the tetrahedron the facet would make with the new point: its volume relative to the
 // regular tetrahedron on its longest edge (1 for a regular tetrahedron, 0 when flat), or a negative
 // value when the point does not see the facet. Ghost results (hull faces) have no volume: 1.
-double Triangulator::newTetShape(const BoundaryFacet& facet, VertId v)
+double Inserter::newTetShape(const BoundaryFacet& facet, VertId v)
 {
   VertId tv[4];
-  mesh_.vertices(facet.inner, tv);
+  tets_.vertices(facet.inner, tv);
   tv[facet.face] = v;
   if (tv[3] == kInfinite)
     return 1.0;
@@ -58,37 +58,37 @@ double Triangulator::newTetShape(const BoundaryFacet& facet, VertId v)
   return sixVolume(q[0], q[1], q[2], q[3]) * std::sqrt(2.0) / (longest * std::sqrt(longest));
 }
 
-void Triangulator::giveBack(TetId t)
+void Inserter::giveBack(TetId t)
 {
-  mesh_.setFlags(t, kNotInCavity);
+  tets_.setFlags(t, kNotInCavity);
   cavity_.rejected.push_back(t);
 }
 
-void Triangulator::collectBoundary()
+void Inserter::collectBoundary()
 {
   std::vector<TetId>& tets = cavity_.tets;
   tets.erase(std::remove_if(tets.begin(), tets.end(),
-               [&](TetId t) { return mesh_.flags(t) != kInCavity; }),
+               [&](TetId t) { return tets_.flags(t) != kInCavity; }),
     tets.end());
   cavity_.boundary.clear();
   for (TetId t : tets)
     for (int f = 0; f < 4; ++f)
-      if (mesh_.flags(tetOf(mesh_.neighbor(t, f))) != kInCavity)
+      if (tets_.flags(tetOf(tets_.neighbor(t, f))) != kInCavity)
         cavity_.boundary.push_back({t, f});
 }
 
 // A ghost kept only because its hull face is coplanar with the point (the tie rule of
 // inConflict) must leave with the finite tetrahedron behind that face.
-bool Triangulator::dropOrphanGhosts(VertId v)
+bool Inserter::dropOrphanGhosts(VertId v)
 {
   bool changed = false;
   for (TetId t : cavity_.tets)
   {
-    if (mesh_.flags(t) != kInCavity || !mesh_.isGhost(t) ||
-      mesh_.flags(tetOf(mesh_.neighbor(t, 3))) == kInCavity)
+    if (tets_.flags(t) != kInCavity || !tets_.isGhost(t) ||
+      tets_.flags(tetOf(tets_.neighbor(t, 3))) == kInCavity)
       continue;
     VertId tv[4];
-    mesh_.vertices(t, tv);
+    tets_.vertices(t, tv);
     if (predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v)) == 0)
     {
       giveBack(t);
@@ -100,17 +100,17 @@ bool Triangulator::dropOrphanGhosts(VertId v)
 
 // A vertex of the core that lies on none of its boundary facets would disappear: one of its
 // tetrahedra is given back, which keeps the vertex in the mesh.
-bool Triangulator::keepEnclosedVertex(VertId v)
+bool Inserter::keepEnclosedVertex(VertId v)
 {
   ++stamp_;
   for (const BoundaryFacet& b : cavity_.boundary)
     for (int i = 0; i < 4; ++i)
-      if (i != b.face && mesh_.vertex(b.inner, i) != kInfinite)
-        vertexStamp_[mesh_.vertex(b.inner, i)] = stamp_;
+      if (i != b.face && tets_.vertex(b.inner, i) != kInfinite)
+        vertexStamp_[tets_.vertex(b.inner, i)] = stamp_;
   for (TetId t : cavity_.tets)
     for (int i = 0; i < 4; ++i)
     {
-      const VertId u = mesh_.vertex(t, i);
+      const VertId u = tets_.vertex(t, i);
       if (u != kInfinite && vertexStamp_[u] != stamp_ && !holdsPoint(t, v))
       {
         giveBack(t);
@@ -120,20 +120,20 @@ bool Triangulator::keepEnclosedVertex(VertId v)
   return false;
 }
 
-void Triangulator::correctCavity(VertId v)
+void Inserter::correctCavity(VertId v)
 {
-  if (options_.volumeThreshold <= 0)
+  if (mesh_.options.volumeThreshold <= 0)
     return;
   if (vertexStamp_.empty())
-    vertexStamp_.assign(vertexCount(), 0);
+    vertexStamp_.assign(mesh_.vertices.size(), 0);
   for (bool changed = true; changed;)
   {
     changed = false;
     for (const BoundaryFacet& b : cavity_.boundary)
     {
-      if (mesh_.flags(b.inner) != kInCavity || mesh_.isGhost(b.inner))
+      if (tets_.flags(b.inner) != kInCavity || tets_.isGhost(b.inner))
         continue;
-      if (newTetShape(b, v) < options_.volumeThreshold && !holdsPoint(b.inner, v))
+      if (newTetShape(b, v) < mesh_.options.volumeThreshold && !holdsPoint(b.inner, v))
       {
         giveBack(b.inner);
         changed = true;

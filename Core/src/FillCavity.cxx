@@ -7,7 +7,7 @@
 // with the cavity: surface samples make cavities of hundreds of tetrahedra (cylinder, 1M points:
 // 74 deleted per insertion on average), and rotating about their long edges cost more than the
 // rest of the insertion.
-#include "Triangulator.h"
+#include "Inserter.h"
 
 #include <array>
 
@@ -42,19 +42,26 @@ constexpr std::array<std::array<InteriorFace, 3>, 4> interiorFaces()
 constexpr auto kInterior = interiorFaces();
 } // namespace
 
-void Triangulator::fillCavity(VertId v)
+// Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.
+bool Inserter::fillCavity(VertId v)
 {
   std::vector<TetId>& created = cavity_.created;
-  created.clear();
+  created.resize(cavity_.boundary.size());
+  if (!pool_.take(tets_, created.size(), created.data()))
+  {
+    undoCavity();
+    return false;
+  }
   // Pass 1: create the tetrahedra and link them across the cavity's boundary. The new tetrahedron
   // of facet (t, f) is t with vertex f replaced by v, which keeps the orientation positive because
   // v sees the facet from t's side. The deleted t's slot for face f is pointed at the new
   // tetrahedron, which is how the rotation recognizes a boundary facet and finds its tetrahedron.
-  for (const BoundaryFacet& b : cavity_.boundary)
+  for (std::size_t i = 0; i < created.size(); ++i)
   {
-    const TetId n = mesh_.allocate();
+    const BoundaryFacet b = cavity_.boundary[i];
+    const TetId n = created[i];
     VertId tv[4];
-    mesh_.vertices(b.inner, tv);
+    tets_.vertices(b.inner, tv);
     // Vertex b.face replaced by masks, neither by a store into tv (a narrow store then a wide
     // reload of the same bytes, which stalls store forwarding) nor by a branch on b.face (a coin
     // toss to the predictor): GCC turns both plain forms into one or the other.
@@ -64,10 +71,9 @@ void Triangulator::fillCavity(VertId v)
       const VertId replace = 0u - VertId(k == b.face);
       nv[k] = (tv[k] & ~replace) | (v & replace);
     }
-    mesh_.create(n, nv);
-    mesh_.link(faceCode(n, b.face), mesh_.neighbor(b.inner, b.face));
-    mesh_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
-    created.push_back(n);
+    tets_.create(n, nv);
+    tets_.link(faceCode(n, b.face), tets_.neighbor(b.inner, b.face));
+    tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
   }
   // Pass 2: link the new tetrahedra to each other (which also points each vertex at one).
   if (!linkByEdgeTable())
@@ -75,27 +81,29 @@ void Triangulator::fillCavity(VertId v)
     for (std::size_t i = 0; i < created.size(); ++i)
     {
       VertId nv[4];
-      mesh_.vertices(created[i], nv);
+      tets_.vertices(created[i], nv);
       for (int k = 0; k < 4; ++k)
         if (nv[k] != kInfinite)
-          vertices_[nv[k]].tet = created[i];
+          mesh_.vertices[nv[k]].tet = created[i];
       for (int f = 0; f < 4; ++f)
-        if (f != cavity_.boundary[i].face && mesh_.neighbor(created[i], f) == kUnlinked)
+        if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
           linkAroundEdge(i, f);
     }
   }
 
   for (TetId t : cavity_.tets)
-    mesh_.release(t);
+    pool_.give(tets_, t);
   for (TetId t : cavity_.rejected)
-    mesh_.setFlags(t, 0);
+    tets_.setFlags(t, 0);
+  lastCreated_ = created.back();
+  return true;
 }
 
 // Every new face is recorded at its directed edge a->b and linked to the face recorded at b->a.
 // Edges are indexed by local numbers of the boundary's vertices, given on first sight through
 // localNumber() without a branch (a new vertex takes number `count`, which only advances then).
 // Returns false, changing nothing, when the boundary has more than kMaxLocalVertices vertices.
-bool Triangulator::linkByEdgeTable()
+bool Inserter::linkByEdgeTable()
 {
   const std::vector<TetId>& created = cavity_.created;
   std::vector<std::uint16_t>& local = cavity_.localNumbers;
@@ -109,7 +117,7 @@ bool Triangulator::linkByEdgeTable()
   for (std::size_t i = 0; i < created.size() && fits; ++i)
   {
     VertId nv[4];
-    mesh_.vertices(created[i], nv);
+    tets_.vertices(created[i], nv);
     for (int k = 0; k < 4; ++k)
     {
       const VertId u = nv[k];
@@ -148,19 +156,19 @@ bool Triangulator::linkByEdgeTable()
     const VertId u = vertexOf[k];
     localNumber(u) = Vertex::kNoLocal;
     if (u != kInfinite)
-      vertices_[u].tet = firstTet[k];
+      mesh_.vertices[u].tet = firstTet[k];
   }
   if (!fits)
     return false;
   for (const auto& [face, reversed] : cavity_.interiorFaces)
-    mesh_.setNeighbor(face, cavity_.edgeFace[reversed]);
+    tets_.setNeighbor(face, cavity_.edgeFace[reversed]);
   return true;
 }
 
 // New tetrahedron i was built on boundary facet (t, g); its face `face` holds the new point and
 // the facet's edge uw. Turn about uw through the deleted tetrahedra, starting with t's other face on
 // uw, until a boundary facet is met: the new tetrahedron built on it is the neighbour.
-void Triangulator::linkAroundEdge(std::size_t i, int face)
+void Inserter::linkAroundEdge(std::size_t i, int face)
 {
   const BoundaryFacet& facet = cavity_.boundary[i];
   // Local indices of u and w (the same in t and in its new tetrahedron): the two of 0..3 that are
@@ -168,24 +176,24 @@ void Triangulator::linkAroundEdge(std::size_t i, int face)
   const unsigned rest = 15u & ~(1u << face) & ~(1u << facet.face);
   int iu = countTrailingZeros(rest);
   int iw = countTrailingZeros(rest & (rest - 1));
-  const VertId u = mesh_.vertex(facet.inner, iu);
-  const VertId w = mesh_.vertex(facet.inner, iw);
+  const VertId u = tets_.vertex(facet.inner, iu);
+  const VertId w = tets_.vertex(facet.inner, iw);
 
   TetId t = facet.inner;
   int g = face; // the face of t being crossed; it contains u and w
   for (;;)
   {
-    const FaceCode across = mesh_.neighbor(t, g);
+    const FaceCode across = tets_.neighbor(t, g);
     const TetId next = tetOf(across);
-    if (mesh_.flags(next) != kInCavity)
+    if (tets_.flags(next) != kInCavity)
     {
       // (t, g) is a boundary facet and `next` its new tetrahedron: t with vertex g replaced by the
       // new point, whose face on (point, u, w) is opposite t's fourth vertex.
-      mesh_.link(faceCode(cavity_.created[i], face), faceCode(next, 6 - g - iu - iw));
+      tets_.link(faceCode(cavity_.created[i], face), faceCode(next, 6 - g - iu - iw));
       return;
     }
     VertId nv[4];
-    mesh_.vertices(next, nv);
+    tets_.vertices(next, nv);
     iu = (nv[1] == u) + 2 * (nv[2] == u) + 3 * (nv[3] == u);
     iw = (nv[1] == w) + 2 * (nv[2] == w) + 3 * (nv[3] == w);
     g = 6 - faceOf(across) - iu - iw;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <unordered_map>
 #include <utility>
 
 namespace fd3
@@ -171,7 +172,8 @@ void mergeDuplicates(std::vector<std::uint32_t>& sorted,
 
 /// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
 /// each round keeps the curve order of `sorted` (a stable counting sort by round).
-std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted, std::mt19937_64& rng)
+std::vector<std::uint32_t> brioRounds(
+  const std::vector<std::uint32_t>& sorted, std::mt19937_64& rng, std::vector<std::size_t>& roundStarts)
 {
   const int rounds = std::clamp(static_cast<int>(std::log2(double(sorted.size()) / 64.0)), 1, 63);
   std::vector<std::uint8_t> roundOf(sorted.size());
@@ -184,6 +186,7 @@ std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted, 
   }
   for (int r = 0; r < rounds; ++r)
     start[r + 1] += start[r];
+  roundStarts.assign(start.begin(), start.end() - 1);
   std::vector<std::uint32_t> order(sorted.size());
   for (std::size_t i = 0; i < sorted.size(); ++i)
     order[start[roundOf[i]]++] = sorted[i];
@@ -201,18 +204,68 @@ InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, c
   switch (order)
   {
     case InsertionOrder::Brio:
-      plan.order = brioRounds(ids, rng);
+      plan.order = brioRounds(ids, rng, plan.roundStarts);
       break;
     case InsertionOrder::Input:
       std::sort(ids.begin(), ids.end());
       plan.order = std::move(ids);
+      plan.roundStarts = {0};
       break;
     case InsertionOrder::Random:
       std::shuffle(ids.begin(), ids.end(), rng);
       plan.order = std::move(ids);
+      plan.roundStarts = {0};
       break;
   }
   return plan;
+}
+
+// A hash grid of cells of the tolerance's size: a point closer than the tolerance to a kept one has
+// it in one of the 27 cells around its own. Cell coordinates saturate far from the origin, which
+// only puts more points in a cell: the distances decide.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
+  const double* xyz, std::vector<std::uint32_t>& order, double tolerance)
+{
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped;
+  if (!(tolerance > 0))
+    return skipped;
+  auto cellOf = [tolerance](double x) {
+    return static_cast<std::int64_t>(std::clamp(std::floor(x / tolerance), -0x1p40, 0x1p40));
+  };
+  auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (std::uint64_t(i) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(j) * 0xC2B2AE3D27D4EB4Full) ^
+      (std::uint64_t(k) * 0x165667B19E3779F9ull);
+  };
+  std::unordered_multimap<std::uint64_t, std::uint32_t> kept;
+  kept.reserve(order.size());
+  const double tolerance2 = tolerance * tolerance;
+  std::size_t survivors = 0;
+  for (const std::uint32_t id : order)
+  {
+    const double* p = xyz + 3 * std::size_t(id);
+    const std::int64_t c[3] = {cellOf(p[0]), cellOf(p[1]), cellOf(p[2])};
+    std::uint32_t near = id;
+    for (int d = 0; d < 27 && near == id; ++d)
+    {
+      const auto range = kept.equal_range(key(c[0] + d % 3 - 1, c[1] + d / 3 % 3 - 1, c[2] + d / 9 - 1));
+      for (auto it = range.first; it != range.second && near == id; ++it)
+      {
+        const double* q = xyz + 3 * std::size_t(it->second);
+        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+        if (dx * dx + dy * dy + dz * dz < tolerance2)
+          near = it->second;
+      }
+    }
+    if (near != id)
+      skipped.emplace_back(id, near);
+    else
+    {
+      kept.emplace(key(c[0], c[1], c[2]), id);
+      order[survivors++] = id;
+    }
+  }
+  order.resize(survivors);
+  return skipped;
 }
 
 } // namespace fd3

@@ -22,11 +22,20 @@ struct InsertionPlan
   /// (copy, original) input ids of the exact duplicates left out; the original is the copy with
   /// the smallest input id, whatever the order.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;
+  /// Where each BRIO round starts in `order` (one round for the other orders).
+  std::vector<std::size_t> roundStarts;
 };
 
 /// Plans the insertion of the points `ids` (indices into xyz, all finite, within `box`).
 InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, const Box& box,
   InsertionOrder order, std::uint64_t seed);
+
+/// Removes from `order` every point closer than `tolerance` to a point kept before it, and returns
+/// (removed, kept) input id pairs: what inserting them one by one and skipping those within the
+/// tolerance of an inserted point would do, decided before insertion so that it does not depend on
+/// the threads' timing.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
+  const double* xyz, std::vector<std::uint32_t>& order, double tolerance);
 
 } // namespace fd3
 

@@ -7,7 +7,7 @@
 // tetrahedra fan out around every vertex, that is most often the start itself (cylinder, 100k
 // points: 5.8 steps instead of 17). A volume threshold leaves the mesh short of Delaunay, so the
 // walk then goes on to the base, which the core correction needs.
-#include "Triangulator.h"
+#include "Inserter.h"
 
 #include "fd3/Measures.h"
 
@@ -28,47 +28,57 @@ constexpr std::size_t kOrderedSteps = 1000;
 // The start: a tetrahedron of the inserted vertex nearest to the point among two candidates, the
 // one the grid's onion search finds and the last inserted one (the curve order puts it close). On a
 // surface sample the grid's cells are sized for volume and hold many points each, so the last
-// vertex is often nearer; on volume data the grid's usually is.
-TetId Triangulator::startTet(VertId v) const
+// vertex is often nearer; on volume data the grid's usually is. In a region, the last tetrahedron
+// created there: a vertex's tetrahedron may have vertices in other regions, which their inserters
+// may be changing.
+TetId Inserter::startTet(VertId v) const
 {
+  if (restricted_)
+    return lastCreated_;
   VertId start = lastInserted_;
-  if (grid_.enabled())
+  if (mesh_.grid.enabled())
   {
-    const VertId near = grid_.nearestInserted(point(v), kMaxOnionLayers);
+    const VertId near = mesh_.grid.nearestInserted(point(v), kMaxOnionLayers);
     if (near != BackgroundGrid::kEmpty &&
       distance2(point(near), point(v)) < distance2(point(start), point(v)))
       start = near;
   }
-  return vertices_[start].tet;
+  return mesh_.vertices[start].tet;
 }
 
 // The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold,
 // contains the point or is a ghost whose hull face the point lies beyond), cross one of its faces
-// that separates it from the point. The faces are tried in order of decreasing distance from the
+// that separates it from the point. In a region, a tetrahedron that is not the inserter's ends the
+// walk with kNoTet (it was read safely: it shares a face with one that is). The faces are tried in order of decreasing distance from the
 // point to the vertex they leave behind, so the tetrahedra close in on the point. Measured on 100k
 // points (mean steps to the base, before the walk stopped at the first conflict): torus 31 -> 7.7,
 // cylinder 405 -> 17 (max 11,306 -> 93) against a random first face, uniform cube 6.0 -> 5.4.
-TetId Triangulator::walk(TetId t, VertId v)
+TetId Inserter::walk(TetId t, VertId v)
 {
   const double* p = point(v);
-  const bool toFirstConflict = options_.volumeThreshold <= 0;
+  const bool toFirstConflict = mesh_.options.volumeThreshold <= 0;
   int entryFace = -1;
   std::size_t steps = 0;
   for (;;)
   {
     ++steps;
-    if (mesh_.isGhost(t))
+    if (!isOwned(t))
+    {
+      t = kNoTet;
+      break;
+    }
+    if (tets_.isGhost(t))
     {
       if (toFirstConflict ? inConflict(t, v) : isBeyondHullFace(t, v))
         break;
       // Continue from the finite tetrahedron behind the hull face.
-      const FaceCode inside = mesh_.neighbor(t, 3);
+      const FaceCode inside = tets_.neighbor(t, 3);
       t = tetOf(inside);
       entryFace = faceOf(inside);
       continue;
     }
     VertId tv[4];
-    mesh_.vertices(t, tv);
+    tets_.vertices(t, tv);
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
     if (toFirstConflict && predicates_.inSphereFiltered(q[0], q[1], q[2], q[3], p) > 0)
       break;
@@ -101,7 +111,7 @@ TetId Triangulator::walk(TetId t, VertId v)
     // No face separates t from the point: t contains it (the base).
     if (exit < 0)
       break;
-    const FaceCode next = mesh_.neighbor(t, exit);
+    const FaceCode next = tets_.neighbor(t, exit);
     t = tetOf(next);
     entryFace = faceOf(next);
   }
@@ -110,7 +120,7 @@ TetId Triangulator::walk(TetId t, VertId v)
   return t;
 }
 
-TetId Triangulator::locate(VertId v)
+TetId Inserter::locate(VertId v)
 {
   return walk(startTet(v), v);
 }

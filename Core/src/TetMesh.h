@@ -12,13 +12,16 @@
 //     kInfinite were a point far beyond their hull face;
 //   * neighbor(neighbor(c)) == c for every face code c of a live tetrahedron, and the two faces
 //     carry the same three vertices;
-//   * freed slots are flagged kDead and listed once in the free list; every other slot is live;
-//     flags are 0 between insertions.
+//   * below slots(), freed slots are flagged kDead and listed once in one pool's free list; every
+//     other slot is live; flags are 0 between insertions.
 #ifndef fd3_TetMesh_h
 #define fd3_TetMesh_h
 
 #include "Platform.h"
+#include "fd3/Delaunay.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -32,6 +35,7 @@ using FaceCode = std::uint32_t; // 4*tet + face
 
 constexpr VertId kInfinite = 0xFFFFFFFFu; // the ghost vertex, at infinity
 constexpr VertId kNoVertex = 0xFFFFFFFEu; // "none found"
+constexpr TetId kNoTet = 0xFFFFFFFFu;     // "none found"
 constexpr FaceCode kUnlinked = 0xFFFFFFFFu;
 constexpr int kVertexIdBits = 30;
 constexpr std::uint32_t kMaxVertices = 1u << kVertexIdBits;
@@ -64,8 +68,6 @@ enum TetFlag : std::uint32_t
 class TetMesh
 {
 public:
-  std::size_t slots() const { return records_.size() / 8; }
-
   VertId vertex(TetId t, int i) const
   {
     const std::uint32_t v = records_[8 * std::size_t(t) + i];
@@ -107,30 +109,8 @@ public:
   bool isGhost(TetId t) const { return records_[8 * std::size_t(t) + 3] == kInfinite; }
   bool isDead(TetId t) const { return flags(t) == kDead; }
 
-  /// A slot for a new tetrahedron, to be filled by create(): a freed one first (the paper's memory
-  /// management: deleted slots are taken by the next tetrahedra created), else a new one.
-  TetId allocate()
-  {
-    TetId t;
-    if (!freeSlots_.empty())
-    {
-      t = freeSlots_.back();
-      freeSlots_.pop_back();
-    }
-    else
-    {
-      // Face codes 4t+f are 32-bit: beyond 2^30 slots (about 150M points) they would wrap.
-      if (slots() >= kMaxTetrahedra)
-        throw std::length_error("fd3: more than 2^30 tetrahedra, beyond 32-bit face codes");
-      t = static_cast<TetId>(slots());
-      // Past the reserved capacity, grow by a quarter rather than std::vector's doubling: the
-      // copy then peaks at 2.25 times the records, not 3 times.
-      if (records_.size() == records_.capacity())
-        records_.reserve(records_.capacity() + records_.capacity() / 4 + 8);
-      records_.resize(records_.size() + 8);
-    }
-    return t;
-  }
+  /// Flags a never-written slot dead.
+  void markDead(TetId t) { records_[8 * std::size_t(t)] = kDead << kVertexIdBits; }
 
   /// Writes the whole record of t at once: vertices v (flags clear), no neighbours yet.
   void create(TetId t, const VertId v[4])
@@ -143,30 +123,129 @@ public:
     }
   }
 
-  void release(TetId t)
+  /// Slots ever handed out (live, free, or in a pool's block), the records' high-water mark.
+  std::size_t slots() const { return claimed_.load(std::memory_order_relaxed); }
+
+  /// Makes room for `count` more slots than are handed out: records may move, so no pool may
+  /// claim at the same time. Beyond the reserved capacity it grows by a quarter at least: the copy
+  /// then peaks at 2.25 times the records, not 3 times as with doubling.
+  void makeRoom(std::size_t count)
   {
-    setFlags(t, kDead);
-    freeSlots_.push_back(t);
+    const std::size_t needed = slots() + count;
+    // Face codes 4t+f are 32-bit: beyond 2^30 slots (about 150M points) they would wrap.
+    if (needed > kMaxTetrahedra)
+      throw std::length_error("fd3: more than 2^30 tetrahedra, beyond 32-bit face codes");
+    if (needed > capacity())
+      reserve(std::max(needed, capacity() + capacity() / 4));
+  }
+  /// Memory for `count` slots in all (never less than there is). Not initialized: its pages cost
+  /// nothing until slots are written.
+  void reserve(std::size_t count)
+  {
+    if (count <= capacity())
+      return;
+    IdArray grown;
+    grown.reserve(8 * count);
+    grown.resize(8 * count);
+    std::copy(records_.begin(), records_.begin() + 8 * static_cast<std::ptrdiff_t>(slots()), grown.begin());
+    records_.swap(grown);
+  }
+  std::size_t capacity() const { return records_.size() / 8; }
+
+  /// Hands out `count` never-used slots, [first, first + count), or returns false when there is no
+  /// room for them. Safe to call from several threads at once.
+  bool claim(std::size_t count, TetId& first)
+  {
+    std::size_t taken = claimed_.load(std::memory_order_relaxed);
+    do
+    {
+      if (taken + count > capacity())
+        return false;
+    } while (!claimed_.compare_exchange_weak(taken, taken + count, std::memory_order_relaxed));
+    first = static_cast<TetId>(taken);
+    return true;
   }
 
-  void reserve(std::size_t tets) { records_.reserve(8 * tets); }
-  /// Slots in use: live tetrahedra, ghosts included.
-  std::size_t liveSlots() const { return slots() - freeSlots_.size(); }
-  std::size_t capacity() const { return records_.capacity() / 8; }
-  const std::vector<TetId>& freeSlots() const { return freeSlots_; }
-
   /// Hands the records over (for in-place output conversion); the mesh is empty afterwards.
-  /// Record t occupies words 8t..8t+7, v0 carrying the flags in its top bits.
-  std::vector<std::uint32_t> takeRecords()
+  /// Record t occupies words 8t..8t+7 for t < slots(), v0 carrying the flags in its top bits.
+  IdArray takeRecords()
   {
-    freeSlots_.clear();
+    records_.resize(8 * slots());
+    claimed_ = 0;
     return std::move(records_);
   }
 
 private:
   static constexpr std::uint32_t kIdMask = kMaxVertices - 1;
-  std::vector<std::uint32_t> records_;
-  std::vector<TetId> freeSlots_;
+  IdArray records_; // 8 words per slot, slots() of them in use, the rest not yet initialized
+  std::atomic<std::size_t> claimed_{0};
+};
+
+/// The slots one inserting thread takes new tetrahedra from: those it freed first (the paper's
+/// memory management: deleted slots are taken by the next tetrahedra created), then a block of
+/// never-used ones claimed from the mesh. One per thread, so that no two threads share a slot.
+class SlotPool
+{
+public:
+  /// Slots for `count` new tetrahedra, or false when the mesh has no room left for them (nothing
+  /// is taken then).
+  bool take(TetMesh& mesh, std::size_t count, TetId* out)
+  {
+    if (count > free_.size() + (end_ - next_))
+    {
+      // A new block: the usual size, or just enough when the mesh is nearly full.
+      TetId first;
+      std::size_t block = std::max(count, kBlock);
+      if (!mesh.claim(block, first) && !mesh.claim(block = count, first))
+        return false;
+      retire(mesh);
+      next_ = first;
+      end_ = first + static_cast<TetId>(block);
+    }
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      if (!free_.empty())
+      {
+        out[i] = free_.back();
+        free_.pop_back();
+      }
+      else
+        out[i] = next_++;
+    }
+    return true;
+  }
+
+  /// Frees slot t: flagged dead, taken again before any new one.
+  void give(TetMesh& mesh, TetId t)
+  {
+    mesh.setFlags(t, kDead);
+    free_.push_back(t);
+  }
+
+  /// Frees what is left of the claimed block, so that every slot below mesh.slots() is either
+  /// live or dead and listed in a pool.
+  void retire(TetMesh& mesh)
+  {
+    for (; next_ < end_; ++next_)
+    {
+      mesh.markDead(next_);
+      free_.push_back(next_);
+    }
+  }
+
+  /// Takes over another pool's free slots (both retired).
+  void absorb(SlotPool& other)
+  {
+    free_.insert(free_.end(), other.free_.begin(), other.free_.end());
+    other.free_.clear();
+  }
+
+  const std::vector<TetId>& freeSlots() const { return free_; }
+
+private:
+  static constexpr std::size_t kBlock = 1024;
+  std::vector<TetId> free_;
+  TetId next_ = 0, end_ = 0;
 };
 
 } // namespace fd3

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -130,7 +131,7 @@ void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, boo
         }
     std::vector<std::uint32_t>().swap(newId);
   }
-  std::vector<std::uint32_t> records = mesh.takeRecords();
+  IdArray records = mesh.takeRecords();
   std::size_t kept = 0;
   for (std::size_t t = 0; t < slots; ++t)
   {
@@ -180,6 +181,8 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   InsertionPlan plan = planInsertion(xyz, std::move(ids), box, options.order, options.randomSeed);
   stats.duplicatesMerged = plan.duplicates.size();
   std::vector<std::uint32_t>& order = plan.order;
+  const auto skipped = skipClosePoints(xyz, order, options.tolerance);
+  stats.closePointsSkipped = skipped.size();
   if (!moveFirstTetrahedronToFront(xyz, norm, order))
   {
     out.status = order.size() < 4 ? Status::TooFewPoints : Status::Degenerate;
@@ -189,7 +192,7 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
   constexpr std::size_t kAhead = 16;
-  std::vector<Vertex> vertices(order.size() + 1);
+  VertexArray vertices(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
   {
     if (i + kAhead < order.size())
@@ -197,7 +200,6 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     norm.apply(xyz + 3 * std::size_t(order[i]), vertices[i].xyz);
     vertices[i].localNumber = Vertex::kNoLocal;
   }
-  vertices.back().localNumber = Vertex::kNoLocal;
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
   // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its
@@ -205,26 +207,26 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   malloc_trim(0);
 #endif
 
-  Options normalizedOptions = options;
-  normalizedOptions.tolerance = options.tolerance * norm.scale;
-  Triangulator triangulator(std::move(vertices), norm.apply(box), normalizedOptions, stats);
-  triangulator.start();
-  std::vector<std::pair<VertId, VertId>> skipped; // (vertex, the inserted vertex within tolerance)
-  constexpr VertId kProgressInterval = 1u << 14;
-  const VertId reserveAt = static_cast<VertId>(std::max<std::size_t>(order.size() / 32, 4096));
-  for (VertId v = 4; v < order.size(); ++v)
+  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads = options.volumeThreshold > 0 ? 1 : (options.threads > 0 ? options.threads : hardware);
+  Triangulator triangulator(std::move(vertices), norm.apply(box), options, threads);
+  if (!triangulator.insertAll(plan.roundStarts, options.progress))
   {
-    if (v == reserveAt)
-      triangulator.reserveForAll(order.size());
-    if (v % kProgressInterval == 0 && options.progress && !options.progress(double(v) / order.size()))
-    {
-      out.status = Status::Aborted;
-      return out;
-    }
-    if (!triangulator.insert(v))
-      skipped.emplace_back(v, triangulator.vertexWithinTolerance());
+    out.status = Status::Aborted;
+    return out;
   }
-  stats.closePointsSkipped = skipped.size();
+  {
+    const Statistics inserted = triangulator.statistics();
+    stats.insertedPoints = inserted.insertedPoints;
+    stats.walkSteps = inserted.walkSteps;
+    stats.maxWalkSteps = inserted.maxWalkSteps;
+    stats.cavityTetrahedra = inserted.cavityTetrahedra;
+    stats.deferredInsertions = inserted.deferredInsertions;
+    stats.secondsLocate = inserted.secondsLocate;
+    stats.secondsCavity = inserted.secondsCavity;
+    stats.secondsFill = inserted.secondsFill;
+    triangulator.addPredicateCounts(stats);
+  }
 #ifndef NDEBUG
   constexpr bool kDebugBuild = true;
 #else
@@ -239,20 +241,14 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
       return out;
     }
   }
-  const Predicates& predicates = triangulator.predicates();
-  stats.exactOrient = predicates.exactOrientCalls;
-  stats.exactInSphere = predicates.exactInSphereCalls;
-  stats.symbolicTies = predicates.symbolicTies;
-  stats.underflowRisks = predicates.underflowRisks;
 
   const auto outputStart = Clock::now();
-  triangulator.releaseWorkspace();
-  extractOutput(triangulator.mesh(), order, options.computeNeighbors, out);
+  extractOutput(triangulator.releaseWorkspace(), order, options.computeNeighbors, out);
   out.representative.assign(count, kNoPoint);
   for (std::uint32_t id : order)
     out.representative[id] = id;
-  for (const auto& [vertex, near] : skipped)
-    out.representative[order[vertex]] = order[near];
+  for (const auto& [point, near] : skipped)
+    out.representative[point] = near;
   for (const auto& [copy, original] : plan.duplicates)
     out.representative[copy] = out.representative[original];
   stats.tetrahedra = out.numberOfTetrahedra();

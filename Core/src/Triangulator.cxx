@@ -1,146 +1,142 @@
 #include "Triangulator.h"
 
-#include <chrono>
+#include <algorithm>
 #include <utility>
 
 namespace fd3
 {
-
 Triangulator::Triangulator(
-  std::vector<Vertex> vertices, const Box& box, const Options& options, Statistics& stats)
-  : vertices_(std::move(vertices))
-  , options_(options)
-  , stats_(stats)
-  , rng_(options.randomSeed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
+  VertexArray vertices, const Box& box, const Options& options, int threads)
+{
+  mesh_.vertices = std::move(vertices);
+  mesh_.options = options;
+  const std::size_t n = vertexCount();
+  mesh_.tets.reserve(7 * n + 64); // uniform points make 6.7 per vertex; insertAll() corrects it
+  mesh_.grid.build(n, box, options.pointsPerCell);
+  Predicates predicates;
+  predicates.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), box);
+  for (int t = 0; t < threads; ++t)
+  {
+    pools_.push_back(std::make_unique<SlotPool>());
+    inserters_.push_back(std::make_unique<Inserter>(
+      mesh_, *pools_.back(), predicates, options.randomSeed + static_cast<std::uint64_t>(t)));
+  }
+}
+
+bool Triangulator::insertAll(
+  const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress)
 {
   const std::size_t n = vertexCount();
-  mesh_.reserve(7 * n + 64); // uniform points make 6.7 per vertex; reserveForAll() corrects it
-  grid_.build(n, box, options.pointsPerCell);
-  predicates_.adaptTo(vertices_[0].xyz, n, sizeof(Vertex) / sizeof(double), box);
-}
-
-void Triangulator::releaseWorkspace()
-{
-  std::vector<Vertex>().swap(vertices_);
-  std::vector<std::uint32_t>().swap(vertexStamp_);
-  grid_ = BackgroundGrid();
-  cavity_.release();
-}
-
-void Triangulator::reserveForAll(std::size_t count)
-{
-  const double perVertex = double(mesh_.liveSlots()) / double(stats_.insertedPoints);
-  mesh_.reserve(static_cast<std::size_t>(1.15 * perVertex * double(count)) + 64);
-}
-
-std::uint32_t Triangulator::nextRandom()
-{
-  // xorshift64*: cheap, seeded, and good enough to break the walk's symmetries.
-  rng_ ^= rng_ >> 12;
-  rng_ ^= rng_ << 25;
-  rng_ ^= rng_ >> 27;
-  return static_cast<std::uint32_t>((rng_ * 0x2545F4914F6CDD1Dull) >> 32);
-}
-
-// The first tetrahedron and the four ghosts that close its hull.
-void Triangulator::start()
-{
-  VertId v[4] = {0, 1, 2, 3};
-  if (predicates_.orient3d(point(0), point(1), point(2), point(3)) < 0)
-    std::swap(v[0], v[1]);
-  const TetId t = mesh_.allocate();
-  mesh_.create(t, v);
-  // Ghost i sits on the face opposite v[i], in its outward order: the face normal then points away
-  // from v[i], out of the hull.
-  TetId ghost[4];
-  for (int i = 0; i < 4; ++i)
+  inserters_[0]->start();
+  done_ = 4;
+  const bool parallel = inserters_.size() > 1 && mesh_.options.volumeThreshold <= 0;
+  // Once a round or two are in (random samples of the whole set), the tetrahedra per vertex are
+  // close to the final ratio: memory for all is reserved then (it grows slowly on surface
+  // samples, hence the margin).
+  const std::size_t reserveAt = std::max<std::size_t>(n / 32, 4096);
+  bool reserved = false;
+  for (std::size_t r = 0; r < roundStarts.size(); ++r)
   {
-    ghost[i] = mesh_.allocate();
-    const int* f = kFaceVertices[i];
-    const VertId face[4] = {v[f[0]], v[f[1]], v[f[2]], kInfinite};
-    mesh_.create(ghost[i], face);
-    mesh_.link(faceCode(t, i), faceCode(ghost[i], 3));
-  }
-  // Ghosts meet along the edges of t: ghost i's face opposite its vertex k is the edge of
-  // ghost i's hull face without that vertex, shared with the ghost on the other side of that edge.
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-    {
-      const VertId missing = mesh_.vertex(ghost[i], k);
-      int j = 0;
-      while (v[j] != missing)
-        ++j;
-      // The other ghost holding the edge is the one opposite `missing`; in it, the face opposite
-      // v[i] is the one on the edge.
-      int kk = 0;
-      while (mesh_.vertex(ghost[j], kk) != v[i])
-        ++kk;
-      mesh_.setNeighbor(faceCode(ghost[i], k), faceCode(ghost[j], kk));
-    }
-  for (int i = 0; i < 4; ++i)
-  {
-    vertices_[v[i]].tet = t;
-    if (grid_.enabled())
-      grid_.markInserted(point(v[i]), v[i]);
-  }
-  lastInserted_ = 3;
-  stats_.insertedPoints = 4;
-}
-
-namespace
-{
-// Phase times are measured on one insertion in kSampling and scaled up: reading the clock around
-// every phase of every insertion would cost more than the shortest phases.
-constexpr VertId kSampling = 16;
-
-class PhaseClock
-{
-public:
-  explicit PhaseClock(bool on)
-    : on_(on)
-  {
-    if (on_)
-      last_ = std::chrono::steady_clock::now();
-  }
-  void lap(double& seconds)
-  {
-    if (!on_)
-      return;
-    const auto now = std::chrono::steady_clock::now();
-    seconds += kSampling * std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-  }
-
-private:
-  bool on_;
-  std::chrono::steady_clock::time_point last_;
-};
-} // namespace
-
-bool Triangulator::insert(VertId v)
-{
-  PhaseClock clock(v % kSampling == 0);
-  const TetId base = locate(v);
-  clock.lap(stats_.secondsLocate);
-  digCavity(base, v);
-  if (options_.tolerance > 0)
-  {
-    nearVertex_ = vertexWithin(options_.tolerance * options_.tolerance, v);
-    if (nearVertex_ != kNoVertex)
-    {
-      undoCavity();
+    const std::size_t begin = std::max<std::size_t>(roundStarts[r], 4);
+    const std::size_t end = r + 1 < roundStarts.size() ? roundStarts[r + 1] : n;
+    if (begin >= end)
+      continue;
+    std::vector<VertId> round(end - begin);
+    for (std::size_t i = 0; i < round.size(); ++i)
+      round[i] = static_cast<VertId>(begin + i);
+    // Parallel passes pay for their threads and regions: small rounds go in serially.
+    const bool ok = parallel && round.size() >= 4096 * inserters_.size()
+      ? insertInParallel(std::move(round), progress)
+      : insertSerially(round.data(), round.size(), progress);
+    if (!ok)
       return false;
+    if (!reserved && done_ >= reserveAt)
+    {
+      const double perVertex = double(statistics().insertedPoints ? mesh_.tets.slots() : 0) /
+        double(std::max<std::size_t>(done_, 1));
+      mesh_.tets.reserve(static_cast<std::size_t>(1.15 * perVertex * double(n)) + 64);
+      reserved = true;
     }
   }
-  correctCavity(v);
-  clock.lap(stats_.secondsCavity);
-  fillCavity(v);
-  clock.lap(stats_.secondsFill);
-  if (grid_.enabled())
-    grid_.markInserted(point(v), v);
-  lastInserted_ = v;
-  ++stats_.insertedPoints;
+  for (auto& pool : pools_)
+    pool->retire(mesh_.tets);
   return true;
+}
+
+bool Triangulator::insertSerially(
+  const VertId* vertices, std::size_t count, const std::function<bool(double)>& progress)
+{
+  Inserter& inserter = *inserters_[0];
+  inserter.unrestricted();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (done_ % kProgressInterval == 0 && !reportProgress(progress))
+      return false;
+    // Unrestricted, an insertion is put off only when the mesh is full.
+    while (inserter.insert(vertices[i]) == Inserter::Outcome::Deferred)
+      makeRoomFor(count - i);
+    ++done_;
+  }
+  return true;
+}
+
+void Triangulator::makeRoomFor(std::size_t count)
+{
+  // New slots per insertion: about the tetrahedra per vertex (the rest reuses freed slots), with a
+  // margin, and a block's worth for every pool.
+  std::size_t free = 0;
+  for (const auto& pool : pools_)
+    free += pool->freeSlots().size();
+  const double perVertex =
+    std::max(7.0, double(mesh_.tets.slots() - free) / double(std::max<std::size_t>(done_, 1)));
+  mesh_.tets.makeRoom(static_cast<std::size_t>(1.25 * perVertex * double(count)) +
+    2048 * pools_.size() + 1024);
+}
+
+bool Triangulator::reportProgress(const std::function<bool(double)>& progress)
+{
+  if (progress && !stop_ && !progress(double(done_ + passDone_) / double(vertexCount())))
+    stop_ = true;
+  return !stop_;
+}
+
+Statistics Triangulator::statistics() const
+{
+  Statistics sum;
+  for (const auto& inserter : inserters_)
+  {
+    const Statistics& s = inserter->stats();
+    sum.insertedPoints += s.insertedPoints;
+    sum.walkSteps += s.walkSteps;
+    sum.maxWalkSteps = std::max(sum.maxWalkSteps, s.maxWalkSteps);
+    sum.cavityTetrahedra += s.cavityTetrahedra;
+    sum.deferredInsertions += s.deferredInsertions;
+    sum.secondsLocate += s.secondsLocate;
+    sum.secondsCavity += s.secondsCavity;
+    sum.secondsFill += s.secondsFill;
+  }
+  return sum;
+}
+
+void Triangulator::addPredicateCounts(Statistics& stats) const
+{
+  for (const auto& inserter : inserters_)
+  {
+    const Predicates& p = inserter->predicates();
+    stats.exactOrient += p.exactOrientCalls;
+    stats.exactInSphere += p.exactInSphereCalls;
+    stats.symbolicTies += p.symbolicTies;
+    stats.underflowRisks += p.underflowRisks;
+  }
+}
+
+TetMesh& Triangulator::releaseWorkspace()
+{
+  inserters_.clear();
+  pools_.clear();
+  VertexArray().swap(mesh_.vertices);
+  mesh_.grid = BackgroundGrid();
+  return mesh_.tets;
 }
 
 } // namespace fd3

@@ -1,123 +1,72 @@
-// Bowyer-Watson insertion as in the paper "Fast Delaunay triangulation in three dimensions":
-//   insert(p) = locate (grid + onion search for a start, a walk to a tetrahedron in conflict)
-//             -> digCavity (the core, grown through adjacency with exact insphere)
-//             -> correctCavity (visibility and volume threshold: the core made star-shaped)
-//             -> fillCavity (new tetrahedra linked through the boundary's edges, no search).
-// Each step lives in the source file named after it.
+// The triangulation's driver: the mesh that every inserter shares, one inserter and one slot pool
+// per thread, and the order in which they insert the points: serially for the first BRIO rounds,
+// then round by round in parallel (ParallelInsertion.cxx), each thread in a region of its own.
 #ifndef fd3_Triangulator_h
 #define fd3_Triangulator_h
 
-#include "BackgroundGrid.h"
-#include "Cavity.h"
 #include "Geometry.h"
-#include "Predicates.h"
-#include "TetMesh.h"
+#include "Inserter.h"
 #include "fd3/Delaunay.h"
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace fd3
 {
 
-/// One vertex of the kernel, by insertion rank: its normalized coordinates, a live tetrahedron
-/// incident to it, and its local number while a cavity is filled (kNoLocal otherwise). 32 bytes on
-/// a 32-byte boundary: the coordinates that an insphere test loads bring the rest into cache, which
-/// the fill that follows needs (fill phase 4% faster on 400k uniform points than with separate
-/// arrays).
-struct alignas(32) Vertex
-{
-  static constexpr std::uint16_t kNoLocal = 0xFFFF;
-  Vertex() {} // uninitialized: the kernel writes millions of them right after allocating them
-  double xyz[3];
-  TetId tet;
-  std::uint16_t localNumber;
-};
-static_assert(sizeof(Vertex) == 32, "a vertex fills half a cache line");
-
 class Triangulator
 {
 public:
   /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
-  /// `box`, and one more entry that stands for kInfinite in local numbering.
-  Triangulator(std::vector<Vertex> vertices, const Box& box, const Options& options, Statistics& stats);
+  /// `box`; `threads` inserters are made ready.
+  Triangulator(VertexArray vertices, const Box& box, const Options& options, int threads);
 
-  /// Builds the first tetrahedron from vertices 0..3, which must be affinely independent.
-  void start();
+  /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
+  /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
+  /// when it asked to stop.
+  bool insertAll(const std::vector<std::size_t>& roundStarts,
+    const std::function<bool(double)>& progress);
 
-  /// Reserves the mesh for all `count` vertices, from the tetrahedra per vertex so far. Called once
-  /// a BRIO round or two are in: they are random samples of the whole set, so the ratio is close to
-  /// the final one (it grows slowly on surface samples, hence the margin).
-  void reserveForAll(std::size_t count);
-
-  /// Inserts vertex v; every vertex below v must have been handled before. Returns false when v
-  /// is within the tolerance of an inserted vertex (vertexWithinTolerance()) and was left out.
-  bool insert(VertId v);
-  VertId vertexWithinTolerance() const { return nearVertex_; }
-
-  const Predicates& predicates() const { return predicates_; }
-  TetMesh& mesh() { return mesh_; }
+  /// The figures of every inserter, summed.
+  Statistics statistics() const;
+  /// Counters of every inserter's predicates, summed.
+  void addPredicateCounts(Statistics& stats) const;
 
   /// Frees the points, the grid and the scratch: only the mesh is left for the output.
-  void releaseWorkspace();
+  TetMesh& releaseWorkspace();
 
-  /// Exhaustive check of the invariants listed in TetMesh.h, of the vertices' records and, unless a volume
-  /// threshold was used, of the local Delaunay property. Returns an empty string when all hold,
-  /// else one line per violation (the first few of each kind).
+  /// Exhaustive check of the invariants listed in TetMesh.h, of the vertices' records and, unless
+  /// a volume threshold was used, of the local Delaunay property. Returns an empty string when all
+  /// hold, else one line per violation (the first few of each kind).
   std::string checkMesh() const;
 
 private:
-  const double* point(VertId v) const { return vertices_[v].xyz; }
-  std::size_t vertexCount() const { return vertices_.size() - 1; }
-  /// The local-number entry of u, kInfinite's being the last.
-  std::uint16_t& localNumber(VertId u)
-  {
-    return vertices_[u == kInfinite ? vertices_.size() - 1 : u].localNumber;
-  }
+  // Progress is reported (and abort checked) once per this many insertions.
+  static constexpr std::size_t kProgressInterval = 1u << 14;
+  const double* point(VertId v) const { return mesh_.point(v); }
+  std::size_t vertexCount() const { return mesh_.vertices.size(); }
 
-  // Locate.cxx
-  TetId startTet(VertId v) const;
-  TetId walk(TetId from, VertId v);
-  TetId locate(VertId v);
-  // DigCavity.cxx
-  int inSphereSoS(const VertId tet[4], VertId e)
-  {
-    const double* p[4] = {point(tet[0]), point(tet[1]), point(tet[2]), point(tet[3])};
-    return predicates_.inSphereSoS(p, tet, point(e), e);
-  }
-  bool isBeyondHullFace(TetId ghost, VertId v);
-  bool inConflict(TetId t, VertId v);
-  VertId vertexWithin(double distance2, VertId v) const;
-  void undoCavity();
-  void digCavity(TetId base, VertId v);
-  // CorrectCavity.cxx
-  void correctCavity(VertId v);
-  bool holdsPoint(TetId t, VertId v);
-  double newTetShape(const BoundaryFacet& facet, VertId v);
-  void giveBack(TetId t);
-  void collectBoundary();
-  bool dropOrphanGhosts(VertId v);
-  bool keepEnclosedVertex(VertId v);
-  // FillCavity.cxx
-  void fillCavity(VertId v);
-  bool linkByEdgeTable();
-  void linkAroundEdge(std::size_t created, int face);
+  /// Inserts `vertices` with inserter 0, in this thread.
+  bool insertSerially(const VertId* vertices, std::size_t count, const std::function<bool(double)>& progress);
+  /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, twice,
+  /// then serially what the regions could not take. ParallelInsertion.cxx.
+  bool insertInParallel(std::vector<VertId> vertices, const std::function<bool(double)>& progress);
+  /// Inserts `vertices` in `regions`, one thread each; returns those that had to be put off.
+  std::vector<VertId> runPass(const std::vector<VertId>& vertices, const std::vector<Region>& regions,
+    const std::function<bool(double)>& progress);
+  /// Room in the mesh for `count` more insertions, from the tetrahedra per vertex so far.
+  void makeRoomFor(std::size_t count);
+  bool reportProgress(const std::function<bool(double)>& progress);
 
-  std::uint32_t nextRandom();
-
-  std::vector<Vertex> vertices_;
-  Options options_;
-  Statistics& stats_;
-  Predicates predicates_;
-  TetMesh mesh_;
-  BackgroundGrid grid_;
-  Cavity cavity_;
-  VertId lastInserted_ = 0;
-  VertId nearVertex_ = kNoVertex;
-  std::uint64_t rng_;
-  std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
-  std::uint32_t stamp_ = 0;
+  Mesh mesh_;
+  std::vector<std::unique_ptr<SlotPool>> pools_;
+  std::vector<std::unique_ptr<Inserter>> inserters_;
+  std::size_t done_ = 0; // vertices handled, for progress
+  std::atomic<std::size_t> passDone_{0};
+  std::atomic<bool> stop_{false};
 };
 
 } // namespace fd3

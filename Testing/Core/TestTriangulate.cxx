@@ -129,16 +129,7 @@ TEST(Triangulate, InsertionOrdersAgreeOnGeneralPosition)
 {
   // In general position the Delaunay triangulation is unique: every order must find it.
   const Points p = fd3test::uniformBall(2000, 9);
-  auto sorted = [](std::vector<std::uint32_t> tets) {
-    std::vector<std::array<std::uint32_t, 4>> q(tets.size() / 4);
-    for (std::size_t t = 0; t < q.size(); ++t)
-    {
-      std::copy(tets.begin() + 4 * t, tets.begin() + 4 * t + 4, q[t].begin());
-      std::sort(q[t].begin(), q[t].end());
-    }
-    std::sort(q.begin(), q.end());
-    return q;
-  };
+  auto sorted = [](const fd3::IdArray& tets) { return fd3test::canonicalTetrahedra(tets); };
   fd3::Options options;
   const auto brio = sorted(triangulateAndCheck(p, options).tetrahedra);
   options.order = fd3::InsertionOrder::Input;

@@ -145,11 +145,12 @@ std::array<std::uint32_t, 3> outwardFace(const std::uint32_t* t, int i)
 class Checker
 {
 public:
-  Checker(const double* xyz, std::size_t count, const std::vector<std::uint32_t>& tets,
+  Checker(const double* xyz, std::size_t count, const std::uint32_t* tets, std::size_t tetCount,
     const ValidityOptions& options, ValidityReport& report)
     : xyz_(xyz)
     , count_(count)
     , tets_(tets)
+    , tetCount_(tetCount)
     , options_(options)
     , report_(report)
   {
@@ -157,7 +158,7 @@ public:
 
   void run()
   {
-    report_.tetrahedra = tets_.size() / 4;
+    report_.tetrahedra = tetCount_;
     if (!checkIdsAndOrientation())
       return;
     checkFaces();
@@ -167,7 +168,7 @@ public:
 
 private:
   const double* p(std::uint32_t id) const { return xyz_ + 3 * std::size_t(id); }
-  const std::uint32_t* tet(std::size_t t) const { return tets_.data() + 4 * t; }
+  const std::uint32_t* tet(std::size_t t) const { return tets_ + 4 * t; }
   void fail(const std::string& message) { report_.errors.push_back(message); }
 
   bool checkIdsAndOrientation()
@@ -190,7 +191,7 @@ private:
   void checkFaces()
   {
     std::vector<Face> faces;
-    faces.reserve(tets_.size());
+    faces.reserve(4 * tetCount_);
     for (std::size_t t = 0; t < report_.tetrahedra; ++t)
       for (int i = 0; i < 4; ++i)
       {
@@ -283,7 +284,7 @@ private:
       if (std::isfinite(p(i)[0]) && std::isfinite(p(i)[1]) && std::isfinite(p(i)[2]))
         distinct.emplace(std::array<double, 3>{p(i)[0], p(i)[1], p(i)[2]}, std::uint32_t(i));
     report_.distinctPoints = distinct.size();
-    std::set<std::uint32_t> used(tets_.begin(), tets_.end());
+    std::set<std::uint32_t> used(tets_, tets_ + 4 * tetCount_);
     report_.usedVertices = used.size();
     std::set<std::array<double, 3>> usedCoordinates;
     for (std::uint32_t id : used)
@@ -325,18 +326,31 @@ private:
 
   const double* xyz_;
   std::size_t count_;
-  const std::vector<std::uint32_t>& tets_;
+  const std::uint32_t* tets_;
+  std::size_t tetCount_;
   const ValidityOptions& options_;
   ValidityReport& report_;
 };
 } // namespace
 
-ValidityReport checkTriangulation(const double* xyz, std::size_t count,
-  const std::vector<std::uint32_t>& tets, const ValidityOptions& options)
+ValidityReport checkTriangulation(const double* xyz, std::size_t count, const std::uint32_t* tets,
+  std::size_t tetCount, const ValidityOptions& options)
 {
   ValidityReport report;
-  Checker(xyz, count, tets, options, report).run();
+  Checker(xyz, count, tets, tetCount, options, report).run();
   return report;
+}
+
+std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const std::uint32_t* tets, std::size_t tetCount)
+{
+  std::vector<std::array<std::uint32_t, 4>> sorted(tetCount);
+  for (std::size_t t = 0; t < tetCount; ++t)
+  {
+    std::copy(tets + 4 * t, tets + 4 * t + 4, sorted[t].begin());
+    std::sort(sorted[t].begin(), sorted[t].end());
+  }
+  std::sort(sorted.begin(), sorted.end());
+  return sorted;
 }
 
 } // namespace fd3test

@@ -4,6 +4,7 @@
 #ifndef fd3_ExactValidator_h
 #define fd3_ExactValidator_h
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -33,8 +34,24 @@ struct ValidityOptions
 /// finite points among `xyz`: positive orientation, conforming faces, boundary equal to the hull
 /// (a closed, connected, locally convex surface covering every point once), every distinct point a
 /// vertex exactly once, and (optionally) every interior face locally Delaunay.
-ValidityReport checkTriangulation(const double* xyz, std::size_t count,
-  const std::vector<std::uint32_t>& tets, const ValidityOptions& options = ValidityOptions());
+ValidityReport checkTriangulation(const double* xyz, std::size_t count, const std::uint32_t* tets,
+  std::size_t tetCount, const ValidityOptions& options = ValidityOptions());
+/// The same, for any contiguous container of 4 ids per tetrahedron.
+template <typename Ids>
+ValidityReport checkTriangulation(const double* xyz, std::size_t count, const Ids& tets,
+  const ValidityOptions& options = ValidityOptions())
+{
+  return checkTriangulation(xyz, count, tets.data(), tets.size() / 4, options);
+}
+
+/// The tetrahedra as a sorted list of sorted 4-tuples: equal for two triangulations exactly when
+/// they have the same tetrahedra, whatever their order and orientation.
+std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const std::uint32_t* tets, std::size_t tetCount);
+template <typename Ids>
+std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const Ids& tets)
+{
+  return canonicalTetrahedra(tets.data(), tets.size() / 4);
+}
 
 /// Sign of (b-a) x (c-a) . (d-a), exactly.
 int exactOrient3d(const double* a, const double* b, const double* c, const double* d);

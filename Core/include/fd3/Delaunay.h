@@ -3,6 +3,8 @@
 #ifndef fd3_Delaunay_h
 #define fd3_Delaunay_h
 
+#include "fd3/BulkAllocator.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -56,6 +58,10 @@ struct Options
   /// Check every invariant of the mesh and its local Delaunay property once all points are in
   /// (exact, and as long as the triangulation itself); always on in debug builds.
   bool checkMesh = false;
+  /// Threads that insert points; 0: all hardware threads. The output does not depend on it (ties
+  /// are broken by a key fixed before insertion). A volume threshold makes the run serial: which
+  /// slivers it avoids depends on the order of insertion.
+  int threads = 1;
 };
 
 /// Figures of one run. Times are wall-clock seconds per phase.
@@ -70,6 +76,9 @@ struct Statistics
   std::size_t walkSteps = 0;           ///< tetrahedra visited by all walks (the paper's "Path")
   std::size_t maxWalkSteps = 0;
   std::size_t cavityTetrahedra = 0;    ///< tetrahedra deleted by all insertions
+  /// Insertions put off because they reached into another thread's region: each point is
+  /// inserted later, in another pass.
+  std::size_t deferredInsertions = 0;
   std::size_t exactOrient = 0;         ///< orient3d calls the float filter could not decide
   std::size_t exactInSphere = 0;       ///< insphere calls the float filter could not decide
   std::size_t symbolicTies = 0;        ///< insphere ties broken by symbolic perturbation
@@ -84,6 +93,9 @@ struct Statistics
   double meanCavity() const { return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0; }
 };
 
+/// The kernel's arrays of ids: a std::vector whose memory comes in huge pages when large.
+using IdArray = std::vector<std::uint32_t, BulkAllocator<std::uint32_t>>;
+
 constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu; ///< a hull face in Triangulation::neighbors
 constexpr std::uint32_t kNoPoint = 0xFFFFFFFFu;    ///< a non-finite point's representative
 
@@ -92,11 +104,11 @@ struct Triangulation
   Status status = Status::Ok;
   /// 4 input point ids per tetrahedron; each tetrahedron is positively oriented:
   /// (p1 - p0) x (p2 - p0) . (p3 - p0) > 0, VTK's VTK_TETRA convention.
-  std::vector<std::uint32_t> tetrahedra;
+  IdArray tetrahedra;
   /// neighbors[4*t + f] = 4*t' + f' where tetrahedron t' shares the face of t opposite its vertex f,
   /// and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull.
   /// Empty unless Options::computeNeighbors.
-  std::vector<std::uint32_t> neighbors;
+  IdArray neighbors;
   /// For each input point: the input id of the vertex it was merged into (exact duplicate) or
   /// skipped for (closer than the tolerance); itself when it is a vertex; kNoPoint when not finite.
   /// Empty when the status is not Ok.
@@ -113,7 +125,7 @@ struct Triangulation
 /// those tetrahedra; the edges of half-length <= alpha on neither; the points on none of them.
 struct AlphaComplex
 {
-  std::vector<std::uint32_t> tetrahedra; ///< indices into Triangulation::tetrahedra / 4
+  IdArray tetrahedra; ///< indices into Triangulation::tetrahedra / 4
   std::vector<std::uint32_t> triangles;  ///< 3 point ids each
   std::vector<std::uint32_t> lines;      ///< 2 point ids each
   std::vector<std::uint32_t> vertices;   ///< point ids (finite points only)

@@ -1,0 +1,55 @@
+#include "fd3/BulkAllocator.h"
+
+#include <cstdint>
+#include <cstdlib>
+#if defined(_WIN32)
+#include <malloc.h>
+#elif defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace fd3
+{
+namespace detail
+{
+namespace
+{
+constexpr std::size_t kHugePage = std::size_t(1) << 21;
+// Below this, huge pages would waste more than they save.
+constexpr std::size_t kLarge = 4 * kHugePage;
+} // namespace
+
+void* allocateBulk(std::size_t bytes)
+{
+  void* p = nullptr;
+#if defined(_WIN32)
+  p = _aligned_malloc(bytes > 0 ? bytes : 1, 64);
+#else
+  if (bytes >= kLarge)
+  {
+    bytes = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+    p = std::aligned_alloc(kHugePage, bytes);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (p)
+      madvise(p, bytes, MADV_HUGEPAGE); // a hint: ignored where huge pages are off
+#endif
+  }
+  else
+    p = std::malloc(bytes > 0 ? bytes : 1);
+#endif
+  if (!p)
+    throw std::bad_alloc();
+  return p;
+}
+
+void freeBulk(void* p) noexcept
+{
+#if defined(_WIN32)
+  _aligned_free(p);
+#else
+  std::free(p);
+#endif
+}
+
+} // namespace detail
+} // namespace fd3

@@ -1,0 +1,151 @@
+#include "Inserter.h"
+
+#include <chrono>
+#include <utility>
+
+namespace fd3
+{
+
+Inserter::Inserter(Mesh& mesh, SlotPool& pool, const Predicates& predicates, std::uint64_t seed)
+  : mesh_(mesh)
+  , tets_(mesh.tets)
+  , pool_(pool)
+  , predicates_(predicates)
+  , rng_(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
+{
+}
+
+std::uint32_t Inserter::nextRandom()
+{
+  // xorshift64*: cheap, seeded, and good enough to break the walk's symmetries.
+  rng_ ^= rng_ >> 12;
+  rng_ ^= rng_ << 25;
+  rng_ ^= rng_ >> 27;
+  return static_cast<std::uint32_t>((rng_ * 0x2545F4914F6CDD1Dull) >> 32);
+}
+
+// The first tetrahedron and the four ghosts that close its hull.
+void Inserter::start()
+{
+  VertId v[4] = {0, 1, 2, 3};
+  if (predicates_.orient3d(point(0), point(1), point(2), point(3)) < 0)
+    std::swap(v[0], v[1]);
+  TetId slot[5];
+  tets_.makeRoom(5);
+  pool_.take(tets_, 5, slot);
+  const TetId t = slot[0];
+  tets_.create(t, v);
+  // Ghost i sits on the face opposite v[i], in its outward order: the face normal then points away
+  // from v[i], out of the hull.
+  const TetId* ghost = slot + 1;
+  for (int i = 0; i < 4; ++i)
+  {
+    const int* f = kFaceVertices[i];
+    const VertId face[4] = {v[f[0]], v[f[1]], v[f[2]], kInfinite};
+    tets_.create(ghost[i], face);
+    tets_.link(faceCode(t, i), faceCode(ghost[i], 3));
+  }
+  // Ghosts meet along the edges of t: ghost i's face opposite its vertex k is the edge of
+  // ghost i's hull face without that vertex, shared with the ghost on the other side of that edge.
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      const VertId missing = tets_.vertex(ghost[i], k);
+      int j = 0;
+      while (v[j] != missing)
+        ++j;
+      // The other ghost holding the edge is the one opposite `missing`; in it, the face opposite
+      // v[i] is the one on the edge.
+      int kk = 0;
+      while (tets_.vertex(ghost[j], kk) != v[i])
+        ++kk;
+      tets_.setNeighbor(faceCode(ghost[i], k), faceCode(ghost[j], kk));
+    }
+  for (int i = 0; i < 4; ++i)
+  {
+    mesh_.vertices[v[i]].tet = t;
+    if (mesh_.grid.enabled())
+      mesh_.grid.markInserted(point(v[i]), v[i]);
+  }
+  lastInserted_ = 3;
+  lastCreated_ = t;
+  stats_.insertedPoints = 4;
+}
+
+void Inserter::restrictTo(const Region& region, TetId start)
+{
+  region_ = region;
+  restricted_ = true;
+  lastCreated_ = start;
+}
+
+void Inserter::unrestricted()
+{
+  restricted_ = false;
+}
+
+bool Inserter::isOwned(TetId t) const
+{
+  if (!restricted_)
+    return true;
+  VertId tv[4];
+  tets_.vertices(t, tv);
+  return inRegion(tv[0]) && inRegion(tv[1]) && inRegion(tv[2]) && inRegion(tv[3]);
+}
+
+namespace
+{
+// Phase times are measured on one insertion in kSampling and scaled up: reading the clock around
+// every phase of every insertion would cost more than the shortest phases.
+constexpr VertId kSampling = 16;
+
+class PhaseClock
+{
+public:
+  explicit PhaseClock(bool on)
+    : on_(on)
+  {
+    if (on_)
+      last_ = std::chrono::steady_clock::now();
+  }
+  void lap(double& seconds)
+  {
+    if (!on_)
+      return;
+    const auto now = std::chrono::steady_clock::now();
+    seconds += kSampling * std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+  }
+
+private:
+  bool on_;
+  std::chrono::steady_clock::time_point last_;
+};
+} // namespace
+
+Inserter::Outcome Inserter::insert(VertId v)
+{
+  PhaseClock clock(v % kSampling == 0);
+  const TetId base = locate(v);
+  clock.lap(stats_.secondsLocate);
+  if (base == kNoTet || !digCavity(base, v))
+  {
+    ++stats_.deferredInsertions;
+    return Outcome::Deferred;
+  }
+  correctCavity(v);
+  clock.lap(stats_.secondsCavity);
+  if (!fillCavity(v))
+  {
+    ++stats_.deferredInsertions;
+    return Outcome::Deferred;
+  }
+  clock.lap(stats_.secondsFill);
+  if (mesh_.grid.enabled())
+    mesh_.grid.markInserted(point(v), v);
+  lastInserted_ = v;
+  ++stats_.insertedPoints;
+  return Outcome::Inserted;
+}
+
+} // namespace fd3

@@ -1,0 +1,173 @@
+// Parallel insertion of one BRIO round: its points are split by count into one box per thread (a
+// kd split), each thread inserts the points of its box, in curve order, changing only tetrahedra
+// whose four vertices are in its box (Region, in Inserter.h: no locks, no two threads ever touch
+// one tetrahedron). An insertion that would reach outside its box is put off. A second pass splits
+// the points put off along other axes, so that few of them lie near its cuts; what is left goes in
+// serially. Design read from HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code ours.
+//
+// The output does not depend on the number of threads or on their timing: with exact predicates
+// and ties broken by a key fixed before insertion (the vertex id, Predicates::inSphereSoS), the
+// Delaunay triangulation is unique, and every point is inserted in one pass or another.
+#include "Triangulator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <numeric>
+#include <thread>
+
+namespace fd3
+{
+namespace
+{
+/// Boxes for `parts` threads holding about as many of `vertices` each (recursive cuts at quantiles).
+/// Cut axes cycle through the set's axes from the longest, starting `variant` places later, so
+/// that the cuts of two variants cross.
+class Partition
+{
+public:
+  Partition(const Mesh& mesh, std::vector<VertId> vertices, int parts, int variant)
+    : mesh_(mesh)
+    , ids_(std::move(vertices))
+  {
+    Box box = Box::around(mesh.point(ids_[0]));
+    for (VertId v : ids_)
+      box.include(mesh.point(v));
+    std::iota(axes_, axes_ + 3, 0);
+    std::sort(axes_, axes_ + 3, [&box](int a, int b) { return box.extent(a) > box.extent(b); });
+    split(0, ids_.size(), parts, variant, Region());
+  }
+  const std::vector<Region>& regions() const { return regions_; }
+
+private:
+  void split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region)
+  {
+    if (parts == 1)
+    {
+      regions_.push_back(region);
+      return;
+    }
+    const int axis = axes_[depth % 3];
+    const int left = parts / 2;
+    auto coordinate = [&](VertId v) { return mesh_.point(v)[axis]; };
+    const std::size_t cut = begin + (end - begin) * left / parts;
+    double at = cut < end ? 0.0 : region.hi[axis];
+    if (cut < end)
+    {
+      std::nth_element(ids_.begin() + begin, ids_.begin() + cut, ids_.begin() + end,
+        [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
+      at = coordinate(ids_[cut]);
+    }
+    const std::size_t middle = static_cast<std::size_t>(
+      std::partition(ids_.begin() + begin, ids_.begin() + end,
+        [&](VertId v) { return coordinate(v) < at; }) - ids_.begin());
+    Region below = region, above = region;
+    below.hi[axis] = at;
+    above.lo[axis] = at;
+    split(begin, middle, left, depth + 1, below);
+    split(middle, end, parts - left, depth + 1, above);
+  }
+
+  const Mesh& mesh_;
+  std::vector<VertId> ids_;
+  int axes_[3];
+  std::vector<Region> regions_;
+};
+} // namespace
+
+bool Triangulator::insertInParallel(
+  std::vector<VertId> vertices, const std::function<bool(double)>& progress)
+{
+  const int threads = static_cast<int>(inserters_.size());
+  for (int variant = 0; variant < 2 && !vertices.empty() && !stop_; ++variant)
+    vertices = runPass(vertices, Partition(mesh_, vertices, threads, variant).regions(), progress);
+  std::sort(vertices.begin(), vertices.end()); // back to curve order
+  return !stop_ && insertSerially(vertices.data(), vertices.size(), progress);
+}
+
+std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
+  const std::vector<Region>& regions, const std::function<bool(double)>& progress)
+{
+  const std::size_t threads = regions.size();
+  makeRoomFor(vertices.size());
+  // Each region's points, in the round's (curve) order.
+  std::vector<std::vector<VertId>> share(threads);
+  for (VertId v : vertices)
+    for (std::size_t k = 0; k < threads; ++k)
+      if (regions[k].contains(point(v)))
+      {
+        share[k].push_back(v);
+        break;
+      }
+  // Each inserter starts from a tetrahedron of its region, found before any thread runs: one in
+  // conflict with the first of its points that has one in the region (it may read the whole mesh
+  // then).
+  std::vector<std::vector<VertId>> putOff(threads);
+  for (std::size_t k = 0; k < threads; ++k)
+  {
+    Inserter& inserter = *inserters_[k];
+    std::size_t first = 0;
+    for (; first < share[k].size(); ++first)
+    {
+      inserter.unrestricted();
+      const TetId start = inserter.locateForStart(share[k][first]);
+      inserter.restrictTo(regions[k], start);
+      if (inserter.isOwned(start))
+        break;
+    }
+    putOff[k].assign(share[k].begin(), share[k].begin() + static_cast<std::ptrdiff_t>(first));
+    share[k].erase(share[k].begin(), share[k].begin() + static_cast<std::ptrdiff_t>(first));
+  }
+
+  passDone_ = 0;
+  std::vector<std::exception_ptr> failures(threads);
+  std::atomic<std::size_t> finished{0};
+  auto work = [&](std::size_t k) {
+    try
+    {
+      Inserter& inserter = *inserters_[k];
+      const std::vector<VertId>& mine = share[k];
+      for (std::size_t i = 0; i < mine.size(); ++i)
+      {
+        if (i % 256 == 0 && (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress))))
+        {
+          putOff[k].insert(putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
+          break;
+        }
+        if (inserter.insert(mine[i]) == Inserter::Outcome::Deferred)
+          putOff[k].push_back(mine[i]);
+        else
+          passDone_.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    catch (...)
+    {
+      failures[k] = std::current_exception();
+      stop_ = true;
+    }
+    finished.fetch_add(1);
+  };
+  std::vector<std::thread> helpers;
+  for (std::size_t k = 1; k < threads; ++k)
+    helpers.emplace_back(work, k);
+  work(0);
+  // This thread alone reports progress, also while the others finish.
+  while (finished < threads)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    reportProgress(progress);
+  }
+  for (std::thread& helper : helpers)
+    helper.join();
+  done_ += passDone_;
+  passDone_ = 0;
+  for (const std::exception_ptr& failure : failures)
+    if (failure)
+      std::rethrow_exception(failure);
+  std::vector<VertId> left;
+  for (const auto& list : putOff)
+    left.insert(left.end(), list.begin(), list.end());
+  return left;
+}
+
+} // namespace fd3
