@@ -224,8 +224,9 @@ InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, c
 // it in one of the 27 cells around its own. Cell coordinates saturate far from the origin, which
 // only puts more points in a cell: the distances decide.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
-  const double* xyz, std::vector<std::uint32_t>& order, double tolerance)
+  const double* xyz, InsertionPlan& plan, double tolerance)
 {
+  std::vector<std::uint32_t>& order = plan.order;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped;
   if (!(tolerance > 0))
     return skipped;
@@ -239,9 +240,12 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
   std::unordered_multimap<std::uint64_t, std::uint32_t> kept;
   kept.reserve(order.size());
   const double tolerance2 = tolerance * tolerance;
-  std::size_t survivors = 0;
-  for (const std::uint32_t id : order)
+  std::size_t survivors = 0, round = 0;
+  for (std::size_t position = 0; position < order.size(); ++position)
   {
+    for (; round < plan.roundStarts.size() && plan.roundStarts[round] == position; ++round)
+      plan.roundStarts[round] = survivors;
+    const std::uint32_t id = order[position];
     const double* p = xyz + 3 * std::size_t(id);
     const std::int64_t c[3] = {cellOf(p[0]), cellOf(p[1]), cellOf(p[2])};
     std::uint32_t near = id;

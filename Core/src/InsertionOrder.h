@@ -30,12 +30,12 @@ struct InsertionPlan
 InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, const Box& box,
   InsertionOrder order, std::uint64_t seed);
 
-/// Removes from `order` every point closer than `tolerance` to a point kept before it, and returns
-/// (removed, kept) input id pairs: what inserting them one by one and skipping those within the
-/// tolerance of an inserted point would do, decided before insertion so that it does not depend on
-/// the threads' timing.
+/// Removes from the plan's order every point closer than `tolerance` to a point kept before it, and
+/// returns (removed, kept) input id pairs: what inserting them one by one and skipping those within
+/// the tolerance of an inserted point would do, decided before insertion so that it does not
+/// depend on the threads' timing.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
-  const double* xyz, std::vector<std::uint32_t>& order, double tolerance);
+  const double* xyz, InsertionPlan& plan, double tolerance);
 
 } // namespace fd3
 

@@ -181,7 +181,7 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   InsertionPlan plan = planInsertion(xyz, std::move(ids), box, options.order, options.randomSeed);
   stats.duplicatesMerged = plan.duplicates.size();
   std::vector<std::uint32_t>& order = plan.order;
-  const auto skipped = skipClosePoints(xyz, order, options.tolerance);
+  const auto skipped = skipClosePoints(xyz, plan, options.tolerance);
   stats.closePointsSkipped = skipped.size();
   if (!moveFirstTetrahedronToFront(xyz, norm, order))
   {

@@ -38,7 +38,7 @@ bool Triangulator::insertAll(
   for (std::size_t r = 0; r < roundStarts.size(); ++r)
   {
     const std::size_t begin = std::max<std::size_t>(roundStarts[r], 4);
-    const std::size_t end = r + 1 < roundStarts.size() ? roundStarts[r + 1] : n;
+    const std::size_t end = std::min(r + 1 < roundStarts.size() ? roundStarts[r + 1] : n, n);
     if (begin >= end)
       continue;
     std::vector<VertId> round(end - begin);

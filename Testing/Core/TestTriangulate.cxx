@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -160,6 +162,54 @@ TEST(Triangulate, HugeCavityIsLinkedByRotation)
   const auto r = triangulateAndCheck(p, options);
   EXPECT_EQ(r.stats.insertedPoints, 401u);
   EXPECT_GT(r.stats.cavityTetrahedra, 2 * 400u) << "the centre's cavity should hold the whole ball";
+}
+
+// Tolerance keeps points at least `tolerance` apart, each skipped point close to the vertex it was
+// skipped for, whatever the thread count; the kept points are exactly triangulated.
+TEST(Triangulate, ToleranceSkipsOnlyClosePoints)
+{
+  const Points p = fd3test::clusters(30000, 20, 1e-3, 9);
+  const std::size_t n = p.size() / 3;
+  const double tolerance = 2e-4;
+  auto distance = [&](std::uint32_t a, std::uint32_t b) {
+    const double dx = p[3 * a] - p[3 * b], dy = p[3 * a + 1] - p[3 * b + 1], dz = p[3 * a + 2] - p[3 * b + 2];
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  };
+  std::vector<std::array<std::uint32_t, 4>> reference;
+  for (int threads : {1, 2})
+  {
+    fd3::Options options;
+    options.tolerance = tolerance;
+    options.threads = threads;
+    const fd3::Triangulation r = fd3::triangulate(p.data(), n, options);
+    ASSERT_EQ(r.status, fd3::Status::Ok);
+    EXPECT_GT(r.stats.closePointsSkipped, n / 2);
+    EXPECT_EQ(r.stats.insertedPoints + r.stats.closePointsSkipped, n);
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+      if (r.representative[i] == i)
+        kept.push_back(i);
+      else
+        ASSERT_LT(distance(i, r.representative[i]), tolerance) << "point " << i;
+    }
+    ASSERT_EQ(kept.size(), r.stats.insertedPoints);
+    // Kept points are tolerance apart: checked among neighbours in x (sorted), which suffices.
+    std::sort(kept.begin(), kept.end(), [&](auto a, auto b) { return p[3 * a] < p[3 * b]; });
+    for (std::size_t i = 0; i < kept.size(); ++i)
+      for (std::size_t j = i + 1; j < kept.size() && p[3 * kept[j]] - p[3 * kept[i]] < tolerance; ++j)
+        ASSERT_GE(distance(kept[i], kept[j]), tolerance);
+    fd3test::ValidityOptions validity;
+    Points keptPoints;
+    for (std::uint32_t i = 0; i < n; ++i)
+      keptPoints.insert(keptPoints.end(), {r.representative[i] == i ? p[3 * i] : NAN, p[3 * i + 1], p[3 * i + 2]});
+    const auto report = fd3test::checkTriangulation(keptPoints.data(), n, r.tetrahedra, validity);
+    EXPECT_TRUE(report.valid()) << report.summary();
+    if (threads == 1)
+      reference = fd3test::canonicalTetrahedra(r.tetrahedra);
+    else
+      EXPECT_EQ(fd3test::canonicalTetrahedra(r.tetrahedra), reference);
+  }
 }
 
 TEST(Triangulate, NeighboursAreConsistent)
