@@ -10,7 +10,8 @@
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run), then the same
 #                       suite built with AddressSanitizer + UndefinedBehaviorSanitizer (Debug:
 #                       the kernel's own mesh check on; the portable fallbacks of the compiler
-#                       intrinsics instead of the intrinsics) in build-asan
+#                       intrinsics instead of the intrinsics) in build-asan, then the kernel's
+#                       thread tests built with ThreadSanitizer in build-tsan
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -54,6 +55,10 @@ case "${1:-build}" in
     cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
       -DFD3_SANITIZE=ON -DFD3_PORTABLE=ON -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
     cmake --build build-asan -j2
-    (cd build-asan && ASAN_OPTIONS=detect_leaks=1 "${xvfb[@]}" ctest -j2 --output-on-failure) ;;
+    (cd build-asan && ASAN_OPTIONS=detect_leaks=1 "${xvfb[@]}" ctest -j2 --output-on-failure)
+    cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFD3_SANITIZE_THREAD=ON \
+      -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+    cmake --build build-tsan --target TestCore -j2
+    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/TestCore --gtest_filter='Threads.*' ;;
   *) echo "usage: $0 [build|demo|test|benchmark [sizes]]" >&2; exit 2 ;;
 esac

@@ -151,11 +151,21 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
   for (std::size_t k = 1; k < threads; ++k)
     helpers.emplace_back(work, k);
   work(0);
-  // This thread alone reports progress, also while the others finish.
+  // This thread alone reports progress, also while the others finish; a callback that throws
+  // stops them, and the threads are joined before anything unwinds.
   while (finished < threads)
   {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    reportProgress(progress);
+    try
+    {
+      reportProgress(progress);
+    }
+    catch (...)
+    {
+      if (!failures[0])
+        failures[0] = std::current_exception();
+      stop_ = true;
+    }
   }
   for (std::thread& helper : helpers)
     helper.join();

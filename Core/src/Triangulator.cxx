@@ -45,7 +45,7 @@ bool Triangulator::insertAll(
     for (std::size_t i = 0; i < round.size(); ++i)
       round[i] = static_cast<VertId>(begin + i);
     // Parallel passes pay for their threads and regions: small rounds go in serially.
-    const bool ok = parallel && round.size() >= 4096 * inserters_.size()
+    const bool ok = parallel && round.size() >= mesh_.options.pointsPerThread * inserters_.size()
       ? insertInParallel(std::move(round), progress)
       : insertSerially(round.data(), round.size(), progress);
     if (!ok)

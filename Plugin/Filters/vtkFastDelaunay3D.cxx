@@ -412,6 +412,8 @@ fd3::Options vtkFastDelaunay3D::KernelOptions(double diagonal)
       break;
   }
   options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
+  options.threads =
+    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
   options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
   options.progress = [this](double fraction) {
     this->UpdateProgress(fraction);
@@ -542,6 +544,7 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VolumeThreshold: " << this->VolumeThreshold << "\n";
   os << indent << "InsertionOrder: " << this->InsertionOrder << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ComputeCircumradius: " << this->ComputeCircumradius << "\n";
   os << indent << "ComputeVolume: " << this->ComputeVolume << "\n";
   os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";

@@ -183,6 +183,17 @@ public:
 
   ///@{
   /**
+   * Number of threads that insert points. 0 (the default) takes what
+   * vtkSMPTools::GetEstimatedNumberOfThreads() reports, so that ParaView's thread setting (or the
+   * VTK_SMP_BACKEND_IN_USE and VTK_SMP_MAX_THREADS environment variables) governs it. The output
+   * is the same whatever the number of threads. A VolumeThreshold above 0 runs on one thread.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
    * Optional cell arrays, off by default: "Circumradius" (of tetrahedra and triangles; half the
    * length of lines), "Volume" (of tetrahedra; 0 for other cells) and "RadiusEdgeRatio"
    * (circumradius over shortest edge of tetrahedra, 0.612 for a regular one; 0 for other cells).
@@ -256,6 +267,7 @@ protected:
   double VolumeThreshold = 0.0;
   int InsertionOrder = BRIO_HILBERT;
   int RandomSeed = 1;
+  int NumberOfThreads = 0;
   vtkTypeBool ComputeCircumradius = 0;
   vtkTypeBool ComputeVolume = 0;
   vtkTypeBool ComputeRadiusEdgeRatio = 0;

@@ -62,7 +62,8 @@ struct Measurement
 };
 
 /// The exact validator's verdict on a tetrahedralization, when the run is small enough.
-int validity(const fd3test::Points& p, const std::vector<std::uint32_t>& tets, std::size_t limit)
+template <typename Ids>
+int validity(const fd3test::Points& p, const Ids& tets, std::size_t limit)
 {
   if (p.size() / 3 > limit)
     return -1;

@@ -15,12 +15,14 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkStructuredGrid.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <string>
 #include <stdexcept>
 #include <vector>
@@ -28,6 +30,7 @@
 namespace
 {
 using fd3test::checkOutput;
+std::thread::id gCaller; // the thread that runs the filter, for progress observers
 using fd3test::toPolyData;
 
 TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
@@ -229,13 +232,55 @@ TEST(Filter, EveryKindOfDatasetAndCellsWithoutPoints)
   EXPECT_EQ(filter->GetOutput()->GetNumberOfCells(), 0);
 }
 
+// The same tetrahedra whatever the number of threads, with one explicitly or from VTK's SMP
+// tools (0, ParaView's setting: the STDThread backend here); progress from the calling thread.
+TEST(Filter, SameTetrahedraForAnyNumberOfThreads)
+{
+  auto cloud = toPolyData(fd3test::uniformBall(120000, 11));
+  vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetInputData(cloud);
+  EXPECT_EQ(filter->GetNumberOfThreads(), 0);
+  filter->SetNumberOfThreads(1);
+  filter->Update();
+  const auto reference = fd3test::canonicalTetrahedra(fd3test::tetrahedra(filter->GetOutput()));
+  const auto report = checkOutput(filter->GetOutput());
+  EXPECT_TRUE(report.valid()) << report.summary();
+  const std::string backend = vtkSMPTools::GetBackend();
+  vtkSMPTools::SetBackend("STDThread");
+  EXPECT_GE(vtkSMPTools::GetEstimatedNumberOfThreads(), 2);
+  const std::thread::id caller = std::this_thread::get_id();
+  for (int threads : {2, 3, 0})
+  {
+    bool foreign = false;
+    vtkNew<vtkCallbackCommand> onProgress;
+    onProgress->SetClientData(&foreign);
+    onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void*) {
+      *static_cast<bool*>(client) |= std::this_thread::get_id() != gCaller;
+    });
+    gCaller = caller;
+    const unsigned long tag = filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+    filter->SetNumberOfThreads(threads);
+    filter->Update();
+    filter->RemoveObserver(tag);
+    EXPECT_FALSE(foreign) << threads << " threads";
+    EXPECT_EQ(fd3test::canonicalTetrahedra(fd3test::tetrahedra(filter->GetOutput())), reference)
+      << threads << " threads";
+  }
+  vtkSMPTools::SetBackend(backend.c_str());
+}
+
 // Abort from a progress observer (what ParaView's Abort button does): an empty output, and the
-// same filter then runs to a correct result.
-TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
+// same filter then runs to a correct result; on one thread and on several.
+class AbortWithThreads : public ::testing::TestWithParam<int>
+{
+};
+
+TEST_P(AbortWithThreads, LeavesAnEmptyOutputAndTheFilterRunsAgain)
 {
   auto cloud = toPolyData(fd3test::uniformCube(60000, 6));
   vtkNew<vtkFastDelaunay3D> filter;
   filter->SetInputData(cloud);
+  filter->SetNumberOfThreads(GetParam());
   vtkNew<vtkCallbackCommand> abortOnProgress;
   abortOnProgress->SetCallback([](vtkObject* caller, unsigned long, void*, void*) {
     static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
@@ -253,6 +298,7 @@ TEST(Filter, AbortLeavesAnEmptyOutputAndTheFilterRunsAgain)
   const auto report = checkOutput(filter->GetOutput());
   EXPECT_TRUE(report.valid()) << report.summary();
 }
+INSTANTIATE_TEST_SUITE_P(Filter, AbortWithThreads, ::testing::Values(1, 2));
 
 // An internal failure in the middle of a run (here an exception thrown by a progress observer,
 // through the kernel): an error, an empty output, no leak (the sanitizer build checks), and the

@@ -15,7 +15,8 @@ using Points = std::vector<double>; // x,y,z triples
 Points uniformCube(std::size_t n, std::uint64_t seed);
 Points uniformBall(std::size_t n, std::uint64_t seed);
 /// n points exactly on a sphere (integer coordinates, all cospherical: every insphere test among
-/// them is a tie). Built from integer quaternions of one norm N: q -> q i q* has length N.
+/// them is a tie), about 1M at most. Built from integer quaternions of one norm N: q -> q i q* has
+/// length N.
 Points exactSphere(std::size_t n, std::uint64_t seed);
 /// The k^3 integer lattice.
 Points lattice(int k);

@@ -62,6 +62,9 @@ struct Options
   /// are broken by a key fixed before insertion). A volume threshold makes the run serial: which
   /// slivers it avoids depends on the order of insertion.
   int threads = 1;
+  /// A BRIO round goes in parallel when it has at least this many points per thread (smaller
+  /// ones do not repay the threads' start and the regions' borders).
+  std::size_t pointsPerThread = 4096;
 };
 
 /// Figures of one run. Times are wall-clock seconds per phase.

@@ -1,0 +1,118 @@
+// Multi-threaded insertion: the same tetrahedra for every thread count, exactly valid, on every
+// point set of the benchmark; progress from the calling thread only; abort and failures stop every
+// thread and leave nothing behind. The thread sanitizer build runs these too.
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+
+namespace
+{
+fd3::Triangulation run(const fd3test::Points& p, int threads)
+{
+  fd3::Options options;
+  options.threads = threads;
+  options.pointsPerThread = 256; // parallel rounds already at test sizes
+  return fd3::triangulate(p.data(), p.size() / 3, options);
+}
+
+#ifdef FD3_THREAD_SANITIZER
+constexpr std::size_t kPoints = 6000; // the thread sanitizer is slow
+#else
+constexpr std::size_t kPoints = 40000;
+#endif
+
+TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
+{
+  for (const std::string& kind : fd3test::pointSetNames())
+  {
+    SCOPED_TRACE(kind);
+    const fd3test::Points p = fd3test::generate(kind, kPoints, 4);
+    const fd3::Triangulation serial = run(p, 1);
+    ASSERT_EQ(serial.status, fd3::Status::Ok);
+    const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, serial.tetrahedra);
+    EXPECT_TRUE(report.valid()) << report.summary();
+    const auto reference = fd3test::canonicalTetrahedra(serial.tetrahedra);
+    std::size_t deferred = 0;
+    for (int threads : {2, 3, 4, 8})
+    {
+      const fd3::Triangulation parallel = run(p, threads);
+      ASSERT_EQ(parallel.status, fd3::Status::Ok) << threads << " threads";
+      EXPECT_EQ(fd3test::canonicalTetrahedra(parallel.tetrahedra), reference) << threads << " threads";
+      EXPECT_EQ(parallel.stats.insertedPoints, serial.stats.insertedPoints);
+      EXPECT_EQ(parallel.stats.duplicatesMerged, serial.stats.duplicatesMerged);
+      deferred += parallel.stats.deferredInsertions;
+    }
+    EXPECT_GT(deferred, 0u) << "the regions' borders should have put some insertions off";
+  }
+}
+
+TEST(Threads, ProgressComesFromTheCallingThreadOnly)
+{
+  const fd3test::Points p = fd3test::uniformCube(60000, 8);
+  fd3::Options options;
+  options.threads = 3;
+  options.pointsPerThread = 256;
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> calls{0}, foreign{0};
+  options.progress = [&](double) {
+    ++calls;
+    foreign += std::this_thread::get_id() != caller;
+    return true;
+  };
+  const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3, options);
+  ASSERT_EQ(r.status, fd3::Status::Ok);
+  EXPECT_GT(calls, 0);
+  EXPECT_EQ(foreign, 0);
+}
+
+TEST(Threads, AbortStopsEveryThread)
+{
+  const fd3test::Points p = fd3test::uniformCube(60000, 9);
+  fd3::Options options;
+  options.threads = 4;
+  options.pointsPerThread = 256;
+  int calls = 0;
+  options.progress = [&](double fraction) { return ++calls < 2 || fraction < 0.3; };
+  const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3, options);
+  EXPECT_EQ(r.status, fd3::Status::Aborted);
+  EXPECT_TRUE(r.tetrahedra.empty());
+  // And the next run is whole.
+  options.progress = nullptr;
+  const fd3::Triangulation again = fd3::triangulate(p.data(), p.size() / 3, options);
+  EXPECT_EQ(again.status, fd3::Status::Ok);
+  EXPECT_EQ(again.stats.insertedPoints, 60000u);
+}
+
+TEST(Threads, FailureInTheCallbackCrossesAndReleasesEverything)
+{
+  const fd3test::Points p = fd3test::uniformCube(60000, 10);
+  fd3::Options options;
+  options.threads = 2;
+  options.pointsPerThread = 256;
+  options.progress = [](double fraction) -> bool {
+    if (fraction > 0.4)
+      throw std::runtime_error("simulated failure");
+    return true;
+  };
+  EXPECT_THROW(fd3::triangulate(p.data(), p.size() / 3, options), std::runtime_error);
+}
+
+TEST(Threads, AllHardwareThreadsByDefaultOfZero)
+{
+  const fd3test::Points p = fd3test::lattice(20);
+  fd3::Options options;
+  options.threads = 0;
+  options.pointsPerThread = 64;
+  const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3, options);
+  ASSERT_EQ(r.status, fd3::Status::Ok);
+  const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, r.tetrahedra);
+  EXPECT_TRUE(report.valid()) << report.summary();
+}
+
+} // namespace
