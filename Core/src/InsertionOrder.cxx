@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <unordered_map>
 #include <utility>
@@ -171,18 +172,19 @@ void mergeDuplicates(std::vector<std::uint32_t>& sorted,
 }
 
 /// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
-/// each round keeps the curve order of `sorted` (a stable counting sort by round).
-std::vector<std::uint32_t> brioRounds(
-  const std::vector<std::uint32_t>& sorted, std::mt19937_64& rng, std::vector<std::size_t>& roundStarts)
+/// each round keeps the curve order of `sorted` (a stable counting sort by round). A point's round
+/// comes from its key's level, which the coordinates decide: the same in every run.
+std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted,
+  const std::uint16_t* key, std::vector<std::size_t>& roundStarts)
 {
-  const int rounds = std::clamp(static_cast<int>(std::log2(double(sorted.size()) / 64.0)), 1, 63);
+  const int rounds = std::clamp(static_cast<int>(std::log2(double(sorted.size()) / 64.0)), 1, 16);
   std::vector<std::uint8_t> roundOf(sorted.size());
   std::vector<std::size_t> start(rounds + 1, 0);
-  for (std::uint8_t& round : roundOf)
+  for (std::size_t i = 0; i < sorted.size(); ++i)
   {
-    const int laterRoundsSkipped = std::min(countTrailingZeros(rng() | (1ull << 62)), rounds - 1);
-    round = static_cast<std::uint8_t>(rounds - 1 - laterRoundsSkipped);
-    ++start[round + 1];
+    const int level = 15 - (key[sorted[i]] >> 12);
+    roundOf[i] = static_cast<std::uint8_t>(rounds - 1 - std::min(level, rounds - 1));
+    ++start[roundOf[i] + 1];
   }
   for (int r = 0; r < rounds; ++r)
     start[r + 1] += start[r];
@@ -194,8 +196,28 @@ std::vector<std::uint32_t> brioRounds(
 }
 } // namespace
 
-InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, const Box& box,
-  InsertionOrder order, std::uint64_t seed)
+std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
+{
+  // splitmix64's finalizer over the coordinates' bits (-0 as 0: the same point).
+  auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  std::uint64_t hash = mix(seed + 0x9E3779B97F4A7C15ull);
+  for (int a = 0; a < 3; ++a)
+  {
+    std::uint64_t bits;
+    const double x = p[a] == 0.0 ? 0.0 : p[a];
+    std::memcpy(&bits, &x, sizeof bits);
+    hash = mix(hash ^ bits);
+  }
+  const int level = std::min(countTrailingZeros(hash | (1ull << 63)), 15);
+  return static_cast<std::uint16_t>(((15 - level) << 12) | ((hash >> 48) & 0xFFFu));
+}
+
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, std::vector<std::uint32_t> ids,
+  const Box& box, InsertionOrder order, std::uint64_t seed)
 {
   InsertionPlan plan;
   hilbertSort(xyz, ids.data(), ids.size(), box);
@@ -204,7 +226,7 @@ InsertionPlan planInsertion(const double* xyz, std::vector<std::uint32_t> ids, c
   switch (order)
   {
     case InsertionOrder::Brio:
-      plan.order = brioRounds(ids, rng, plan.roundStarts);
+      plan.order = brioRounds(ids, key, plan.roundStarts);
       break;
     case InsertionOrder::Input:
       std::sort(ids.begin(), ids.end());

@@ -258,21 +258,22 @@ bool Predicates::collinear(const double* a, const double* b, const double* c)
 
 // A tie of inSphere between the positive tetrahedron `tet` (points p) and point e (at pe), broken.
 int Predicates::symbolicInSphere(
-  const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e)
+  const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE)
 {
   ++symbolicTies;
   // Lowering the lift of point v by delta_v changes (plane - lift)(e) by
   //   delta_e - sum_{v in tet} delta_v * lambda_v(e),
   // lambda_v(e) being the barycentric coordinate of e, whose sign is orient3d(tet with v := e).
-  // The term of the smallest id dominates; the first non-zero one decides.
+  // The term of the first point in the perturbation's order dominates; the first non-zero one
+  // decides.
   std::uint32_t done = 0; // bit k: vertex k's term was zero
   for (int round = 0; round < 4; ++round)
   {
     int k = -1;
     for (int i = 0; i < 4; ++i)
-      if (!(done >> i & 1u) && (k < 0 || tet[i] < tet[k]))
+      if (!(done >> i & 1u) && (k < 0 || precedes(key[i], p[i], key[k], p[k])))
         k = i;
-    if (e < tet[k])
+    if (precedes(keyE, pe, key[k], p[k]))
       return 1;
     const double* q[4] = {p[0], p[1], p[2], p[3]};
     q[k] = pe;
@@ -281,7 +282,7 @@ int Predicates::symbolicInSphere(
       return -o;
     done |= 1u << k;
   }
-  return 1; // e has the largest id: its own lowering decides
+  return 1; // e comes last: its own lowering decides
 }
 
 } // namespace fd3

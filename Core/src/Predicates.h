@@ -23,6 +23,17 @@
 namespace fd3
 {
 
+/// The perturbation's order of points: by key (a hash of the input coordinates, Triangulate.cxx),
+/// then by coordinates, so that distinct points are never tied. Every run computes it the same
+/// way for the same point, whatever the other points, the insertion order, the threads or the
+/// MPI ranks; the normalization of coordinates keeps their order.
+inline bool precedes(std::uint16_t keyA, const double* a, std::uint16_t keyB, const double* b)
+{
+  if (keyA != keyB)
+    return keyA < keyB;
+  return std::lexicographical_compare(a, a + 3, b, b + 3);
+}
+
 namespace filter
 {
 constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
@@ -53,13 +64,13 @@ public:
   bool collinear(const double* a, const double* b, const double* c);
 
   /// inSphere with ties broken by symbolic perturbation: the lifted coordinate |p|^2 of every point
-  /// is lowered by an infinitesimal that is larger for a smaller vertex id. Never returns 0 for a
-  /// non-degenerate tetrahedron. p[i] are the points of the vertices `tet` (positively oriented),
-  /// pe that of vertex e.
-  /// Smaller ids (inserted earlier) dominate, which on cospherical input pulls every tetrahedron
-  /// towards the first vertex: a fan of about 2 tetrahedra per point instead of a dense tangle.
+  /// is lowered by an infinitesimal that is larger for a point earlier in the perturbation's order
+  /// (precedes()). Never returns 0 for a non-degenerate tetrahedron. p[i] are the points of a
+  /// positively oriented tetrahedron and key[i] their keys, pe and keyE the query's.
+  /// The first point dominates, which on cospherical input pulls every tetrahedron towards it: a
+  /// fan of about 2 tetrahedra per point instead of a dense tangle.
   int inSphereSoS(
-    const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e);
+    const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE);
 
   /// Tunes the predicates to a point set within `box` (point i at xyz + i * stride); every point
   /// passed from then on must
@@ -89,7 +100,8 @@ private:
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereDoubleDouble(const double* a, const double* b, const double* c, const double* d, const double* e);
-  int symbolicInSphere(const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e);
+  int symbolicInSphere(
+    const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
   void checkUnderflow(const double* const rows[], int count, const double* origin);
@@ -179,10 +191,10 @@ inline int Predicates::inSphere(
 }
 
 inline int Predicates::inSphereSoS(
-  const double* const p[4], const std::uint32_t tet[4], const double* pe, std::uint32_t e)
+  const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE)
 {
   const int s = inSphere(p[0], p[1], p[2], p[3], pe);
-  return s != 0 ? s : symbolicInSphere(p, tet, pe, e);
+  return s != 0 ? s : symbolicInSphere(p, key, pe, keyE);
 }
 
 } // namespace fd3

@@ -178,7 +178,11 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     throw std::length_error("fd3::triangulate: more than 2^30 points");
 
   const Normalization norm(xyz, ids, box);
-  InsertionPlan plan = planInsertion(xyz, std::move(ids), box, options.order, options.randomSeed);
+  std::vector<std::uint16_t> key(count);
+  for (const std::uint32_t id : ids)
+    key[id] = perturbationKey(xyz + 3 * std::size_t(id), options.randomSeed);
+  InsertionPlan plan =
+    planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
   stats.duplicatesMerged = plan.duplicates.size();
   std::vector<std::uint32_t>& order = plan.order;
   const auto skipped = skipClosePoints(xyz, plan, options.tolerance);
@@ -199,7 +203,9 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
       prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
     norm.apply(xyz + 3 * std::size_t(order[i]), vertices[i].xyz);
     vertices[i].localNumber = Vertex::kNoLocal;
+    vertices[i].key = key[order[i]];
   }
+  std::vector<std::uint16_t>().swap(key);
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
   // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its

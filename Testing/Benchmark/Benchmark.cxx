@@ -2,8 +2,11 @@
 // built with them, CGAL's Delaunay_triangulation_3 and TetGen, on deterministic point sets, in one
 // run.
 //
-//   Benchmark [--kinds cube,ball,...] [--sizes 10000,100000] [--methods Core,CGAL,...]
+//   Benchmark [--kinds cube,ball,...] [--sizes 10000,100000] [--methods Core,CGAL,Core-2,...]
 //             [--vtk-limit 60] [--validate-limit N] [--markdown FILE] [--csv FILE]
+//
+// Methods: Core, vtkFastDelaunay3D, vtkDelaunay3D, CGAL, TetGen; "-T" after Core,
+// vtkFastDelaunay3D or CGAL runs it on T threads (CGAL: its Parallel_tag triangulation with TBB).
 //   Benchmark --table1 [--markdown FILE]     the paper's Table 1 for this kernel
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
@@ -21,6 +24,9 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#endif
 #endif
 #ifdef FD3_BENCHMARK_WITH_TETGEN
 #include <tetgen.h>
@@ -155,12 +161,13 @@ double since(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
+Measurement runCore(const fd3test::Points& p, std::size_t validateLimit, int threads)
 {
   Measurement m;
   const auto t0 = Clock::now();
   fd3::Options options;
   options.computeNeighbors = false; // as the VTK filter runs it
+  options.threads = threads;
   const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3, options);
   m.seconds = since(t0);
   m.tetrahedra = static_cast<double>(r.numberOfTetrahedra());
@@ -173,13 +180,15 @@ Measurement runCore(const fd3test::Points& p, std::size_t validateLimit)
 
 // Both VTK filters run with Tolerance 0 so that every method triangulates the same points.
 template <typename Filter>
-Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit)
+Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit, int threads)
 {
   auto poly = fd3test::toPolyData(p);
   vtkNew<Filter> filter;
   filter->SetInputData(poly);
   filter->SetTolerance(0);
   filter->SetGlobalWarningDisplay(0);
+  if constexpr (std::is_same_v<Filter, vtkFastDelaunay3D>)
+    filter->SetNumberOfThreads(threads);
   Measurement m;
   const auto t0 = Clock::now();
   filter->Update();
@@ -197,33 +206,62 @@ Measurement runVtkFilter(const fd3test::Points& p, std::size_t validateLimit)
 }
 
 #ifdef FD3_BENCHMARK_WITH_CGAL
-Measurement runCgal(const fd3test::Points& p, std::size_t validateLimit)
+/// The exact validator's verdict on a CGAL triangulation (CGAL's positive orientation is VTK's).
+template <typename Triangulation>
+int cgalValidity(const fd3test::Points& p, const Triangulation& dt, std::size_t limit)
 {
-  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Vertex = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Kernel>;
-  using Data = CGAL::Triangulation_data_structure_3<Vertex, CGAL::Delaunay_triangulation_cell_base_3<Kernel>>;
-  using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Data>;
-  std::vector<std::pair<Kernel::Point_3, std::uint32_t>> points;
+  if (p.size() / 3 > limit)
+    return -1;
+  std::vector<std::uint32_t> tets;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
+    tets.insert(tets.end(), {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
+                              c->vertex(3)->info()});
+  return validity(p, tets, limit);
+}
+
+using CgalKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+template <typename Concurrency>
+using CgalDelaunay = CGAL::Delaunay_triangulation_3<CgalKernel,
+  CGAL::Triangulation_data_structure_3<
+    CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, CgalKernel>,
+    CGAL::Delaunay_triangulation_cell_base_3<CgalKernel>, Concurrency>,
+  CGAL::Default,
+  std::conditional_t<std::is_same_v<Concurrency, CGAL::Sequential_tag>, CGAL::Default,
+    CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>>>;
+
+/// CGAL's Delaunay_triangulation_3, sequential or (threads > 1) its parallel version with TBB.
+Measurement runCgal(const fd3test::Points& p, std::size_t validateLimit, int threads)
+{
+  std::vector<std::pair<CgalKernel::Point_3, std::uint32_t>> points;
   points.reserve(p.size() / 3);
   for (std::size_t i = 0; i < p.size(); i += 3)
-    points.emplace_back(Kernel::Point_3(p[i], p[i + 1], p[i + 2]), static_cast<std::uint32_t>(i / 3));
+    points.emplace_back(CgalKernel::Point_3(p[i], p[i + 1], p[i + 2]), static_cast<std::uint32_t>(i / 3));
   Measurement m;
+  if (threads > 1)
+  {
+#ifdef CGAL_LINKED_WITH_TBB
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    const auto t0 = Clock::now();
+    CGAL::Bbox_3 box;
+    for (const auto& point : points)
+      box += point.first.bbox();
+    typename CgalDelaunay<CGAL::Parallel_tag>::Lock_data_structure locks(box, 50);
+    CgalDelaunay<CGAL::Parallel_tag> dt(points.begin(), points.end(), &locks);
+    m.seconds = since(t0);
+    m.tetrahedra = static_cast<double>(dt.number_of_finite_cells());
+    m.peakMiB = peakSoFarMiB();
+    m.valid = cgalValidity(p, dt, validateLimit);
+#else
+    m.note = "no TBB";
+#endif
+    return m;
+  }
   const auto t0 = Clock::now();
-  Delaunay dt(points.begin(), points.end()); // range insert: CGAL's own spatial sort
+  CgalDelaunay<CGAL::Sequential_tag> dt(points.begin(), points.end()); // its own spatial sort
   m.seconds = since(t0);
   m.tetrahedra = static_cast<double>(dt.number_of_finite_cells());
   m.peakMiB = peakSoFarMiB();
-  if (p.size() / 3 <= validateLimit)
-  {
-    std::vector<std::uint32_t> tets;
-    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
-    {
-      // CGAL's positive orientation is VTK's: vertices 0..3 in order.
-      tets.insert(tets.end(), {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
-                                c->vertex(3)->info()});
-    }
-    m.valid = validity(p, tets, validateLimit);
-  }
+  m.valid = cgalValidity(p, dt, validateLimit);
   return m;
 }
 #endif
@@ -331,25 +369,40 @@ struct Method
   std::function<Measurement(const fd3test::Points&, std::size_t)> run; // empty: not built
 };
 
-std::vector<Method> allMethods()
+/// The method by name: "Core", "vtkFastDelaunay3D", "vtkDelaunay3D", "CGAL", "TetGen", and
+/// "<name>-T" for T threads where the method has them.
+Method method(const std::string& name)
 {
-  std::vector<Method> methods = {{"Core", runCore},
-    {"vtkFastDelaunay3D", runVtkFilter<vtkFastDelaunay3D>},
-    {"vtkDelaunay3D", runVtkFilter<vtkDelaunay3D>}, {"CGAL", {}}, {"TetGen", {}}};
+  const std::size_t dash = name.rfind('-');
+  const std::string base = dash == std::string::npos ? name : name.substr(0, dash);
+  const int threads = dash == std::string::npos ? 1 : std::stoi(name.substr(dash + 1));
+  using std::placeholders::_1;
+  using std::placeholders::_2;
+  Method m{name, {}};
+  if (base == "Core")
+    m.run = std::bind(runCore, _1, _2, threads);
+  else if (base == "vtkFastDelaunay3D")
+    m.run = std::bind(runVtkFilter<vtkFastDelaunay3D>, _1, _2, threads);
+  else if (base == "vtkDelaunay3D" && threads == 1)
+    m.run = std::bind(runVtkFilter<vtkDelaunay3D>, _1, _2, 1);
 #ifdef FD3_BENCHMARK_WITH_CGAL
-  methods[3].run = runCgal;
+  else if (base == "CGAL")
+    m.run = std::bind(runCgal, _1, _2, threads);
 #endif
 #ifdef FD3_BENCHMARK_WITH_TETGEN
-  methods[4].run = runTetgen;
+  else if (base == "TetGen" && threads == 1)
+    m.run = runTetgen;
 #endif
-  return methods;
+  return m;
 }
 
 int main(int argc, char* argv[])
 {
   std::vector<std::string> kinds = fd3test::pointSetNames();
   std::vector<std::size_t> sizes = {10000, 100000, 1000000};
-  std::vector<Method> methods = allMethods();
+  std::vector<Method> methods;
+  for (const char* name : {"Core", "vtkFastDelaunay3D", "vtkDelaunay3D", "CGAL", "TetGen"})
+    methods.push_back(method(name));
   double vtkLimit = 60;
   std::size_t validateLimit = 200000;
   std::string markdownFile, csvFile;
@@ -372,12 +425,9 @@ int main(int argc, char* argv[])
     }
     else if (key == "--methods")
     {
-      const std::vector<std::string> wanted = split(value);
-      methods.erase(std::remove_if(methods.begin(), methods.end(),
-                      [&](const Method& m) {
-                        return std::find(wanted.begin(), wanted.end(), m.name) == wanted.end();
-                      }),
-        methods.end());
+      methods.clear();
+      for (const std::string& name : split(value))
+        methods.push_back(method(name));
     }
     else if (key == "--vtk-limit")
       vtkLimit = std::stod(value);

@@ -332,7 +332,9 @@ TEST(Predicates, SymbolicPerturbationNeverTiesAndIsAntisymmetricAcrossAFace)
       if (e != t[0] && e != t[1] && e != t[2] && e != t[3])
       {
         const double* p[4] = {xyz + 3 * t[0], xyz + 3 * t[1], xyz + 3 * t[2], xyz + 3 * t[3]};
-        EXPECT_NE(predicates.inSphereSoS(p, t, xyz + 3 * e, e), 0);
+        const std::uint16_t key[4] = {std::uint16_t(t[0]), std::uint16_t(t[1]), std::uint16_t(t[2]),
+          std::uint16_t(t[3])};
+        EXPECT_NE(predicates.inSphereSoS(p, key, xyz + 3 * e, std::uint16_t(e)), 0);
       }
   }
   EXPECT_GT(predicates.symbolicTies, 0u);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 
@@ -124,6 +125,44 @@ TEST(Triangulate, EveryCountFromOneToTen)
       const auto report = fd3test::checkTriangulation(p.data(), n, r.tetrahedra);
       EXPECT_TRUE(report.valid()) << "n = " << n << ": " << report.summary();
     }
+  }
+}
+
+// Ties are broken by a key that each point's coordinates decide, so the tetrahedra depend on the
+// point set alone: the same for every insertion order and for the input in any order, lattices and
+// cospherical points included (what lets MPI ranks agree with a single process).
+TEST(Triangulate, SameTetrahedraForAnyOrderEvenWithTies)
+{
+  for (const char* kind : {"lattice", "sphere", "terrain"})
+  {
+    SCOPED_TRACE(kind);
+    const Points p = fd3test::generate(kind, 20000, 3);
+    const std::size_t n = p.size() / 3;
+    // The same points, shuffled: tetrahedra are compared by the points' coordinates.
+    std::vector<std::uint32_t> permutation(n);
+    std::iota(permutation.begin(), permutation.end(), 0u);
+    std::shuffle(permutation.begin(), permutation.end(), std::mt19937(5));
+    Points shuffled(p.size());
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy_n(&p[3 * permutation[i]], 3, &shuffled[3 * i]);
+    auto byCoordinates = [](const Points& xyz, const fd3::IdArray& tets) {
+      std::vector<std::array<std::array<double, 3>, 4>> out(tets.size() / 4);
+      for (std::size_t t = 0; t < out.size(); ++t)
+      {
+        for (int k = 0; k < 4; ++k)
+          std::copy_n(&xyz[3 * tets[4 * t + k]], 3, out[t][k].begin());
+        std::sort(out[t].begin(), out[t].end());
+      }
+      std::sort(out.begin(), out.end());
+      return out;
+    };
+    fd3::Options options;
+    const auto reference = byCoordinates(p, triangulateAndCheck(p, options).tetrahedra);
+    EXPECT_EQ(byCoordinates(shuffled, triangulateAndCheck(shuffled, options).tetrahedra), reference);
+    options.order = fd3::InsertionOrder::Input;
+    EXPECT_EQ(byCoordinates(p, triangulateAndCheck(p, options).tetrahedra), reference);
+    options.order = fd3::InsertionOrder::Random;
+    EXPECT_EQ(byCoordinates(p, triangulateAndCheck(p, options).tetrahedra), reference);
   }
 }
 
