@@ -42,8 +42,9 @@ void BackgroundGrid::cellCoordinates(const double* p, int ijk[3]) const
 {
   for (int a = 0; a < 3; ++a)
   {
-    const int c = static_cast<int>((p[a] - origin_[a]) * inverseSize_[a]);
-    ijk[a] = std::clamp(c, 0, dims_[a] - 1);
+    // Clamped as a double: points added after the build may lie far outside the grid's box.
+    const double c = std::clamp((p[a] - origin_[a]) * inverseSize_[a], 0.0, double(dims_[a] - 1));
+    ijk[a] = static_cast<int>(c);
   }
 }
 

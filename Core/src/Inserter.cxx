@@ -128,6 +128,12 @@ Inserter::Outcome Inserter::insert(VertId v)
   PhaseClock clock(v % kSampling == 0);
   const TetId base = locate(v);
   clock.lap(stats_.secondsLocate);
+  if (lookForDuplicates_ && base != kNoTet)
+    if (const VertId repeated = repeatedVertex(base, v); repeated != kNoVertex)
+    {
+      duplicates_.emplace_back(v, repeated);
+      return Outcome::Duplicate;
+    }
   if (base == kNoTet || !digCavity(base, v))
   {
     ++stats_.deferredInsertions;

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace fd3
@@ -85,10 +86,19 @@ public:
   enum class Outcome
   {
     Inserted,
-    Deferred ///< the insertion would change the mesh outside the region, or it is full: nothing done
+    Deferred, ///< the insertion would change the mesh outside the region, or it is full: nothing done
+    Duplicate ///< v repeats a vertex of the mesh (only looked for after lookForDuplicates())
   };
   /// Inserts vertex v, a point of the region.
   Outcome insert(VertId v);
+
+  /// From now on, every point is first located in the tetrahedron that contains it (not only one
+  /// in conflict), which has as vertex any vertex that the point repeats: that one is then
+  /// recorded in duplicates() and the point left out. For points added to a finished mesh, which
+  /// the initial sort did not merge.
+  void lookForDuplicates() { lookForDuplicates_ = true; }
+  /// (repeating vertex, vertex it repeats), in the order met.
+  const std::vector<std::pair<VertId, VertId>>& duplicates() const { return duplicates_; }
 
   /// A tetrahedron in conflict with vertex v, reading only (for the start of a parallel pass).
   TetId locateForStart(VertId v) { return locate(v); }
@@ -96,6 +106,8 @@ public:
 
   const Statistics& stats() const { return stats_; }
   const Predicates& predicates() const { return predicates_; }
+  /// Takes the tuning of `tuned`, after points were added to the mesh.
+  void retune(const Predicates& tuned) { predicates_.tuneLike(tuned); }
 
 private:
   const double* point(VertId v) const { return mesh_.point(v); }
@@ -110,6 +122,8 @@ private:
   TetId startTet(VertId v) const;
   TetId walk(TetId from, VertId v);
   TetId locate(VertId v);
+  /// The vertex of base (which contains v's point) that v repeats, or kNoVertex.
+  VertId repeatedVertex(TetId base, VertId v) const;
   // DigCavity.cxx
   int inSphereSoS(const VertId tet[4], VertId e)
   {
@@ -145,6 +159,8 @@ private:
   Cavity cavity_;
   Region region_;
   bool restricted_ = false;
+  bool lookForDuplicates_ = false;
+  std::vector<std::pair<VertId, VertId>> duplicates_;
   // The start of the next walk: the last inserted vertex (unrestricted), or the last tetrahedron
   // created in this region (restricted: it is the inserter's, unlike a vertex's tetrahedron).
   VertId lastInserted_ = 0;

@@ -46,8 +46,8 @@ TetId Inserter::startTet(VertId v) const
   return mesh_.vertices[start].tet;
 }
 
-// The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold,
-// contains the point or is a ghost whose hull face the point lies beyond), cross one of its faces
+// The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold or
+// while looking for duplicates, contains the point or is a ghost whose hull face the point lies beyond), cross one of its faces
 // that separates it from the point. In a region, a tetrahedron that is not the inserter's ends the
 // walk with kNoTet (it was read safely: it shares a face with one that is). The faces are tried in order of decreasing distance from the
 // point to the vertex they leave behind, so the tetrahedra close in on the point. Measured on 100k
@@ -56,7 +56,7 @@ TetId Inserter::startTet(VertId v) const
 TetId Inserter::walk(TetId t, VertId v)
 {
   const double* p = point(v);
-  const bool toFirstConflict = mesh_.options.volumeThreshold <= 0;
+  const bool toFirstConflict = mesh_.options.volumeThreshold <= 0 && !lookForDuplicates_;
   int entryFace = -1;
   std::size_t steps = 0;
   for (;;)
@@ -123,6 +123,22 @@ TetId Inserter::walk(TetId t, VertId v)
 TetId Inserter::locate(VertId v)
 {
   return walk(startTet(v), v);
+}
+
+// A point repeating a vertex w lies in a closed tetrahedron only if w is one of its vertices (the
+// mesh is a simplicial complex), and never beyond a hull face.
+VertId Inserter::repeatedVertex(TetId base, VertId v) const
+{
+  if (tets_.isGhost(base))
+    return kNoVertex;
+  const double* p = point(v);
+  for (int k = 0; k < 4; ++k)
+  {
+    const double* q = point(tets_.vertex(base, k));
+    if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2])
+      return tets_.vertex(base, k);
+  }
+  return kNoVertex;
 }
 
 } // namespace fd3

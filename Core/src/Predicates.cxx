@@ -37,9 +37,26 @@ constexpr double kDoubleDoubleSmallest = 0x1p-600;
 
 void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box)
 {
-  constexpr int kNoGrid = -4096;
-  int lowest = 4096, highest = kNoGrid; // the grid: |x| < 2^highest, x a multiple of 2^lowest
-  for (std::size_t i = 0; i < 3 * count && lowest != kNoGrid; ++i)
+  // Static bounds: the semi-static ones with every difference at its largest possible value, the
+  // box's extent on its axis (the 1% covers the rounding of the extents and of the differences).
+  // Per axis, not the largest extent cubed: flat sets (terrain, slabs) get bounds as tight as
+  // their thickness allows. Tiny extents, where products could underflow, keep the semi-static
+  // filter with its underflow guard.
+  const double ex = box.extent(0), ey = box.extent(1), ez = box.extent(2);
+  const double m = std::max({ex, ey, ez});
+  const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
+  const bool staticSafe = orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
+  tuning_ = Tuning();
+  tuning_.boxOrient = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
+  tuning_.boxInSphere = staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
+  include(xyz, count, stride);
+}
+
+void Predicates::include(const double* xyz, std::size_t count, std::size_t stride)
+{
+  int& lowest = tuning_.lowest;
+  int& highest = tuning_.highest;
+  for (std::size_t i = 0; i < 3 * count && lowest != Tuning::kNoGrid; ++i)
   {
     const double x = xyz[i / 3 * stride + i % 3];
     if (x == 0.0)
@@ -51,38 +68,31 @@ void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t strid
     lowest = std::min(lowest, exponent - 53 + countTrailingZeros(significand));
     highest = std::max(highest, exponent);
     if (highest - lowest > kIntegerGridBits)
-      lowest = kNoGrid;
+      lowest = Tuning::kNoGrid;
   }
-  const bool onGrid = lowest != kNoGrid && lowest <= highest;
-  const int gridBits = onGrid ? highest - lowest : kIntegerGridBits + 1;
+  applyGrid();
+}
+
+void Predicates::applyGrid()
+{
+  Tuning& t = tuning_;
+  const bool onGrid = t.lowest != Tuning::kNoGrid && t.lowest <= t.highest;
+  const int gridBits = onGrid ? t.highest - t.lowest : kIntegerGridBits + 1;
 #ifdef FD3_HAVE_INT128
-  inverseGridUnit_ = onGrid ? std::ldexp(1.0, -lowest) : 0.0;
+  t.inverseGridUnit = onGrid ? std::ldexp(1.0, -t.lowest) : 0.0;
 #else
-  inverseGridUnit_ = 0.0; // no 128-bit integers: the exact stage uses expansions
+  t.inverseGridUnit = 0.0; // no 128-bit integers: the exact stage uses expansions
 #endif
-  // Static bounds: the semi-static ones with every difference at its largest possible value, the
-  // set's extent on its axis (the 1% covers the rounding of the extents and of the differences).
-  // Per axis, not the largest extent cubed: flat sets (terrain, slabs) get bounds as tight as
-  // their thickness allows. Tiny extents, where products could underflow, keep the semi-static
-  // filter with its underflow guard.
-  const double ex = box.extent(0), ey = box.extent(1), ez = box.extent(2);
-  const double m = std::max({ex, ey, ez});
-  const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
-  const bool staticSafe = orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
-  orientStatic_ = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
-  inSphereStatic_ = staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
   // On a grid of b bits, differences are integers (in units of u) below 2^(b+1). orient3d's
   // products, minors and sum then stay below 2^(3b+6) <= 2^51, and insphere's 2x2 minors below
   // 2^(2b+3), 3x3 minors below 2^(3b+6), lifts below 2^(2b+4) and determinant below
   // 2^(5b+12) <= 2^52: every float operation is exact, provided no product of five values leaves
   // the normal range (always so for points normalized into [-1, 1]).
-  const bool normalProducts = onGrid && lowest > -190 && highest < 190;
-  floatExactOrient_ = normalProducts && gridBits <= kFloatExactOrientBits;
-  floatExactInSphere_ = normalProducts && gridBits <= kFloatExactInSphereBits;
-  if (floatExactOrient_)
-    orientStatic_ = 0;
-  if (floatExactInSphere_)
-    inSphereStatic_ = 0;
+  const bool normalProducts = onGrid && t.lowest > -190 && t.highest < 190;
+  t.floatExactOrient = normalProducts && gridBits <= kFloatExactOrientBits;
+  t.floatExactInSphere = normalProducts && gridBits <= kFloatExactInSphereBits;
+  t.orientStatic = t.floatExactOrient ? 0 : t.boxOrient;
+  t.inSphereStatic = t.floatExactInSphere ? 0 : t.boxInSphere;
 }
 
 // On the grid, coordinates are integers below 2^23 in magnitude, so differences are exact doubles
@@ -94,7 +104,7 @@ void Predicates::gridDifferences(const double* const x[N], const double* y, std:
 {
   for (int i = 0; i < N; ++i)
     for (int k = 0; k < 3; ++k)
-      out[i][k] = static_cast<std::int64_t>((x[i][k] - y[k]) * inverseGridUnit_);
+      out[i][k] = static_cast<std::int64_t>((x[i][k] - y[k]) * tuning_.inverseGridUnit);
 }
 
 void Predicates::checkUnderflow(const double* const rows[], int count, const double* origin)
@@ -125,7 +135,7 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
 {
   ++exactOrientCalls;
 #ifdef FD3_HAVE_INT128
-  if (inverseGridUnit_ > 0)
+  if (tuning_.inverseGridUnit > 0)
   {
     const double* rows[3] = {b, c, d};
     std::int64_t q[3][3];
@@ -152,7 +162,7 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
 int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
-  if (inverseGridUnit_ > 0)
+  if (tuning_.inverseGridUnit > 0)
     return inSphereExact(a, b, c, d, e);
   ++doubleDoubleInSphereCalls;
   const double* rows[4] = {a, b, c, d};
@@ -201,7 +211,7 @@ int Predicates::inSphereExact(
 {
   ++exactInSphereCalls;
 #ifdef FD3_HAVE_INT128
-  if (inverseGridUnit_ > 0)
+  if (tuning_.inverseGridUnit > 0)
   {
     const double* rows[4] = {a, b, c, d};
     std::int64_t q[4][3];

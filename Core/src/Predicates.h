@@ -73,15 +73,19 @@ public:
     const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE);
 
   /// Tunes the predicates to a point set within `box` (point i at xyz + i * stride); every point
-  /// passed from then on must
-  /// belong to it. From the set's extent come static error bounds, checked before the semi-static
-  /// ones (one comparison decides almost every call on well-spread points). When every coordinate
-  /// is an integer multiple of one power of two u, below 2^kIntegerGridBits u in magnitude
-  /// (lattices, image and integer data), the exact stage runs in 128-bit integers instead of
-  /// expansions (where the compiler has them), and below 2^kFloatExactOrientBits u (orient3d) or
+  /// passed from then on must lie in the box and be one of them or of those include()d later.
+  /// From the box's extent come static error bounds, checked before the semi-static ones (one
+  /// comparison decides almost every call on well-spread points). When every coordinate is an
+  /// integer multiple of one power of two u, below 2^kIntegerGridBits u in magnitude (lattices,
+  /// image and integer data), the exact stage runs in 128-bit integers instead of expansions (where
+  /// the compiler has them), and below 2^kFloatExactOrientBits u (orient3d) or
   /// 2^kFloatExactInSphereBits u (insphere) the float evaluation itself is exact, so even a tie
   /// costs no more than the float evaluation.
   void adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box);
+  /// Widens the tuning to more points of the same box (the grid may get finer, or go).
+  void include(const double* xyz, std::size_t count, std::size_t stride);
+  /// Takes other's tuning, keeping this one's counters.
+  void tuneLike(const Predicates& other) { tuning_ = other.tuning_; }
   static constexpr int kIntegerGridBits = 23;
   static constexpr int kFloatExactOrientBits = 15;
   static constexpr int kFloatExactInSphereBits = 8;
@@ -107,13 +111,21 @@ private:
   void checkUnderflow(const double* const rows[], int count, const double* origin);
 
   ExpansionArena arena_;
-  double inverseGridUnit_ = 0.0; // 1/u on an integer grid, else 0
-  // A float determinant beyond these bounds has the exact sign; +inf until adaptTo(), 0 where the
-  // float evaluation is exact. floatExact* tells that a determinant within them is exactly 0.
-  double orientStatic_ = HUGE_VAL;
-  double inSphereStatic_ = HUGE_VAL;
-  bool floatExactOrient_ = false;
-  bool floatExactInSphere_ = false;
+  struct Tuning
+  {
+    // The points' grid: every |x| < 2^highest, every x a multiple of 2^lowest (kNoGrid when none).
+    static constexpr int kNoGrid = -4096;
+    int lowest = 4096, highest = kNoGrid;
+    double boxOrient = HUGE_VAL, boxInSphere = HUGE_VAL; // static bounds from the box alone
+    double inverseGridUnit = 0.0;                          // 1/u on an integer grid, else 0
+    // A float determinant beyond these bounds has the exact sign; +inf until adaptTo(), 0 where the
+    // float evaluation is exact. floatExact* tells that a determinant within them is exactly 0.
+    double orientStatic = HUGE_VAL;
+    double inSphereStatic = HUGE_VAL;
+    bool floatExactOrient = false;
+    bool floatExactInSphere = false;
+  } tuning_;
+  void applyGrid();
 };
 
 inline int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
@@ -124,9 +136,9 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
   // det[a-d; b-d; c-d] is the negative of VTK's orientation.
   const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
     cdz * (adx * bdy - bdx * ady);
-  if (det > orientStatic_ || -det > orientStatic_)
+  if (det > tuning_.orientStatic || -det > tuning_.orientStatic)
     return -filter::signOf(det);
-  if (floatExactOrient_)
+  if (tuning_.floatExactOrient)
     return 0;
   // Semi-static filter: the permanent is at most 6 * mx * my * mz, mx being the largest |x|
   // difference (and so on), so Shewchuk's bound (7 + 56 eps) eps * permanent is below
@@ -162,9 +174,9 @@ inline int Predicates::inSphereFiltered(
   // det[(x-e, |x-e|^2) for x = a,b,c,d]; positive means inside for the negative orientation,
   // i.e. outside for VTK's positive one.
   const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-  if (det > inSphereStatic_ || -det > inSphereStatic_)
+  if (det > tuning_.inSphereStatic || -det > tuning_.inSphereStatic)
     return -filter::signOf(det);
-  if (floatExactInSphere_)
+  if (tuning_.floatExactInSphere)
     return -filter::signOf(det);
 
   // Semi-static filter: each lift is at most 3 m^2 (m the largest difference) and each 3x3
@@ -185,7 +197,7 @@ inline int Predicates::inSphere(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   const int filtered = inSphereFiltered(a, b, c, d, e);
-  if (filtered != 0 || floatExactInSphere_)
+  if (filtered != 0 || tuning_.floatExactInSphere)
     return filtered;
   return inSphereDoubleDouble(a, b, c, d, e);
 }

@@ -166,6 +166,12 @@ public:
     return true;
   }
 
+  /// A copy of the records of the slots handed out, as takeRecords() gives them.
+  IdArray copyRecords() const
+  {
+    return IdArray(records_.begin(), records_.begin() + 8 * static_cast<std::ptrdiff_t>(slots()));
+  }
+
   /// Hands the records over (for in-place output conversion); the mesh is empty afterwards.
   /// Record t occupies words 8t..8t+7 for t < slots(), v0 carrying the flags in its top bits.
   IdArray takeRecords()

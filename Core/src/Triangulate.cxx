@@ -1,5 +1,5 @@
-// The kernel's entry point: clean and normalize the points, order them, insert them one by one,
-// and hand back the finite tetrahedra with input point ids.
+// The kernel's entry points: clean and normalize the points, order them, insert them, and hand
+// back the finite tetrahedra with input point ids. triangulate() is a Tetrahedralization used once.
 #include "InsertionOrder.h"
 #include "Triangulator.h"
 #include "fd3/Delaunay.h"
@@ -25,63 +25,32 @@ double secondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// An exact change of coordinates x -> (x - shift) * scale that brings the points into [-1, 1],
-/// so that no predicate overflows (1e300) or underflows (1e-300). The scale is a power of two and a
-/// shift is used on an axis only when every subtraction on it is exact (clouds far from the
-/// origin, where it saves the float filter from cancellation), so predicates keep their signs.
-struct Normalization
+void toFrame(const Frame& frame, const double* p, double* out)
 {
-  double shift[3] = {0, 0, 0};
-  double scale = 1.0;
+  for (int a = 0; a < 3; ++a)
+    out[a] = (p[a] - frame.shift[a]) * frame.scale;
+}
 
-  Normalization(const double* xyz, const std::vector<std::uint32_t>& ids, const Box& box)
-  {
-    double extent = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double center = box.lo[a] + box.extent(a) / 2;
-      bool exact = std::isfinite(center);
-      for (std::size_t i = 0; i < ids.size() && exact; ++i)
-      {
-        double diff, err;
-        twoDiff(xyz[3 * std::size_t(ids[i]) + a], center, diff, err);
-        exact = err == 0.0;
-      }
-      shift[a] = exact ? center : 0.0;
-      extent = std::max({extent, std::fabs(box.lo[a] - shift[a]), std::fabs(box.hi[a] - shift[a])});
-    }
-    int exponent = 0;
-    std::frexp(extent, &exponent);
-    scale = extent > 0 ? std::ldexp(1.0, -exponent) : 1.0;
-  }
-
-  void apply(const double* p, double* out) const
-  {
-    for (int a = 0; a < 3; ++a)
-      out[a] = (p[a] - shift[a]) * scale;
-  }
-  Box apply(const Box& box) const
-  {
-    Box out;
-    apply(box.lo, out.lo);
-    apply(box.hi, out.hi);
-    return out;
-  }
-};
+Box toFrame(const Frame& frame, const Box& box)
+{
+  Box out;
+  toFrame(frame, box.lo, out.lo);
+  toFrame(frame, box.hi, out.hi);
+  return out;
+}
 
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
 /// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
-bool moveFirstTetrahedronToFront(
-  const double* xyz, const Normalization& norm, std::vector<std::uint32_t>& order)
+bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, std::vector<std::uint32_t>& order)
 {
   Predicates predicates;
   double p[4][3];
   std::size_t found[4] = {0, 0, 0, 0};
   int have = 1;
-  norm.apply(xyz + 3 * std::size_t(order[0]), p[0]);
+  toFrame(frame, xyz + 3 * std::size_t(order[0]), p[0]);
   for (std::size_t i = 1; i < order.size() && have < 4; ++i)
   {
-    norm.apply(xyz + 3 * std::size_t(order[i]), p[have]);
+    toFrame(frame, xyz + 3 * std::size_t(order[i]), p[have]);
     bool independent = false;
     if (have == 1)
       independent = p[1][0] != p[0][0] || p[1][1] != p[0][1] || p[1][2] != p[0][2];
@@ -104,61 +73,122 @@ bool moveFirstTetrahedronToFront(
   return true;
 }
 
-/// The live finite tetrahedra with input point ids, compacted in place inside the mesh's records
-/// (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k, never ahead of what is still
-/// to be read), and, when asked for, their neighbours renumbered.
-void extractOutput(TetMesh& mesh, const std::vector<std::uint32_t>& inputId, bool withNeighbors,
-  Triangulation& out)
+/// The live finite tetrahedra of `records` (a mesh's, `slots` of them) with input point ids,
+/// compacted in place (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k, never ahead
+/// of what is still to be read), and, when asked for, their neighbours renumbered.
+void extractOutput(IdArray records, std::size_t slots, const std::vector<std::uint32_t>& inputId,
+  bool withNeighbors, Triangulation& out)
 {
-  const std::size_t slots = mesh.slots();
   constexpr std::uint32_t kDropped = 0xFFFFFFFFu; // dead or ghost: not in the output
-  std::vector<std::uint32_t> newId;
+  auto kept = [&](std::size_t t) {
+    return (records[8 * t] >> kVertexIdBits) != kDead && records[8 * t + 3] != kInfinite;
+  };
   if (withNeighbors)
   {
-    newId.assign(slots, kDropped);
-    std::uint32_t kept = 0;
-    for (TetId t = 0; t < slots; ++t)
-      if (!mesh.isDead(t) && !mesh.isGhost(t))
-        newId[t] = kept++;
-    out.neighbors.resize(4 * std::size_t(kept));
-    for (TetId t = 0; t < slots; ++t)
+    std::vector<std::uint32_t> newId(slots, kDropped);
+    std::uint32_t count = 0;
+    for (std::size_t t = 0; t < slots; ++t)
+      if (kept(t))
+        newId[t] = count++;
+    out.neighbors.resize(4 * std::size_t(count));
+    for (std::size_t t = 0; t < slots; ++t)
       if (const std::uint32_t k = newId[t]; k != kDropped)
         for (int f = 0; f < 4; ++f)
         {
-          const FaceCode code = mesh.neighbor(t, f);
+          const FaceCode code = records[8 * t + 4 + f];
           const std::uint32_t n = newId[tetOf(code)];
           out.neighbors[4 * std::size_t(k) + f] = n == kDropped ? kNoNeighbor : faceCode(n, faceOf(code));
         }
-    std::vector<std::uint32_t>().swap(newId);
   }
-  IdArray records = mesh.takeRecords();
-  std::size_t kept = 0;
+  std::size_t count = 0;
   for (std::size_t t = 0; t < slots; ++t)
   {
-    const std::uint32_t* r = &records[8 * t];
-    if ((r[0] >> kVertexIdBits) == kDead || r[3] == kInfinite)
+    if (!kept(t))
       continue;
-    const std::uint32_t v[4] = {r[0] & (kMaxVertices - 1), r[1], r[2], r[3]};
+    const std::uint32_t v[4] = {records[8 * t] & (kMaxVertices - 1), records[8 * t + 1],
+      records[8 * t + 2], records[8 * t + 3]};
     for (int i = 0; i < 4; ++i)
-      records[4 * kept + i] = inputId[v[i]];
-    ++kept;
+      records[4 * count + i] = inputId[v[i]];
+    ++count;
   }
-  records.resize(4 * kept);
+  records.resize(4 * count);
   out.tetrahedra = std::move(records);
 }
 
+int threadCount(const Options& options)
+{
+  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (options.volumeThreshold > 0)
+    return 1; // which slivers the guard avoids depends on the order of insertion
+  return options.threads > 0 ? options.threads : hardware;
+}
 } // namespace
 
-Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)
+void checkShifts(const double* xyz, std::size_t count, const double centre[3], bool exact[3])
 {
-  const auto start = Clock::now();
-  Triangulation out;
-  Statistics& stats = out.stats;
-  stats.inputPoints = count;
+  for (int a = 0; a < 3; ++a)
+  {
+    exact[a] = exact[a] && std::isfinite(centre[a]);
+    for (std::size_t i = 0; i < count && exact[a]; ++i)
+    {
+      double difference, error;
+      twoDiff(xyz[3 * i + a], centre[a], difference, error);
+      exact[a] = error == 0.0 || !std::isfinite(xyz[3 * i + a]); // non-finite points are left out
+    }
+  }
+}
 
+// The scale brings the points into [-1, 1], so that no predicate overflows (1e300) or underflows
+// (1e-300); the shift, where exact, also keeps far-from-origin clouds away from both.
+Frame frameFor(const double lo[3], const double hi[3], const bool exact[3])
+{
+  Frame frame;
+  double extent = 0;
+  for (int a = 0; a < 3; ++a)
+  {
+    frame.shift[a] = exact[a] ? lo[a] + (hi[a] - lo[a]) / 2 : 0.0;
+    frame.lo[a] = lo[a];
+    frame.hi[a] = hi[a];
+    extent = std::max({extent, std::fabs(lo[a] - frame.shift[a]), std::fabs(hi[a] - frame.shift[a])});
+  }
+  int exponent = 0;
+  std::frexp(extent, &exponent);
+  frame.scale = extent > 0 ? std::ldexp(1.0, -exponent) : 1.0;
+  return frame;
+}
+
+struct Tetrahedralization::Impl
+{
+  Options options;
+  Frame frame;
+  Status status = Status::Ok;
+  Statistics stats; // the figures of every batch; the inserters' are added on output
+  std::size_t points = 0;            // point ids handed out
+  std::vector<std::uint32_t> pointOf; // vertex id -> point id
+  // (point, point it was skipped for), then (duplicate, original): the order representatives
+  // are resolved in.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped, duplicates;
+  std::unique_ptr<Triangulator> triangulator;
+  std::vector<double> held; // every point so far, until the mesh starts
+
+  void insertFirst(const double* xyz, std::size_t count);
+  void insertMore(const double* xyz, std::size_t count);
+  Triangulation output(bool release);
+
+private:
+  /// The finite ones of `count` points, as point ids, and their bounding box.
+  std::vector<std::uint32_t> finitePoints(const double* xyz, std::size_t count, Box& box);
+  /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
+  std::vector<std::uint16_t> keys(const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const;
+  /// Vertex records of `order` (point ids, local to xyz) in the frame, with their keys.
+  VertexArray vertices(const double* xyz, const std::vector<std::uint32_t>& order, const std::uint16_t* key);
+};
+
+std::vector<std::uint32_t> Tetrahedralization::Impl::finitePoints(
+  const double* xyz, std::size_t count, Box& box)
+{
   std::vector<std::uint32_t> ids;
   ids.reserve(count);
-  Box box;
   for (std::size_t i = 0; i < count; ++i)
   {
     if (!isFinite(xyz + 3 * i))
@@ -168,43 +198,66 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     box.include(xyz + 3 * i);
     ids.push_back(static_cast<std::uint32_t>(i));
   }
-  stats.nonFinitePoints = count - ids.size();
-  if (ids.empty())
-  {
-    out.status = Status::Empty;
-    return out;
-  }
-  if (ids.size() >= kMaxVertices)
+  stats.inputPoints += count;
+  stats.nonFinitePoints += count - ids.size();
+  if (points + count >= kMaxVertices)
     throw std::length_error("fd3::triangulate: more than 2^30 points");
+  return ids;
+}
 
-  const Normalization norm(xyz, ids, box);
+std::vector<std::uint16_t> Tetrahedralization::Impl::keys(
+  const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const
+{
   std::vector<std::uint16_t> key(count);
   for (const std::uint32_t id : ids)
     key[id] = perturbationKey(xyz + 3 * std::size_t(id), options.randomSeed);
-  InsertionPlan plan =
-    planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
-  stats.duplicatesMerged = plan.duplicates.size();
-  std::vector<std::uint32_t>& order = plan.order;
-  const auto skipped = skipClosePoints(xyz, plan, options.tolerance);
-  stats.closePointsSkipped = skipped.size();
-  if (!moveFirstTetrahedronToFront(xyz, norm, order))
-  {
-    out.status = order.size() < 4 ? Status::TooFewPoints : Status::Degenerate;
-    stats.secondsTotal = secondsSince(start);
-    return out;
-  }
+  return key;
+}
+
+VertexArray Tetrahedralization::Impl::vertices(
+  const double* xyz, const std::vector<std::uint32_t>& order, const std::uint16_t* key)
+{
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
   constexpr std::size_t kAhead = 16;
-  VertexArray vertices(order.size());
+  VertexArray out(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
   {
     if (i + kAhead < order.size())
       prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
-    norm.apply(xyz + 3 * std::size_t(order[i]), vertices[i].xyz);
-    vertices[i].localNumber = Vertex::kNoLocal;
-    vertices[i].key = key[order[i]];
+    toFrame(frame, xyz + 3 * std::size_t(order[i]), out[i].xyz);
+    out[i].localNumber = Vertex::kNoLocal;
+    out[i].key = key[order[i]];
   }
+  return out;
+}
+
+void Tetrahedralization::Impl::insertFirst(const double* xyz, std::size_t count)
+{
+  const auto start = Clock::now();
+  Box box;
+  std::vector<std::uint32_t> ids = finitePoints(xyz, count, box);
+  points = count;
+  if (ids.empty())
+  {
+    status = Status::Empty;
+    return;
+  }
+  std::vector<std::uint16_t> key = keys(xyz, count, ids);
+  InsertionPlan plan =
+    planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
+  stats.duplicatesMerged = plan.duplicates.size();
+  duplicates = std::move(plan.duplicates);
+  skipped = skipClosePoints(xyz, plan, options.tolerance);
+  stats.closePointsSkipped = skipped.size();
+  if (!moveFirstTetrahedronToFront(xyz, frame, plan.order))
+  {
+    status = plan.order.size() < 4 ? Status::TooFewPoints : Status::Degenerate;
+    return;
+  }
+  status = Status::Ok;
+  VertexArray records = vertices(xyz, plan.order, key.data());
+  pointOf = std::move(plan.order);
   std::vector<std::uint16_t>().swap(key);
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
@@ -212,27 +265,74 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   // mmap threshold has grown; hand it back before the mesh grows so it does not add to the peak.
   malloc_trim(0);
 #endif
+  Box bounds;
+  std::copy(frame.lo, frame.lo + 3, bounds.lo);
+  std::copy(frame.hi, frame.hi + 3, bounds.hi);
+  triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
+    toFrame(frame, bounds), options, threadCount(options));
+  if (!triangulator->insertAll(plan.roundStarts, options.progress))
+    status = Status::Aborted;
+}
 
-  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = options.volumeThreshold > 0 ? 1 : (options.threads > 0 ? options.threads : hardware);
-  Triangulator triangulator(std::move(vertices), norm.apply(box), options, threads);
-  if (!triangulator.insertAll(plan.roundStarts, options.progress))
+void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
+{
+  for (std::size_t i = 0; i < count; ++i)
+    for (int a = 0; a < 3 && isFinite(xyz + 3 * i); ++a)
+      if (!(frame.lo[a] <= xyz[3 * i + a] && xyz[3 * i + a] <= frame.hi[a]))
+        throw std::invalid_argument("fd3::Tetrahedralization::add: a point outside the frame");
+  if (!triangulator)
   {
-    out.status = Status::Aborted;
+    // Not started yet: start again from every point so far, these included.
+    held.insert(held.end(), xyz, xyz + 3 * count);
+    stats = Statistics();
+    skipped.clear();
+    insertFirst(held.data(), held.size() / 3);
+    if (triangulator)
+      std::vector<double>().swap(held);
+    return;
+  }
+  const auto start = Clock::now();
+  Box box;
+  std::vector<std::uint32_t> ids = finitePoints(xyz, count, box);
+  if (!ids.empty())
+  {
+    std::vector<std::uint16_t> key = keys(xyz, count, ids);
+    InsertionPlan plan =
+      planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
+    for (const auto& [copy, original] : plan.duplicates)
+      duplicates.emplace_back(copy + points, original + points);
+    stats.duplicatesMerged += plan.duplicates.size();
+    VertexArray more = vertices(xyz, plan.order, key.data());
+    for (std::uint32_t& id : plan.order)
+      id += static_cast<std::uint32_t>(points);
+    pointOf.insert(pointOf.end(), plan.order.begin(), plan.order.end());
+    stats.secondsSort += secondsSince(start);
+    if (!triangulator->insertMore(std::move(more), plan.roundStarts, options.progress))
+      status = Status::Aborted;
+  }
+  points += count;
+}
+
+Triangulation Tetrahedralization::Impl::output(bool release)
+{
+  const auto start = Clock::now();
+  Triangulation out;
+  out.status = status;
+  out.stats = stats;
+  if (status != Status::Ok)
     return out;
-  }
-  {
-    const Statistics inserted = triangulator.statistics();
-    stats.insertedPoints = inserted.insertedPoints;
-    stats.walkSteps = inserted.walkSteps;
-    stats.maxWalkSteps = inserted.maxWalkSteps;
-    stats.cavityTetrahedra = inserted.cavityTetrahedra;
-    stats.deferredInsertions = inserted.deferredInsertions;
-    stats.secondsLocate = inserted.secondsLocate;
-    stats.secondsCavity = inserted.secondsCavity;
-    stats.secondsFill = inserted.secondsFill;
-    triangulator.addPredicateCounts(stats);
-  }
+  const Statistics inserted = triangulator->statistics();
+  out.stats.insertedPoints = inserted.insertedPoints;
+  out.stats.walkSteps = inserted.walkSteps;
+  out.stats.maxWalkSteps = inserted.maxWalkSteps;
+  out.stats.cavityTetrahedra = inserted.cavityTetrahedra;
+  out.stats.deferredInsertions = inserted.deferredInsertions;
+  out.stats.secondsLocate = inserted.secondsLocate;
+  out.stats.secondsCavity = inserted.secondsCavity;
+  out.stats.secondsFill = inserted.secondsFill;
+  triangulator->addPredicateCounts(out.stats);
+  const auto repeated = triangulator->duplicates();
+  out.stats.duplicatesMerged += repeated.size();
 #ifndef NDEBUG
   constexpr bool kDebugBuild = true;
 #else
@@ -240,26 +340,89 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
 #endif
   if (options.checkMesh || kDebugBuild)
   {
-    out.checkReport = triangulator.checkMesh();
+    out.checkReport = triangulator->checkMesh();
     if (!out.checkReport.empty())
     {
       out.status = Status::CheckFailed;
       return out;
     }
   }
-
-  const auto outputStart = Clock::now();
-  extractOutput(triangulator.releaseWorkspace(), order, options.computeNeighbors, out);
-  out.representative.assign(count, kNoPoint);
-  for (std::uint32_t id : order)
+  const std::size_t slots = triangulator->slots();
+  IdArray records = release ? triangulator->releaseWorkspace().takeRecords() : triangulator->copyRecords();
+  extractOutput(std::move(records), slots, pointOf, options.computeNeighbors, out);
+  if (release)
+  {
+    triangulator.reset();
+    status = Status::Aborted; // nothing left to add to
+  }
+  out.representative.assign(points, kNoPoint);
+  for (const std::uint32_t id : pointOf)
     out.representative[id] = id;
   for (const auto& [point, near] : skipped)
     out.representative[point] = near;
-  for (const auto& [copy, original] : plan.duplicates)
+  for (const auto& [copy, original] : repeated)
+    out.representative[pointOf[copy]] = pointOf[original];
+  for (const auto& [copy, original] : duplicates)
     out.representative[copy] = out.representative[original];
-  stats.tetrahedra = out.numberOfTetrahedra();
-  stats.secondsOutput = secondsSince(outputStart);
-  stats.secondsTotal = secondsSince(start);
+  out.stats.tetrahedra = out.numberOfTetrahedra();
+  out.stats.secondsOutput = secondsSince(start);
+  return out;
+}
+
+Tetrahedralization::Tetrahedralization(
+  const double* xyz, std::size_t count, const Options& options, const Frame& frame)
+  : impl_(std::make_unique<Impl>())
+{
+  impl_->options = options;
+  impl_->frame = frame;
+  impl_->insertFirst(xyz, count);
+  if (!impl_->triangulator && impl_->status != Status::Aborted)
+    impl_->held.assign(xyz, xyz + 3 * count);
+}
+
+Tetrahedralization::~Tetrahedralization() = default;
+
+Status Tetrahedralization::status() const
+{
+  return impl_->status;
+}
+
+void Tetrahedralization::add(const double* xyz, std::size_t count)
+{
+  if (impl_->status == Status::Aborted || impl_->status == Status::CheckFailed)
+    throw std::logic_error("fd3::Tetrahedralization::add: the tetrahedralization ended");
+  impl_->insertMore(xyz, count);
+}
+
+Triangulation Tetrahedralization::snapshot() const
+{
+  return impl_->output(false);
+}
+
+Triangulation Tetrahedralization::release()
+{
+  return impl_->output(true);
+}
+
+Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)
+{
+  const auto start = Clock::now();
+  Box box;
+  bool any = false;
+  for (std::size_t i = 0; i < count; ++i)
+    if (isFinite(xyz + 3 * i))
+    {
+      box = any ? box : Box::around(xyz + 3 * i);
+      box.include(xyz + 3 * i);
+      any = true;
+    }
+  const double centre[3] = {box.lo[0] + box.extent(0) / 2, box.lo[1] + box.extent(1) / 2,
+    box.lo[2] + box.extent(2) / 2};
+  bool exact[3] = {true, true, true};
+  checkShifts(xyz, count, centre, exact);
+  Tetrahedralization mesh(xyz, count, options, frameFor(box.lo, box.hi, exact));
+  Triangulation out = mesh.release();
+  out.stats.secondsTotal = secondsSince(start);
   return out;
 }
 

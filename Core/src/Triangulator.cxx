@@ -6,44 +6,67 @@
 namespace fd3
 {
 Triangulator::Triangulator(
-  VertexArray vertices, const Box& box, const Options& options, int threads)
+  VertexArray vertices, const Box& box, const Box& bounds, const Options& options, int threads)
 {
   mesh_.vertices = std::move(vertices);
   mesh_.options = options;
   const std::size_t n = vertexCount();
   mesh_.tets.reserve(7 * n + 64); // uniform points make 6.7 per vertex; insertAll() corrects it
   mesh_.grid.build(n, box, options.pointsPerCell);
-  Predicates predicates;
-  predicates.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), box);
+  tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), bounds);
   for (int t = 0; t < threads; ++t)
   {
     pools_.push_back(std::make_unique<SlotPool>());
     inserters_.push_back(std::make_unique<Inserter>(
-      mesh_, *pools_.back(), predicates, options.randomSeed + static_cast<std::uint64_t>(t)));
+      mesh_, *pools_.back(), tuning_, options.randomSeed + static_cast<std::uint64_t>(t)));
   }
 }
 
 bool Triangulator::insertAll(
   const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress)
 {
-  const std::size_t n = vertexCount();
   inserters_[0]->start();
   done_ = 4;
+  return insertRounds(4, vertexCount(), roundStarts, true, progress);
+}
+
+bool Triangulator::insertMore(VertexArray more, const std::vector<std::size_t>& roundStarts,
+  const std::function<bool(double)>& progress)
+{
+  const std::size_t begin = vertexCount();
+  tuning_.include(more[0].xyz, more.size(), sizeof(Vertex) / sizeof(double));
+  for (auto& inserter : inserters_)
+  {
+    inserter->retune(tuning_);
+    inserter->lookForDuplicates();
+  }
+  mesh_.vertices.insert(mesh_.vertices.end(), more.begin(), more.end());
+  std::vector<std::size_t> starts(roundStarts);
+  for (std::size_t& start : starts)
+    start += begin;
+  makeRoomFor(more.size());
+  return insertRounds(begin, vertexCount(), starts, false, progress);
+}
+
+bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
+  const std::vector<std::size_t>& roundStarts, bool reserveEarly,
+  const std::function<bool(double)>& progress)
+{
   const bool parallel = inserters_.size() > 1 && mesh_.options.volumeThreshold <= 0;
   // Once a round or two are in (random samples of the whole set), the tetrahedra per vertex are
   // close to the final ratio: memory for all is reserved then (it grows slowly on surface
   // samples, hence the margin).
-  const std::size_t reserveAt = std::max<std::size_t>(n / 32, 4096);
-  bool reserved = false;
+  const std::size_t reserveAt = std::max<std::size_t>(end / 32, 4096);
+  bool reserved = !reserveEarly;
   for (std::size_t r = 0; r < roundStarts.size(); ++r)
   {
-    const std::size_t begin = std::max<std::size_t>(roundStarts[r], 4);
-    const std::size_t end = std::min(r + 1 < roundStarts.size() ? roundStarts[r + 1] : n, n);
-    if (begin >= end)
+    const std::size_t first = std::max(roundStarts[r], begin);
+    const std::size_t last = std::min(r + 1 < roundStarts.size() ? roundStarts[r + 1] : end, end);
+    if (first >= last)
       continue;
-    std::vector<VertId> round(end - begin);
+    std::vector<VertId> round(last - first);
     for (std::size_t i = 0; i < round.size(); ++i)
-      round[i] = static_cast<VertId>(begin + i);
+      round[i] = static_cast<VertId>(first + i);
     // Parallel passes pay for their threads and regions: small rounds go in serially.
     const bool ok = parallel && round.size() >= mesh_.options.pointsPerThread * inserters_.size()
       ? insertInParallel(std::move(round), progress)
@@ -54,7 +77,7 @@ bool Triangulator::insertAll(
     {
       const double perVertex = double(statistics().insertedPoints ? mesh_.tets.slots() : 0) /
         double(std::max<std::size_t>(done_, 1));
-      mesh_.tets.reserve(static_cast<std::size_t>(1.15 * perVertex * double(n)) + 64);
+      mesh_.tets.reserve(static_cast<std::size_t>(1.15 * perVertex * double(end)) + 64);
       reserved = true;
     }
   }
@@ -72,7 +95,7 @@ bool Triangulator::insertSerially(
   {
     if (done_ % kProgressInterval == 0 && !reportProgress(progress))
       return false;
-    // Unrestricted, an insertion is put off only when the mesh is full.
+    // Unrestricted, an insertion is put off only when the mesh is full (and a duplicate is done).
     while (inserter.insert(vertices[i]) == Inserter::Outcome::Deferred)
       makeRoomFor(count - i);
     ++done_;
@@ -116,6 +139,14 @@ Statistics Triangulator::statistics() const
     sum.secondsFill += s.secondsFill;
   }
   return sum;
+}
+
+std::vector<std::pair<VertId, VertId>> Triangulator::duplicates() const
+{
+  std::vector<std::pair<VertId, VertId>> all;
+  for (const auto& inserter : inserters_)
+    all.insert(all.end(), inserter->duplicates().begin(), inserter->duplicates().end());
+  return all;
 }
 
 void Triangulator::addPredicateCounts(Statistics& stats) const

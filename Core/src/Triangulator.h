@@ -21,20 +21,32 @@ class Triangulator
 {
 public:
   /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
-  /// `box`; `threads` inserters are made ready.
-  Triangulator(VertexArray vertices, const Box& box, const Options& options, int threads);
+  /// `box`, which the grid covers; `bounds` holds every point the mesh will ever have (added ones
+  /// too) and sets the predicates' static bounds. `threads` inserters are made ready.
+  Triangulator(VertexArray vertices, const Box& box, const Box& bounds, const Options& options, int threads);
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
   /// when it asked to stop.
   bool insertAll(const std::vector<std::size_t>& roundStarts,
     const std::function<bool(double)>& progress);
+  /// Appends `more` vertices, distinct from each other and within the bounds, and inserts them,
+  /// in the rounds of `roundStarts` (indices into `more`). Those that repeat a vertex of the mesh
+  /// are left out and listed in duplicates().
+  bool insertMore(VertexArray more, const std::vector<std::size_t>& roundStarts,
+    const std::function<bool(double)>& progress);
 
   /// The figures of every inserter, summed.
   Statistics statistics() const;
+  /// (added vertex, vertex of the mesh it repeats) of every insertMore().
+  std::vector<std::pair<VertId, VertId>> duplicates() const;
   /// Counters of every inserter's predicates, summed.
   void addPredicateCounts(Statistics& stats) const;
 
+  /// Slots of the mesh, live or not: records() and releaseWorkspace() hold this many.
+  std::size_t slots() const { return mesh_.tets.slots(); }
+  /// A copy of the mesh's records (TetMesh::copyRecords()).
+  IdArray copyRecords() const { return mesh_.tets.copyRecords(); }
   /// Frees the points, the grid and the scratch: only the mesh is left for the output.
   TetMesh& releaseWorkspace();
 
@@ -49,6 +61,10 @@ private:
   const double* point(VertId v) const { return mesh_.point(v); }
   std::size_t vertexCount() const { return mesh_.vertices.size(); }
 
+  /// Inserts vertices [begin, end) in the rounds of `roundStarts` (vertex ids); with
+  /// `reserveEarly`, once a few rounds tell the tetrahedra per vertex, room for all is made.
+  bool insertRounds(std::size_t begin, std::size_t end, const std::vector<std::size_t>& roundStarts,
+    bool reserveEarly, const std::function<bool(double)>& progress);
   /// Inserts `vertices` with inserter 0, in this thread.
   bool insertSerially(const VertId* vertices, std::size_t count, const std::function<bool(double)>& progress);
   /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, twice,
@@ -62,6 +78,7 @@ private:
   bool reportProgress(const std::function<bool(double)>& progress);
 
   Mesh mesh_;
+  Predicates tuning_; // adapted to every vertex so far; the inserters take copies
   std::vector<std::unique_ptr<SlotPool>> pools_;
   std::vector<std::unique_ptr<Inserter>> inserters_;
   std::size_t done_ = 0; // vertices handled, for progress

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -145,6 +146,57 @@ AlphaComplex alphaComplex(
 /// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the result
 /// is a Delaunay triangulation of the distinct finite input points whose boundary is their convex hull.
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options = Options());
+
+/// The exact change of coordinates the kernel computes in, x -> (x - shift) * scale: scale is a
+/// power of two and every x - shift is exact, so that every predicate keeps its sign. Every point
+/// lies within [lo, hi].
+struct Frame
+{
+  double shift[3] = {0, 0, 0};
+  double scale = 1.0;
+  double lo[3] = {0, 0, 0};
+  double hi[3] = {0, 0, 0};
+};
+
+/// Which coordinates of `count` points can have `centre` subtracted exactly: exact[a] is cleared
+/// when one cannot (it is never set, so that several calls, or several MPI ranks, combine by AND).
+void checkShifts(const double* xyz, std::size_t count, const double centre[3], bool exact[3]);
+/// The frame for points within [lo, hi], shifted by the box's centre on the axes where exact (as
+/// checkShifts() found for every point) and scaled into [-1, 1].
+Frame frameFor(const double lo[3], const double hi[3], const bool exact[3]);
+
+/// A Delaunay tetrahedralization that points can be added to once it is built: the distributed
+/// filter inserts the ghost points it receives from other MPI ranks, round after round, into one
+/// mesh. Ids of added points follow the earlier ones. The rules are triangulate()'s, with the
+/// figures summed over every batch; Options::tolerance applies to the first batch only.
+/// Until there are 4 affinely independent points, status() says why (TooFewPoints, Degenerate,
+/// Empty) and the points are kept: the first batch that completes them starts the mesh.
+class Tetrahedralization
+{
+public:
+  /// Tetrahedralizes the first `count` points in `frame`, which must hold every point added later
+  /// too (frameFor() over all of them). Throws as triangulate() does.
+  Tetrahedralization(const double* xyz, std::size_t count, const Options& options, const Frame& frame);
+  ~Tetrahedralization();
+  Tetrahedralization(const Tetrahedralization&) = delete;
+  Tetrahedralization& operator=(const Tetrahedralization&) = delete;
+
+  Status status() const;
+  /// Inserts `count` more points, within the frame's box; those that repeat a point are merged
+  /// into it as in triangulate(). Throws std::logic_error after an abort, a failed check or
+  /// release(), std::invalid_argument for a point outside the frame.
+  void add(const double* xyz, std::size_t count);
+  /// Every point so far, for the finite tetrahedra, neighbours (Options::computeNeighbors),
+  /// representatives and figures: a copy, the mesh stays.
+  Triangulation snapshot() const;
+
+  /// What triangulate() does with it, without a copy: the output, which ends the mesh.
+  Triangulation release();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 const char* toString(Status status);
 

@@ -1,0 +1,153 @@
+// fd3::Tetrahedralization, the mesh that points can be added to (the distributed filter adds the
+// ghost points of other ranks to it): whatever the batches, the tetrahedra are those of all the
+// points at once, exactly valid; a mesh that cannot start yet keeps its points.
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace
+{
+fd3::Frame frameOf(const fd3test::Points& p)
+{
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = hi[a] = p[a];
+    for (std::size_t i = a; i < p.size(); i += 3)
+    {
+      lo[a] = std::min(lo[a], p[i]);
+      hi[a] = std::max(hi[a], p[i]);
+    }
+  }
+  const double centre[3] = {lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2};
+  bool exact[3] = {true, true, true};
+  fd3::checkShifts(p.data(), p.size() / 3, centre, exact);
+  return fd3::frameFor(lo, hi, exact);
+}
+
+/// Builds the mesh of `p` from its first `first` points, then adds the rest in batches of the
+/// given sizes (the last batch takes what is left).
+fd3::Triangulation inBatches(const fd3test::Points& p, std::size_t first,
+  const std::vector<std::size_t>& batches, const fd3::Options& options)
+{
+  fd3::Tetrahedralization mesh(p.data(), first, options, frameOf(p));
+  std::size_t done = first;
+  for (std::size_t b = 0; b <= batches.size() && done < p.size() / 3; ++b)
+  {
+    const std::size_t count = b < batches.size() ? std::min(batches[b], p.size() / 3 - done) : p.size() / 3 - done;
+    mesh.add(p.data() + 3 * done, count);
+    done += count;
+  }
+  return mesh.snapshot();
+}
+
+TEST(AddPoints, SameTetrahedraAsAllAtOnceOnEveryPointSet)
+{
+  for (const std::string& kind : fd3test::pointSetNames())
+  {
+    SCOPED_TRACE(kind);
+    const fd3test::Points p = fd3test::generate(kind, 12000, 21);
+    fd3::Options options;
+    options.pointsPerThread = 256;
+    const fd3::Triangulation whole = fd3::triangulate(p.data(), p.size() / 3, options);
+    ASSERT_EQ(whole.status, fd3::Status::Ok);
+    const auto reference = fd3test::canonicalTetrahedra(whole.tetrahedra);
+    for (int threads : {1, 3})
+    {
+      options.threads = threads;
+      const fd3::Triangulation added = inBatches(p, p.size() / 6, {7, 1500, 3000}, options);
+      ASSERT_EQ(added.status, fd3::Status::Ok) << threads << " threads";
+      EXPECT_EQ(fd3test::canonicalTetrahedra(added.tetrahedra), reference) << threads << " threads";
+      EXPECT_EQ(added.stats.inputPoints, p.size() / 3);
+      EXPECT_EQ(added.stats.insertedPoints + added.stats.duplicatesMerged, p.size() / 3);
+      const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, added.tetrahedra);
+      EXPECT_TRUE(report.valid()) << report.summary();
+    }
+  }
+}
+
+// A lattice makes the predicates compute exactly in floats; points off the lattice added later,
+// some nearly cospherical with lattice points, must take that away again.
+TEST(AddPoints, PointsOffTheLatticeRetuneThePredicates)
+{
+  fd3test::Points p = fd3test::lattice(9);
+  const std::size_t latticePoints = p.size() / 3;
+  for (std::size_t i = 0; i < 300; ++i)
+  {
+    const double* q = &p[3 * (i * 7 % latticePoints)];
+    const double offset = i % 2 ? 1e-9 : 0.37;
+    p.insert(p.end(), {q[0] + offset * 0.5, q[1] + offset * 0.25, q[2] + offset * 0.125});
+  }
+  fd3::Options options;
+  fd3::Tetrahedralization mesh(p.data(), latticePoints, options, frameOf(p));
+  mesh.add(p.data() + 3 * latticePoints, p.size() / 3 - latticePoints);
+  const fd3::Triangulation added = mesh.snapshot();
+  ASSERT_EQ(added.status, fd3::Status::Ok);
+  const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, added.tetrahedra);
+  EXPECT_TRUE(report.valid()) << report.summary();
+  const fd3::Triangulation whole = fd3::triangulate(p.data(), p.size() / 3, options);
+  EXPECT_EQ(fd3test::canonicalTetrahedra(added.tetrahedra), fd3test::canonicalTetrahedra(whole.tetrahedra));
+}
+
+TEST(AddPoints, TooFewOrCoplanarPointsWaitForMore)
+{
+  const fd3test::Points p = fd3test::uniformCube(2000, 5);
+  fd3test::Points flat = {0.1, 0.1, 0.5, 0.9, 0.2, 0.5, 0.4, 0.8, 0.5, 0.5, 0.5, 0.5};
+  fd3test::Points all = flat;
+  all.insert(all.end(), p.begin(), p.end());
+  fd3::Options options;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const fd3test::Points firstTwo = {flat[0], flat[1], flat[2], nan, 0, 0};
+  fd3::Tetrahedralization mesh(firstTwo.data(), 2, options, frameOf(all));
+  EXPECT_EQ(mesh.status(), fd3::Status::TooFewPoints);
+  EXPECT_EQ(mesh.snapshot().status, fd3::Status::TooFewPoints);
+  mesh.add(flat.data() + 3, 3);
+  EXPECT_EQ(mesh.status(), fd3::Status::Degenerate);
+  mesh.add(p.data(), p.size() / 3);
+  ASSERT_EQ(mesh.status(), fd3::Status::Ok);
+  const fd3::Triangulation out = mesh.snapshot();
+  ASSERT_EQ(out.status, fd3::Status::Ok);
+  EXPECT_EQ(out.stats.inputPoints, 2 + 3 + p.size() / 3);
+  EXPECT_EQ(out.stats.nonFinitePoints, 1u);
+  ASSERT_EQ(out.representative.size(), out.stats.inputPoints);
+  EXPECT_EQ(out.representative[1], fd3::kNoPoint);
+  // Point ids follow the batches: the NaN is id 1.
+  fd3test::Points byId = firstTwo;
+  byId.insert(byId.end(), all.begin() + 3, all.end());
+  const auto report = fd3test::checkTriangulation(byId.data(), byId.size() / 3, out.tetrahedra);
+  EXPECT_TRUE(report.valid()) << report.summary();
+}
+
+TEST(AddPoints, SnapshotsLeaveTheMeshToGrowAndReleaseEndsIt)
+{
+  const fd3test::Points p = fd3test::uniformBall(3000, 9);
+  fd3::Options options;
+  options.computeNeighbors = true;
+  fd3::Tetrahedralization mesh(p.data(), 1000, options, frameOf(p));
+  const fd3::Triangulation early = mesh.snapshot();
+  ASSERT_EQ(early.status, fd3::Status::Ok);
+  EXPECT_EQ(early.neighbors.size(), early.tetrahedra.size());
+  EXPECT_TRUE(fd3test::checkTriangulation(p.data(), 1000, early.tetrahedra).valid());
+  mesh.add(p.data() + 3 * 1000, 2000);
+  const fd3::Triangulation whole = mesh.release();
+  ASSERT_EQ(whole.status, fd3::Status::Ok);
+  EXPECT_TRUE(fd3test::checkTriangulation(p.data(), 3000, whole.tetrahedra).valid());
+  EXPECT_THROW(mesh.add(p.data(), 1), std::logic_error);
+}
+
+TEST(AddPoints, PointsOutsideTheFrameAreRefused)
+{
+  const fd3test::Points p = fd3test::uniformCube(500, 3);
+  fd3::Tetrahedralization mesh(p.data(), p.size() / 3, fd3::Options(), frameOf(p));
+  const double outside[3] = {2.0, 0.5, 0.5};
+  EXPECT_THROW(mesh.add(outside, 1), std::invalid_argument);
+  EXPECT_EQ(mesh.status(), fd3::Status::Ok);
+}
+} // namespace
