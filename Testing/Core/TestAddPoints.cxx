@@ -1,6 +1,7 @@
 // fd3::Tetrahedralization, the mesh that points can be added to (the distributed filter adds the
 // ghost points of other ranks to it): whatever the batches, the tetrahedra are those of all the
 // points at once, exactly valid; a mesh that cannot start yet keeps its points.
+#include "CoreTestUtilities.h"
 #include "ExactValidator.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
@@ -14,30 +15,12 @@
 
 namespace
 {
-fd3::Frame frameOf(const fd3test::Points& p)
-{
-  double lo[3], hi[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    lo[a] = hi[a] = p[a];
-    for (std::size_t i = a; i < p.size(); i += 3)
-    {
-      lo[a] = std::min(lo[a], p[i]);
-      hi[a] = std::max(hi[a], p[i]);
-    }
-  }
-  const double centre[3] = {lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2};
-  bool exact[3] = {true, true, true};
-  fd3::checkShifts(p.data(), p.size() / 3, centre, exact);
-  return fd3::frameFor(lo, hi, exact);
-}
-
 /// Builds the mesh of `p` from its first `first` points, then adds the rest in batches of the
 /// given sizes (the last batch takes what is left).
 fd3::Triangulation inBatches(const fd3test::Points& p, std::size_t first,
   const std::vector<std::size_t>& batches, const fd3::Options& options)
 {
-  fd3::Tetrahedralization mesh(p.data(), first, options, frameOf(p));
+  fd3::Tetrahedralization mesh(p.data(), first, options, fd3test::frameOf(p));
   std::size_t done = first;
   for (std::size_t b = 0; b <= batches.size() && done < p.size() / 3; ++b)
   {
@@ -86,7 +69,7 @@ TEST(AddPoints, PointsOffTheLatticeRetuneThePredicates)
     p.insert(p.end(), {q[0] + offset * 0.5, q[1] + offset * 0.25, q[2] + offset * 0.125});
   }
   fd3::Options options;
-  fd3::Tetrahedralization mesh(p.data(), latticePoints, options, frameOf(p));
+  fd3::Tetrahedralization mesh(p.data(), latticePoints, options, fd3test::frameOf(p));
   mesh.add(p.data() + 3 * latticePoints, p.size() / 3 - latticePoints);
   const fd3::Triangulation added = mesh.snapshot();
   ASSERT_EQ(added.status, fd3::Status::Ok);
@@ -105,7 +88,7 @@ TEST(AddPoints, TooFewOrCoplanarPointsWaitForMore)
   fd3::Options options;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const fd3test::Points firstTwo = {flat[0], flat[1], flat[2], nan, 0, 0};
-  fd3::Tetrahedralization mesh(firstTwo.data(), 2, options, frameOf(all));
+  fd3::Tetrahedralization mesh(firstTwo.data(), 2, options, fd3test::frameOf(all));
   EXPECT_EQ(mesh.status(), fd3::Status::TooFewPoints);
   EXPECT_EQ(mesh.snapshot().status, fd3::Status::TooFewPoints);
   mesh.add(flat.data() + 3, 3);
@@ -130,7 +113,7 @@ TEST(AddPoints, SnapshotsLeaveTheMeshToGrowAndReleaseEndsIt)
   const fd3test::Points p = fd3test::uniformBall(3000, 9);
   fd3::Options options;
   options.computeNeighbors = true;
-  fd3::Tetrahedralization mesh(p.data(), 1000, options, frameOf(p));
+  fd3::Tetrahedralization mesh(p.data(), 1000, options, fd3test::frameOf(p));
   const fd3::Triangulation early = mesh.snapshot();
   ASSERT_EQ(early.status, fd3::Status::Ok);
   EXPECT_EQ(early.neighbors.size(), early.tetrahedra.size());
@@ -145,7 +128,7 @@ TEST(AddPoints, SnapshotsLeaveTheMeshToGrowAndReleaseEndsIt)
 TEST(AddPoints, PointsOutsideTheFrameAreRefused)
 {
   const fd3test::Points p = fd3test::uniformCube(500, 3);
-  fd3::Tetrahedralization mesh(p.data(), p.size() / 3, fd3::Options(), frameOf(p));
+  fd3::Tetrahedralization mesh(p.data(), p.size() / 3, fd3::Options(), fd3test::frameOf(p));
   const double outside[3] = {2.0, 0.5, 0.5};
   EXPECT_THROW(mesh.add(outside, 1), std::invalid_argument);
   EXPECT_EQ(mesh.status(), fd3::Status::Ok);

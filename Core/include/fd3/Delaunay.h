@@ -5,6 +5,7 @@
 
 #include "fd3/BulkAllocator.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -197,6 +198,19 @@ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// An axis-aligned box {xmin, xmax, ymin, ymax, zmin, zmax}, as VTK writes bounds; xmin > xmax
+/// is an empty box.
+using Bounds = std::array<double, 6>;
+
+/// For a point set split into pieces (MPI ranks), what this piece must send to the piece of each
+/// box so that the Delaunay tetrahedra of the whole set that touch that piece's points are all in
+/// the tetrahedralization of its points plus the ones received: for each box, the vertices of the
+/// tetrahedra whose circumsphere meets the box and of the hull faces whose outer half-space meets
+/// it (widened, never narrowed, against rounding). One exchange is enough (Funke and Sanders,
+/// 2017). Requires neighbours; a piece whose points have no tetrahedron sends them all instead.
+std::vector<std::vector<std::uint32_t>> haloVertices(
+  const double* xyz, const Triangulation& triangulation, const std::vector<Bounds>& boxes);
 
 const char* toString(Status status);
 

@@ -1,0 +1,140 @@
+// The points one piece of a distributed point set must send to the others so that each piece can
+// build every Delaunay tetrahedron that touches its own points (Funke and Sanders, "Parallel d-D
+// Delaunay triangulation in shared and distributed memory", 2017). The reason one exchange is
+// enough: if a tetrahedron of the whole set joins a point v of box B to a point q of this piece,
+// its empty circumsphere makes v-q a Delaunay edge once v is inserted here, so q is a vertex of a
+// tetrahedron (or hull face) of this piece that v conflicts with, and v lies in B: that
+// tetrahedron's circumsphere (or the hull face's outer half-space) meets B.
+#include "fd3/Delaunay.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fd3
+{
+namespace
+{
+/// Beyond this ratio of edge lengths to volume the computed circumcentre is not trusted: the
+/// circumsphere is taken to meet every box, which only sends more points than needed.
+constexpr double kIllConditioned = 1e8;
+/// Relative widening of every sphere and half-space, far above the rounding errors of a
+/// circumcentre whose condition is below kIllConditioned.
+constexpr double kMargin = 1e-6;
+
+struct Ball
+{
+  double centre[3];
+  double radius;
+  bool unbounded; ///< too flat to trust: meets every box
+};
+
+Ball circumball(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  const double vw[3] = {v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]};
+  const double wu[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
+  const double uv[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  const double sixVolume = u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2];
+  Ball ball{{0, 0, 0}, 0, true};
+  if (!(std::abs(sixVolume) * kIllConditioned > std::sqrt(uu * vv * ww)))
+  {
+    return ball;
+  }
+  double r2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double x = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2 * sixVolume);
+    ball.centre[k] = a[k] + x;
+    r2 += x * x;
+  }
+  ball.radius = std::sqrt(r2) * (1 + kMargin);
+  ball.unbounded = false;
+  return ball;
+}
+
+bool meets(const Ball& ball, const Bounds& box)
+{
+  if (ball.unbounded)
+  {
+    return true;
+  }
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double gap = std::max({box[2 * k] - ball.centre[k], ball.centre[k] - box[2 * k + 1], 0.0});
+    d2 += gap * gap;
+  }
+  return d2 <= ball.radius * ball.radius;
+}
+
+/// Whether the closed half-space beyond face abc, away from the inner vertex d, meets the box.
+bool beyondFaceMeets(const double* a, const double* b, const double* c, const double* d, const Bounds& box)
+{
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  if ((d[0] - a[0]) * n[0] + (d[1] - a[1]) * n[1] + (d[2] - a[2]) * n[2] > 0)
+  {
+    n[0] = -n[0], n[1] = -n[1], n[2] = -n[2];
+  }
+  // The box corner farthest along n, and a slack for the rounding of n and of the products.
+  double reach = 0, scale = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double corner = n[k] > 0 ? box[2 * k + 1] : box[2 * k];
+    reach += n[k] * (corner - a[k]);
+    scale += std::abs(n[k]) * (std::abs(corner - a[k]) + std::abs(u[k]) + std::abs(v[k]));
+  }
+  return reach >= -kMargin * scale;
+}
+
+bool isEmpty(const Bounds& box)
+{
+  return !(box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5]);
+}
+} // namespace
+
+std::vector<std::vector<std::uint32_t>> haloVertices(
+  const double* xyz, const Triangulation& triangulation, const std::vector<Bounds>& boxes)
+{
+  std::vector<std::vector<std::uint32_t>> halo(boxes.size());
+  const std::uint32_t* tets = triangulation.tetrahedra.data();
+  const std::size_t count = triangulation.numberOfTetrahedra();
+  auto point = [xyz](std::uint32_t id) { return xyz + 3 * std::size_t(id); };
+  for (std::size_t t = 0; t < count; ++t)
+  {
+    const std::uint32_t* v = tets + 4 * t;
+    const Ball ball = circumball(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
+    for (std::size_t b = 0; b < boxes.size(); ++b)
+    {
+      if (isEmpty(boxes[b]))
+      {
+        continue;
+      }
+      bool near = meets(ball, boxes[b]);
+      for (int f = 0; f < 4 && !near; ++f)
+      {
+        near = triangulation.neighbors[4 * t + f] == kNoNeighbor &&
+          beyondFaceMeets(point(v[(f + 1) % 4]), point(v[(f + 2) % 4]), point(v[(f + 3) % 4]),
+            point(v[f]), boxes[b]);
+      }
+      if (near)
+      {
+        halo[b].insert(halo[b].end(), v, v + 4);
+      }
+    }
+  }
+  for (auto& ids : halo)
+  {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  }
+  return halo;
+}
+
+} // namespace fd3

@@ -1,0 +1,238 @@
+// fd3::haloVertices, the exchange of the distributed filter, simulated in one process: every
+// piece tetrahedralizes its own points plus the halo the others send it, keeps the tetrahedra
+// whose lexicographically smallest vertex it owns (the lowest piece holding a copy of it), and the
+// pieces together are the one-piece tetrahedralization, each tetrahedron exactly once.
+#include "CoreTestUtilities.h"
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <random>
+
+namespace
+{
+using Coordinates = std::array<double, 3>;
+
+Coordinates at(const fd3test::Points& p, std::size_t id)
+{
+  return {p[3 * id], p[3 * id + 1], p[3 * id + 2]};
+}
+
+/// The first input id of every position: duplicates compare equal across pieces.
+std::vector<std::uint32_t> firstCopies(const fd3test::Points& p)
+{
+  std::map<Coordinates, std::uint32_t> first;
+  std::vector<std::uint32_t> copy(p.size() / 3);
+  for (std::uint32_t i = 0; i < copy.size(); ++i)
+  {
+    copy[i] = first.emplace(at(p, i), i).first->second;
+  }
+  return copy;
+}
+
+fd3::Bounds boxOf(const fd3test::Points& p, const std::vector<std::uint32_t>& ids)
+{
+  fd3::Bounds box = {1, -1, 1, -1, 1, -1};
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = p[3 * ids[k] + a];
+      box[2 * a] = k ? std::min(box[2 * a], x) : x;
+      box[2 * a + 1] = k ? std::max(box[2 * a + 1], x) : x;
+    }
+  }
+  return box;
+}
+
+struct Piece
+{
+  std::vector<std::uint32_t> ids; ///< input ids: its own points, then the halo received
+  std::size_t own = 0;
+  std::vector<double> xyz;
+  std::unique_ptr<fd3::Tetrahedralization> mesh;
+
+  void append(const fd3test::Points& p, const std::vector<std::uint32_t>& more)
+  {
+    for (std::uint32_t id : more)
+    {
+      ids.push_back(id);
+      xyz.insert(xyz.end(), p.begin() + 3 * id, p.begin() + 3 * id + 3);
+    }
+  }
+};
+
+/// The tetrahedra (as input ids of first copies) that the pieces keep, all pieces together.
+std::vector<std::uint32_t> distributedTetrahedra(
+  const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount, std::size_t* haloSize)
+{
+  const fd3::Frame frame = fd3test::frameOf(p);
+  std::vector<Piece> pieces(pieceCount);
+  for (std::uint32_t i = 0; i < pieceOf.size(); ++i)
+  {
+    pieces[pieceOf[i]].ids.push_back(i);
+  }
+  std::vector<fd3::Bounds> boxes;
+  for (Piece& piece : pieces)
+  {
+    piece.own = piece.ids.size();
+    std::vector<std::uint32_t> own;
+    own.swap(piece.ids);
+    piece.append(p, own);
+    piece.mesh = std::make_unique<fd3::Tetrahedralization>(piece.xyz.data(), piece.own, fd3::Options(), frame);
+    boxes.push_back(boxOf(p, piece.ids));
+  }
+  std::vector<std::vector<std::uint32_t>> received(pieceCount);
+  for (int from = 0; from < pieceCount; ++from)
+  {
+    const Piece& piece = pieces[from];
+    const fd3::Triangulation t = piece.mesh->snapshot();
+    std::vector<std::vector<std::uint32_t>> halo(pieceCount);
+    if (t.status == fd3::Status::Ok)
+    {
+      halo = fd3::haloVertices(piece.xyz.data(), t, boxes);
+    }
+    else
+    {
+      for (auto& ids : halo)
+      {
+        for (std::uint32_t k = 0; k < piece.own; ++k)
+          ids.push_back(k);
+      }
+    }
+    for (int to = 0; to < pieceCount; ++to)
+    {
+      for (std::uint32_t local : halo[to])
+      {
+        if (to != from)
+          received[to].push_back(piece.ids[local]);
+      }
+    }
+  }
+  const std::vector<std::uint32_t> copy = firstCopies(p);
+  std::vector<std::uint32_t> kept;
+  *haloSize = 0;
+  for (int j = 0; j < pieceCount; ++j)
+  {
+    Piece& piece = pieces[j];
+    *haloSize += received[j].size();
+    piece.append(p, received[j]);
+    piece.mesh->add(piece.xyz.data() + 3 * piece.own, received[j].size());
+    const fd3::Triangulation t = piece.mesh->release();
+    if (t.status != fd3::Status::Ok)
+    {
+      continue;
+    }
+    // The lowest piece holding each vertex's position owns it.
+    std::vector<int> holder(piece.ids.size(), pieceCount);
+    for (std::size_t k = 0; k < piece.ids.size(); ++k)
+    {
+      const std::uint32_t v = t.representative[k];
+      if (v != fd3::kNoPoint && at(p, piece.ids[k]) == at(p, piece.ids[v]))
+        holder[v] = std::min(holder[v], pieceOf[piece.ids[k]]);
+    }
+    for (std::size_t tet = 0; tet < t.numberOfTetrahedra(); ++tet)
+    {
+      const std::uint32_t* v = t.tetrahedra.data() + 4 * tet;
+      const std::uint32_t smallest = *std::min_element(v, v + 4, [&](std::uint32_t a, std::uint32_t b) {
+        return at(p, piece.ids[a]) < at(p, piece.ids[b]);
+      });
+      if (holder[smallest] == j)
+      {
+        for (int k = 0; k < 4; ++k)
+          kept.push_back(copy[piece.ids[v[k]]]);
+      }
+    }
+  }
+  return kept;
+}
+
+std::vector<int> slabs(const fd3test::Points& p, int count)
+{
+  std::vector<std::uint32_t> order(p.size() / 3);
+  for (std::uint32_t i = 0; i < order.size(); ++i)
+    order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return p[3 * a] < p[3 * b]; });
+  std::vector<int> pieceOf(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    pieceOf[order[k]] = static_cast<int>(k * count / order.size());
+  return pieceOf;
+}
+
+void expectSameAsOnePiece(const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount)
+{
+  fd3::Options options;
+  const fd3::Triangulation whole = fd3::triangulate(p.data(), p.size() / 3, options);
+  ASSERT_EQ(whole.status, fd3::Status::Ok);
+  std::size_t haloSize = 0;
+  const std::vector<std::uint32_t> kept = distributedTetrahedra(p, pieceOf, pieceCount, &haloSize);
+  const auto copy = firstCopies(p);
+  fd3::IdArray reference(whole.tetrahedra.size());
+  std::transform(whole.tetrahedra.begin(), whole.tetrahedra.end(), reference.begin(),
+    [&](std::uint32_t id) { return copy[id]; });
+  // Equal sorted lists, so no tetrahedron is kept twice or missed.
+  EXPECT_EQ(fd3test::canonicalTetrahedra(kept), fd3test::canonicalTetrahedra(reference));
+  const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, kept);
+  EXPECT_TRUE(report.valid()) << report.summary();
+  testing::Test::RecordProperty("halo", std::to_string(haloSize));
+}
+} // namespace
+
+TEST(Halo, SlabsGiveTheOnePieceTetrahedraOnEveryPointSet)
+{
+  for (const std::string& kind : fd3test::pointSetNames())
+  {
+    SCOPED_TRACE(kind);
+    const fd3test::Points p = fd3test::generate(kind, 6000, 5);
+    for (int pieces : {2, 3, 4})
+    {
+      SCOPED_TRACE(pieces);
+      expectSameAsOnePiece(p, slabs(p, pieces), pieces);
+    }
+  }
+}
+
+// Pieces that overlap everywhere (each point on a random piece), one piece holding everything,
+// and an empty piece: the boxes then tell little, but the result must not change.
+TEST(Halo, AnyDistributionGivesTheOnePieceTetrahedra)
+{
+  for (const std::string& kind : {"cube", "lattice", "clusters", "sphere", "terrain"})
+  {
+    SCOPED_TRACE(kind);
+    const fd3test::Points p = fd3test::generate(kind, 3000, 9);
+    std::mt19937 random(3);
+    std::vector<int> scattered(p.size() / 3), allOnOne(p.size() / 3, 1), withEmpty = slabs(p, 3);
+    for (int& piece : scattered)
+      piece = static_cast<int>(random() % 3);
+    for (int& piece : withEmpty)
+      piece = piece == 1 ? 3 : piece;
+    expectSameAsOnePiece(p, scattered, 3);
+    expectSameAsOnePiece(p, allOnOne, 3);
+    expectSameAsOnePiece(p, withEmpty, 4);
+  }
+}
+
+// A piece with fewer than 4 points or coplanar ones has no tetrahedra to choose a halo from.
+TEST(Halo, DegeneratePiecesSendEverything)
+{
+  fd3test::Points p = fd3test::generate("cube", 500, 4);
+  std::vector<int> pieceOf = slabs(p, 2);
+  const std::size_t n = p.size() / 3;
+  for (double x : {0.2, 0.4, 0.6}) // 3 points of a third piece
+  {
+    p.insert(p.end(), {x, 0.5, 0.5});
+    pieceOf.push_back(2);
+  }
+  for (int k = 0; k < 20; ++k) // and 20 coplanar ones of a fourth
+  {
+    p.insert(p.end(), {0.05 * k, 0.3 + 0.01 * (k % 7), 0.25});
+    pieceOf.push_back(3);
+  }
+  ASSERT_EQ(pieceOf.size(), n + 23);
+  expectSameAsOnePiece(p, pieceOf, 4);
+}
