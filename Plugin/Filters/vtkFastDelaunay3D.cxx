@@ -34,6 +34,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -283,6 +284,22 @@ void AddCellMeasures(vtkUnstructuredGrid* output, const double* xyz, bool circum
   });
 }
 
+/// Removes in place the cells of `size` values each that `keep` refuses, keeping the order.
+template <typename Values, typename Keep>
+void KeepCells(Values& values, int size, Keep keep)
+{
+  std::size_t kept = 0;
+  for (std::size_t c = 0; c + size <= values.size(); c += size)
+  {
+    if (keep(values.data() + c))
+    {
+      std::copy_n(values.begin() + c, size, values.begin() + kept);
+      kept += size;
+    }
+  }
+  values.resize(kept);
+}
+
 /// What the tetrahedralization leaves out, by cause, with what keeps it; empty when nothing is.
 std::string LeftOutPoints(const fd3::Statistics& stats)
 {
@@ -350,7 +367,7 @@ int vtkFastDelaunay3D::RequestData(
   vtkSmartPointer<vtkPoints> points = MakeOutputPoints(
     input, bounds, this->OutputPointsPrecision, this->BoundingTriangulation, this->Offset);
   std::vector<double> converted;
-  const double* xyz = PointsAsDoubles(points, converted);
+  const double* xyz = CoordinatesAsDoubles(points, converted);
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   fd3::Triangulation result;
   try
@@ -369,7 +386,7 @@ int vtkFastDelaunay3D::RequestData(
     return 1;
   }
   this->RecordFigures(result.stats);
-  if (!this->ReportOnInput(result, numberOfPoints))
+  if (!this->ReportOnInput(result.status, result.stats, numberOfPoints))
   {
     output->Initialize();
     return 1;
@@ -382,11 +399,7 @@ int vtkFastDelaunay3D::RequestData(
     output->GetPointData()->PassData(input->GetPointData());
   }
   this->SetOutputCells(output, xyz, count, result);
-  if (this->ComputeCircumradius || this->ComputeVolume || this->ComputeRadiusEdgeRatio)
-  {
-    AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
-      this->ComputeRadiusEdgeRatio);
-  }
+  this->AddCellArrays(output, xyz);
   this->OutputSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
@@ -440,12 +453,13 @@ void vtkFastDelaunay3D::RecordFigures(const fd3::Statistics& stats)
   this->OutputSeconds = stats.secondsOutput;
 }
 
-bool vtkFastDelaunay3D::ReportOnInput(const fd3::Triangulation& result, vtkIdType numberOfPoints)
+bool vtkFastDelaunay3D::ReportOnInput(
+  fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints)
 {
-  const std::string leftOut = LeftOutPoints(result.stats);
-  if (result.status != fd3::Status::Ok)
+  const std::string leftOut = LeftOutPoints(stats);
+  if (status != fd3::Status::Ok)
   {
-    vtkWarningMacro("Cannot triangulate: " << fd3::toString(result.status)
+    vtkWarningMacro("Cannot triangulate: " << fd3::toString(status)
                                            << "; the output is empty"
                                            << (leftOut.empty() ? "" : " (left out: ") << leftOut
                                            << (leftOut.empty() ? "" : ")"));
@@ -453,49 +467,79 @@ bool vtkFastDelaunay3D::ReportOnInput(const fd3::Triangulation& result, vtkIdTyp
   }
   if (!leftOut.empty())
   {
-    const std::size_t unused = numberOfPoints - result.stats.insertedPoints;
+    const std::size_t unused = numberOfPoints - stats.insertedPoints;
     vtkWarningMacro(<< unused << " of " << numberOfPoints
                     << " points are not vertices of the tetrahedralization (they remain in the "
                        "output, unused): "
                     << leftOut);
   }
-  if (result.stats.underflowRisks > 0)
+  if (stats.underflowRisks > 0)
   {
     vtkWarningMacro("Some points are closer together than 2^-190 of the extent of the point set: "
                     "exactness is not guaranteed for "
-                    << result.stats.underflowRisks << " decisions");
+                    << stats.underflowRisks << " decisions");
   }
   return true;
 }
 
 void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double* xyz,
-  std::size_t count, const fd3::Triangulation& result)
+  std::size_t count, const fd3::Triangulation& result, const CellFilter& keep)
 {
   const std::uint32_t* tets = result.tetrahedra.data();
-  if (this->Alpha <= 0)
+  if (this->Alpha <= 0 && !keep)
   {
     SetCells(output, { { VTK_TETRA, 4, tets, nullptr, result.numberOfTetrahedra() } });
     return;
   }
-  const fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
+  fd3::AlphaComplex shape;
+  if (this->Alpha > 0)
+  {
+    shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
+  }
+  else
+  {
+    shape.tetrahedra.resize(result.numberOfTetrahedra());
+    std::iota(shape.tetrahedra.begin(), shape.tetrahedra.end(), 0u);
+  }
+  if (keep)
+  {
+    KeepCells(shape.tetrahedra, 1, [&](const std::uint32_t* t) { return keep(tets + 4 * *t, 4); });
+    KeepCells(shape.triangles, 3, [&](const std::uint32_t* ids) { return keep(ids, 3); });
+    KeepCells(shape.lines, 2, [&](const std::uint32_t* ids) { return keep(ids, 2); });
+    KeepCells(shape.vertices, 1, [&](const std::uint32_t* ids) { return keep(ids, 1); });
+  }
   std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
-  if (this->AlphaTris)
+  if (this->AlphaTris || this->Alpha <= 0)
   {
     blocks.push_back({ VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
   }
-  if (this->AlphaLines)
+  if (this->AlphaLines || this->Alpha <= 0)
   {
     blocks.push_back({ VTK_LINE, 2, shape.lines.data(), nullptr, shape.lines.size() / 2 });
   }
-  if (this->AlphaVerts)
+  if (this->AlphaVerts || this->Alpha <= 0)
   {
     blocks.push_back({ VTK_VERTEX, 1, shape.vertices.data(), nullptr, shape.vertices.size() });
   }
-  if (this->AlphaTets)
+  if (this->AlphaTets || this->Alpha <= 0)
   {
     blocks.push_back({ VTK_TETRA, 4, tets, shape.tetrahedra.data(), shape.tetrahedra.size() });
   }
   SetCells(output, blocks);
+}
+
+void vtkFastDelaunay3D::AddCellArrays(vtkUnstructuredGrid* output, const double* xyz)
+{
+  if (this->ComputeCircumradius || this->ComputeVolume || this->ComputeRadiusEdgeRatio)
+  {
+    AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
+      this->ComputeRadiusEdgeRatio);
+  }
+}
+
+const double* vtkFastDelaunay3D::CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
+{
+  return PointsAsDoubles(points, copy);
 }
 
 void vtkFastDelaunay3D::AddFigures(vtkFieldData* fields) const

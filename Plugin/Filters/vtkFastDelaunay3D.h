@@ -42,14 +42,18 @@
 #include "vtkUnstructuredGridAlgorithm.h"
 
 #include <cstddef> // for std::size_t
+#include <cstdint> // for std::uint32_t
+#include <functional> // for std::function
 #include <vector>  // for std::vector
 
 class vtkFieldData;
+class vtkPoints;
 namespace fd3
 {
 struct Options;
 struct Statistics;
 struct Triangulation;
+enum class Status;
 }
 
 class FASTDELAUNAY3DFILTERS_EXPORT vtkFastDelaunay3D : public vtkUnstructuredGridAlgorithm
@@ -288,17 +292,26 @@ protected:
   double FillSeconds = 0.0;
   double OutputSeconds = 0.0;
 
-private:
+  /// Whether a cell (given by its point ids) goes to the output; empty: every cell does.
+  using CellFilter = std::function<bool(const std::uint32_t* ids, int size)>;
+
   fd3::Options KernelOptions(double diagonal);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
-  bool ReportOnInput(const fd3::Triangulation& result, vtkIdType numberOfPoints);
+  bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);
+  /// The tetrahedra, or the alpha shape's cells, of `result` (ids into xyz), those that `keep`
+  /// accepts.
   void SetOutputCells(vtkUnstructuredGrid* output, const double* xyz, std::size_t count,
-    const fd3::Triangulation& result);
+    const fd3::Triangulation& result, const CellFilter& keep = CellFilter());
+  /// The requested Circumradius, Volume and RadiusEdgeRatio cell arrays; xyz: the output points.
+  void AddCellArrays(vtkUnstructuredGrid* output, const double* xyz);
   /// The figures as field data: all of them with ComputeStatistics, else the counts of left-out
   /// points whenever some are.
   void AddFigures(vtkFieldData* fields) const;
+  /// The points' coordinates as x,y,z doubles: the array itself when it is one, else `copy`.
+  static const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy);
 
+private:
   /// The figures above by name, for the field data and PrintSelf.
   struct Figure
   {

@@ -1,17 +1,72 @@
-"""pvbatch under MPI (2 ranks): the plugin loads on every rank and the filter runs on the pieces.
+"""pvbatch under MPI: the distributed filter on points spread over the ranks in some way.
 
-usage: mpiexec -np 2 pvbatch --mpi TestMPI.py <plugin .so>
+usage: mpiexec -np N pvbatch --mpi TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution>
+       pvpython TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution> <server port>
+(the second as the client of a pvserver running under MPI on this machine)
+
+kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points);
+each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
+a random rank), empty (rank 0 holds none), pvtp (written as a partitioned .pvtp, read back in
+pieces). Writes the pieces to the .pvtu (CheckDistributed then compares them with the
+one-process run) and prints the volume that Integrate Variables finds.
 """
+import os
 import sys
 
 from paraview.simple import *
 
-LoadPlugin(sys.argv[1], remote=False, ns=globals())
-source = PointSource(NumberOfPoints=20000, Radius=1.0)
+plugin, pieces_path, kind, distribution = sys.argv[1:5]
+if len(sys.argv) > 5:  # a client: the server may still be starting
+    import time
+    for attempt in range(60):
+        try:
+            Connect("localhost", int(sys.argv[5]))
+            break
+        except Exception:
+            time.sleep(1)
+    LoadPlugin(plugin, remote=True, ns=globals())
+LoadPlugin(plugin, remote=False, ns=globals())
+
+script = """
+import numpy as np
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.numpy_interface import dataset_adapter as dsa
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkCommonCore import vtkPoints
+controller = vtkMultiProcessController.GetGlobalController()
+rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+rng = np.random.default_rng(7)
+kind, distribution = "%s", "%s"
+if kind == "cube":
+    p = rng.random((4000, 3))
+elif kind == "lattice":
+    g = np.arange(12.0)
+    p = np.array(np.meshgrid(g, g, g)).reshape(3, -1).T
+elif kind == "clusters":
+    centres = rng.random((6, 3))
+    p = np.concatenate([c + 0.02 * rng.standard_normal((700, 3)) for c in centres])
+else:  # integer points with x^2 + y^2 + z^2 = 25^2, and the centre
+    r = np.arange(-25, 26)
+    g = np.array(np.meshgrid(r, r, r)).reshape(3, -1).T
+    p = np.concatenate([g[(g ** 2).sum(axis=1) == 625], [[0, 0, 0]]]).astype(float)
+p = np.concatenate([p, p[:50]])  # exact duplicates
+owner = {"one": np.zeros(len(p), int), "scattered": rng.integers(0, ranks, len(p)),
+         "empty": 1 + rng.integers(0, ranks - 1, len(p))}[distribution]
+mine = p[owner == rank]
+out = dsa.WrapDataObject(self.GetOutput())
+points = vtkPoints()
+points.SetData(dsa.numpyTovtkDataArray(np.ascontiguousarray(mine), "Points"))
+self.GetOutput().SetPoints(points)
+out.PointData.append(np.arange(len(mine), dtype=float) + 1000 * rank, "Label")
+""" % (kind, "scattered" if distribution == "pvtp" else distribution)
+source = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
+if distribution == "pvtp":
+    pieces = os.path.splitext(pieces_path)[0] + "-input.pvtp"
+    SaveData(pieces, proxy=source)
+    source = XMLPartitionedPolydataReader(FileName=[pieces])
 delaunay = FastDelaunay3D(Input=source)
-ranks = ProcessIdScalars(Input=delaunay)
-ranks.UpdatePipeline()
-info = ranks.GetDataInformation()
-assert info.GetNumberOfPoints() == 20000, info.GetNumberOfPoints()
-assert info.GetNumberOfCells() > 5 * 20000, info.GetNumberOfCells()
-print("TestMPI: OK on %d ranks" % servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions())
+SaveData(pieces_path, proxy=delaunay)
+volume = IntegrateVariables(Input=delaunay)
+volume.UpdatePipeline()
+ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
+print("TestMPI: volume %.17g on %d ranks" % (servermanager.Fetch(volume).GetCellData().GetArray("Volume").GetValue(0), ranks))

@@ -1,0 +1,80 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+/**
+ * @class   vtkPFastDelaunay3D
+ * @brief   vtkFastDelaunay3D across MPI ranks: one Delaunay tetrahedralization of all their points
+ *
+ * With more than one process in its controller, the filter tetrahedralizes the points of every
+ * rank together, whatever rank holds them:
+ * 1. the finite points are spread over the ranks by space, balanced by count
+ *    (vtkDistributedPointCloudFilter), each with its input id (position in the input pieces taken
+ *    in rank order) in a "GlobalIds" array;
+ * 2. every rank computes in one exact frame made from the global bounds, so that every rank
+ *    decides every predicate, and every tie, alike;
+ * 3. each rank tetrahedralizes its points and sends every other rank the vertices of its
+ *    tetrahedra whose circumsphere meets that rank's bounds (fd3::haloVertices, with
+ *    vtkDIYDataExchanger); one exchange is enough (Funke and Sanders, 2017);
+ * 4. each rank adds the points it received and keeps the tetrahedra whose lexicographically
+ *    smallest vertex it owns (the lowest rank holding a copy of that position owns it).
+ *
+ * Each rank's output then holds the tetrahedra it owns (or, with Alpha, the alpha shape's cells it
+ * owns), its own points with their point data, and the other ranks' points that those cells use,
+ * marked as duplicate points in vtkGhostType; "GlobalIds" gives every output point its input id.
+ * Together the pieces are exactly the one-process output's cells. The figures (getters, field
+ * data) count all ranks. With one process, or a controller that is not MPI, this is
+ * vtkFastDelaunay3D.
+ *
+ * @warning
+ * Output point ids are not input point ids under MPI: the points move between ranks; GlobalIds
+ * maps them back. BoundingTriangulation is not available across ranks (the output is empty, with
+ * an error). Tolerance, when above 0, is applied by each rank to its own points.
+ *
+ * @sa
+ * vtkFastDelaunay3D vtkDistributedPointCloudFilter vtkDIYDataExchanger
+ */
+#ifndef vtkPFastDelaunay3D_h
+#define vtkPFastDelaunay3D_h
+
+#include "FastDelaunay3DParallelFiltersModule.h" // For export macro
+#include "vtkFastDelaunay3D.h"
+
+class vtkMultiProcessController;
+
+class FASTDELAUNAY3DPARALLELFILTERS_EXPORT vtkPFastDelaunay3D : public vtkFastDelaunay3D
+{
+public:
+  static vtkPFastDelaunay3D* New();
+  vtkTypeMacro(vtkPFastDelaunay3D, vtkFastDelaunay3D);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The ranks that triangulate together. Default: the global controller.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  /**
+   * Points that ranks received from other ranks in the last execution, all ranks together (the
+   * cost of the exchange; 0 with one process).
+   */
+  vtkGetMacro(NumberOfGhostPoints, vtkIdType);
+
+protected:
+  vtkPFastDelaunay3D();
+  ~vtkPFastDelaunay3D() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  vtkPFastDelaunay3D(const vtkPFastDelaunay3D&) = delete;
+  void operator=(const vtkPFastDelaunay3D&) = delete;
+
+  vtkMultiProcessController* Controller = nullptr;
+  vtkIdType NumberOfGhostPoints = 0;
+};
+
+#endif
