@@ -21,7 +21,7 @@ packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conver
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
   cmake ninja-build g++ pkg-config clang libclang-rt-14-dev)
 # The benchmark alone compares against CGAL (never a dependency of Core or Plugin) and plots.
-[ "${1:-}" = benchmark ] && packages+=(libcgal-dev python3-matplotlib)
+[ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

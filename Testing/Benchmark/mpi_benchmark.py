@@ -1,0 +1,50 @@
+"""The distributed filter's benchmark: time, peak memory of rank 0 and points exchanged.
+(Names in this script avoid those that the programmable source defines in __main__: output, source.)
+
+usage: mpiexec -np N pvbatch --mpi mpi_benchmark.py <plugin .so> <points> [kind]
+
+Every rank generates its share of uniform points (kind "cube") or of a torus surface ("torus")
+over the whole domain, so that no file reading is timed; the time is FastDelaunay3D's update,
+redistribution and exchange included.
+"""
+import resource
+import sys
+import time
+
+from paraview.simple import *
+
+plugin, count = sys.argv[1], int(sys.argv[2])
+kind = sys.argv[3] if len(sys.argv) > 3 else "cube"
+LoadPlugin(plugin, remote=False, ns=globals())
+script = """
+import numpy as np
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.numpy_interface import dataset_adapter as dsa
+from vtkmodules.vtkCommonCore import vtkPoints
+c = vtkMultiProcessController.GetGlobalController()
+rank, ranks = c.GetLocalProcessId(), c.GetNumberOfProcesses()
+n = %d // ranks + (1 if rank < %d %% ranks else 0)
+rng = np.random.default_rng(1 + rank)
+if "%s" == "torus":
+    u, v = rng.random(n) * 2 * np.pi, rng.random(n) * 2 * np.pi
+    p = np.stack([(1 + 0.3 * np.cos(v)) * np.cos(u), (1 + 0.3 * np.cos(v)) * np.sin(u), 0.3 * np.sin(v)], 1)
+else:
+    p = rng.random((n, 3))
+points = vtkPoints()
+points.SetData(dsa.numpyTovtkDataArray(p, "Points"))
+self.GetOutput().SetPoints(points)
+""" % (count, count, kind)
+cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
+cloud.UpdatePipeline()
+delaunay = FastDelaunay3D(Input=cloud)
+start = time.perf_counter()
+delaunay.UpdatePipeline()
+seconds = time.perf_counter() - start
+ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
+info = delaunay.GetDataInformation()
+ghosts = info.GetNumberOfPoints() - count
+peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+print("mpi_benchmark: %s %d points, %d ranks: %.2f s, %d tetrahedra, %d ghost points used (%.2f%%), "
+      "rank 0 peak %.0f MB (%.0f B/point of the rank's share)"
+      % (kind, count, ranks, seconds, info.GetNumberOfCells(), ghosts, 100.0 * ghosts / count, peak,
+         peak * 1048576 / (count / ranks)))
