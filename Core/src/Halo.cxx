@@ -5,7 +5,7 @@
 // its empty circumsphere makes v-q a Delaunay edge once v is inserted here, so q is a vertex of a
 // tetrahedron (or hull face) of this piece that v conflicts with, and v lies in B: that
 // tetrahedron's circumsphere (or the hull face's outer half-space) meets B.
-#include "fd3/Delaunay.h"
+#include "Halo.h"
 
 #include <algorithm>
 #include <cmath>
@@ -99,42 +99,62 @@ bool isEmpty(const Bounds& box)
 }
 } // namespace
 
-std::vector<std::vector<std::uint32_t>> haloVertices(
-  const double* xyz, const Triangulation& triangulation, const std::vector<Bounds>& boxes)
+HaloBuilder::HaloBuilder(const std::vector<Bounds>& boxes)
+  : boxes_(boxes)
+  , halo_(boxes.size())
 {
-  std::vector<std::vector<std::uint32_t>> halo(boxes.size());
-  const std::uint32_t* tets = triangulation.tetrahedra.data();
-  const std::size_t count = triangulation.numberOfTetrahedra();
-  auto point = [xyz](std::uint32_t id) { return xyz + 3 * std::size_t(id); };
-  for (std::size_t t = 0; t < count; ++t)
+}
+
+void HaloBuilder::tetrahedron(const double* const p[4], const std::uint32_t ids[4])
+{
+  const Ball ball = circumball(p[0], p[1], p[2], p[3]);
+  for (std::size_t b = 0; b < boxes_.size(); ++b)
   {
-    const std::uint32_t* v = tets + 4 * t;
-    const Ball ball = circumball(point(v[0]), point(v[1]), point(v[2]), point(v[3]));
-    for (std::size_t b = 0; b < boxes.size(); ++b)
-    {
-      if (isEmpty(boxes[b]))
-      {
-        continue;
-      }
-      bool near = meets(ball, boxes[b]);
-      for (int f = 0; f < 4 && !near; ++f)
-      {
-        near = triangulation.neighbors[4 * t + f] == kNoNeighbor &&
-          beyondFaceMeets(point(v[(f + 1) % 4]), point(v[(f + 2) % 4]), point(v[(f + 3) % 4]),
-            point(v[f]), boxes[b]);
-      }
-      if (near)
-      {
-        halo[b].insert(halo[b].end(), v, v + 4);
-      }
-    }
+    if (!isEmpty(boxes_[b]) && meets(ball, boxes_[b]))
+      halo_[b].insert(halo_[b].end(), ids, ids + 4);
   }
-  for (auto& ids : halo)
+}
+
+void HaloBuilder::hullFace(const double* const p[3], const double* inner, const std::uint32_t ids[3])
+{
+  for (std::size_t b = 0; b < boxes_.size(); ++b)
+  {
+    if (!isEmpty(boxes_[b]) && beyondFaceMeets(p[0], p[1], p[2], inner, boxes_[b]))
+      halo_[b].insert(halo_[b].end(), ids, ids + 3);
+  }
+}
+
+std::vector<std::vector<std::uint32_t>> HaloBuilder::take()
+{
+  for (auto& ids : halo_)
   {
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   }
-  return halo;
+  return std::move(halo_);
+}
+
+std::vector<std::vector<std::uint32_t>> haloVertices(
+  const double* xyz, const Triangulation& triangulation, const std::vector<Bounds>& boxes)
+{
+  HaloBuilder halo(boxes);
+  auto point = [xyz](std::uint32_t id) { return xyz + 3 * std::size_t(id); };
+  for (std::size_t t = 0; t < triangulation.numberOfTetrahedra(); ++t)
+  {
+    const std::uint32_t* v = triangulation.tetrahedra.data() + 4 * t;
+    const double* p[4] = {point(v[0]), point(v[1]), point(v[2]), point(v[3])};
+    halo.tetrahedron(p, v);
+    for (int f = 0; f < 4; ++f)
+    {
+      if (triangulation.neighbors[4 * t + f] == kNoNeighbor)
+      {
+        const std::uint32_t face[3] = {v[(f + 1) % 4], v[(f + 2) % 4], v[(f + 3) % 4]};
+        const double* q[3] = {point(face[0]), point(face[1]), point(face[2])};
+        halo.hullFace(q, p[f], face);
+      }
+    }
+  }
+  return halo.take();
 }
 
 } // namespace fd3

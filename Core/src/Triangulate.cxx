@@ -1,5 +1,6 @@
 // The kernel's entry points: clean and normalize the points, order them, insert them, and hand
 // back the finite tetrahedra with input point ids. triangulate() is a Tetrahedralization used once.
+#include "Halo.h"
 #include "InsertionOrder.h"
 #include "Triangulator.h"
 #include "fd3/Delaunay.h"
@@ -402,6 +403,38 @@ Triangulation Tetrahedralization::snapshot() const
 Triangulation Tetrahedralization::release()
 {
   return impl_->output(true);
+}
+
+std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(
+  const double* xyz, const std::vector<Bounds>& boxes) const
+{
+  HaloBuilder halo(boxes);
+  if (impl_->status != Status::Ok || !impl_->triangulator)
+    return halo.take();
+  const TetMesh& mesh = impl_->triangulator->tetrahedra();
+  const std::vector<std::uint32_t>& pointOf = impl_->pointOf;
+  auto point = [&](VertId v) { return xyz + 3 * std::size_t(pointOf[v]); };
+  for (TetId t = 0; t < impl_->triangulator->slots(); ++t)
+  {
+    if (mesh.isDead(t))
+      continue;
+    VertId v[4];
+    mesh.vertices(t, v);
+    if (v[3] == kInfinite) // the hull face v0 v1 v2; the finite tetrahedron behind it is inside
+    {
+      const FaceCode behind = mesh.neighbor(t, 3);
+      const std::uint32_t ids[3] = {pointOf[v[0]], pointOf[v[1]], pointOf[v[2]]};
+      const double* p[3] = {point(v[0]), point(v[1]), point(v[2])};
+      halo.hullFace(p, point(mesh.vertex(tetOf(behind), faceOf(behind))), ids);
+    }
+    else
+    {
+      const std::uint32_t ids[4] = {pointOf[v[0]], pointOf[v[1]], pointOf[v[2]], pointOf[v[3]]};
+      const double* p[4] = {point(v[0]), point(v[1]), point(v[2]), point(v[3])};
+      halo.tetrahedron(p, ids);
+    }
+  }
+  return halo.take();
 }
 
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)

@@ -45,6 +45,8 @@ public:
 
   /// Slots of the mesh, live or not: records() and releaseWorkspace() hold this many.
   std::size_t slots() const { return mesh_.tets.slots(); }
+  /// The live mesh, to read.
+  const TetMesh& tetrahedra() const { return mesh_.tets; }
   /// A copy of the mesh's records (TetMesh::copyRecords()).
   IdArray copyRecords() const { return mesh_.tets.copyRecords(); }
   /// Frees the points, the grid and the scratch: only the mesh is left for the output.

@@ -7,6 +7,7 @@
 #include "vtkAppendFilter.h"
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
+#include "vtkCellType.h"
 #include "vtkCommunicator.h"
 #include "vtkDIYDataExchanger.h"
 #include "vtkDataArrayRange.h"
@@ -219,13 +220,8 @@ public:
   {
     std::vector<fd3::Bounds> others = this->Boxes;
     others[this->Rank] = { 1, -1, 1, -1, 1, -1 };
-    std::vector<std::vector<std::uint32_t>> halo(this->Ranks);
-    const fd3::Triangulation own = mesh.snapshot();
-    if (own.status == fd3::Status::Ok)
-    {
-      halo = fd3::haloVertices(this->Xyz.data(), own, others);
-    }
-    else // no tetrahedron to choose from: every point might matter
+    std::vector<std::vector<std::uint32_t>> halo = mesh.haloVertices(this->Xyz.data(), others);
+    if (mesh.status() != fd3::Status::Ok) // no tetrahedron to choose from: every point might matter
     {
       for (int r = 0; r < this->Ranks; ++r)
       {
@@ -299,14 +295,39 @@ public:
     return result;
   }
 
-  /// Whether this rank owns the simplex: it holds the lowest copy of its smallest vertex.
-  bool Owns(const std::uint32_t* ids, int size) const
+  /// Whether this rank owns the simplex: it holds the lowest copy of its smallest vertex. A
+  /// vertex cell (a point on no other cell of the alpha shape, or a duplicate) goes with the
+  /// point itself: every input point is one rank's own.
+  bool Owns(const std::uint32_t* ids, int size)
   {
+    if (size == 1)
+    {
+      this->VertexCell.resize(this->Xyz.size() / 3, false);
+      this->VertexCell[ids[0]] = true;
+      return ids[0] < this->OwnCount;
+    }
     const std::uint32_t* smallest = std::min_element(ids, ids + size, [this](std::uint32_t a, std::uint32_t b) {
       return std::lexicographical_compare(&this->Xyz[3 * a], &this->Xyz[3 * a + 3], &this->Xyz[3 * b],
         &this->Xyz[3 * b + 3]);
     });
     return this->Holder[*smallest] == this->Rank;
+  }
+
+  /// The vertex cells the serial filter has and the alpha complex of this rank cannot know of:
+  /// where copies of one position lie on several ranks and the position is on a cell, one copy
+  /// is a vertex of that cell and the others are duplicates, each with its vertex cell. Here the
+  /// lowest rank's copy is the vertex; the copies on other ranks get their vertex cells.
+  void AddDuplicateVertexCells(vtkUnstructuredGrid* output, const fd3::Triangulation& result)
+  {
+    this->VertexCell.resize(this->Xyz.size() / 3, false);
+    for (std::size_t v = 0; v < this->OwnCount; ++v)
+    {
+      if (result.representative[v] == v && this->Holder[v] != this->Rank && !this->VertexCell[v])
+      {
+        const vtkIdType id = static_cast<vtkIdType>(v);
+        output->InsertNextCell(VTK_VERTEX, 1, &id);
+      }
+    }
   }
 
   /// Step 5: the output's points: this rank's own, then the received ones its cells use (as
@@ -444,6 +465,7 @@ public:
   std::vector<vtkSmartPointer<vtkPointSet>> Ghosts; ///< received, one set per sender
   std::vector<int> GhostSenders;
   std::vector<int> Holder; ///< per vertex: the lowest rank holding its position
+  std::vector<bool> VertexCell; ///< per point: the alpha shape has its vertex cell
 };
 } // namespace
 
@@ -485,8 +507,7 @@ int vtkPFastDelaunay3D::RequestData(
     return 1;
   }
   const fd3::Frame frame = run.Frame(CoordinatesAsDoubles(run.Own->GetPoints(), run.Xyz));
-  fd3::Options options = this->KernelOptions(run.Diagonal);
-  options.computeNeighbors = true; // the halo is found through the hull faces
+  const fd3::Options options = this->KernelOptions(run.Diagonal);
   std::unique_ptr<fd3::Tetrahedralization> mesh;
   fd3::Triangulation result;
   try
@@ -532,6 +553,10 @@ int vtkPFastDelaunay3D::RequestData(
   if (status == fd3::Status::Ok && result.status == fd3::Status::Ok)
   {
     this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, result, owns);
+    if (this->Alpha > 0 && this->AlphaVerts)
+    {
+      run.AddDuplicateVertexCells(output, result);
+    }
     run.SetOutputPoints(output);
     std::vector<double> converted;
     this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));

@@ -2,12 +2,14 @@
 // every input point is one rank's own point exactly once, ghost points repeat input points, the
 // tetrahedra of all pieces (in input ids) are exactly those of vtkFastDelaunay3D on the whole
 // input, each once, and pass the exact validator; the volume Integrate Variables found is that of
-// the convex hull, once.
+// the convex hull, once. With an alpha, the alpha shape's cells of every dimension are compared.
 //
-// usage: CheckDistributed <pieces .pvtu> <volume printed by TestMPI.py>
+// usage: CheckDistributed <pieces .pvtu> <volume printed by TestMPI.py> [alpha]
 #include "ExactValidator.h"
 #include "VtkTestUtilities.h"
 
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFastDelaunay3D.h"
 #include "vtkIdTypeArray.h"
@@ -24,6 +26,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <numeric>
 
 namespace
 {
@@ -33,23 +36,44 @@ int fail(const std::string& why)
   return 1;
 }
 
-/// Every id replaced by the first id of its position, so that duplicates compare equal.
-std::vector<std::uint32_t> byFirstCopy(const fd3test::Points& p, std::vector<std::uint32_t> ids)
+/// For every point, the first id of its position, so that duplicates compare equal.
+std::vector<std::uint32_t> firstCopies(const fd3test::Points& p)
 {
   std::map<std::array<double, 3>, std::uint32_t> first;
   std::vector<std::uint32_t> copy(p.size() / 3);
   for (std::uint32_t i = 0; i < copy.size(); ++i)
     copy[i] = first.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i).first->second;
-  for (auto& id : ids)
-    id = copy[id];
-  return ids;
+  return copy;
+}
+
+/// Every cell as the sorted list of the first copies of its points (ids through `toInput`), all
+/// cells sorted: equal for two grids exactly when they have the same cells.
+std::vector<std::vector<std::uint32_t>> cellSet(
+  vtkUnstructuredGrid* grid, const std::vector<std::uint32_t>& firstCopy, const std::vector<std::uint32_t>& toInput)
+{
+  std::vector<std::vector<std::uint32_t>> cells;
+  vtkIdType size;
+  const vtkIdType* ids;
+  auto it = vtk::TakeSmartPointer(grid->GetCells()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    it->GetCurrentCell(size, ids);
+    std::vector<std::uint32_t> cell(size);
+    for (vtkIdType k = 0; k < size; ++k)
+      cell[k] = firstCopy[toInput[ids[k]]];
+    std::sort(cell.begin(), cell.end());
+    cells.push_back(cell);
+  }
+  std::sort(cells.begin(), cells.end());
+  return cells;
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
   if (argc < 3)
-    return fail("usage: CheckDistributed <pieces .pvtu> <volume>");
+    return fail("usage: CheckDistributed <pieces .pvtu> <volume> [alpha]");
+  const double alpha = argc > 3 ? std::atof(argv[3]) : 0.0;
   vtkNew<vtkXMLPUnstructuredGridReader> reader;
   reader->SetFileName(argv[1]);
   reader->Update();
@@ -86,33 +110,44 @@ int main(int argc, char* argv[])
     if (!std::equal(&xyz[3 * i], &xyz[3 * i + 3], &input[3 * inputIds->GetValue(i)]))
       return fail("a ghost point differs from the input point it repeats");
 
-  std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
-  if (tets.size() != 4 * static_cast<std::size_t>(pieces->GetNumberOfCells()))
-    return fail("a cell is not a tetrahedron");
-  for (auto& id : tets)
-    id = static_cast<std::uint32_t>(inputIds->GetValue(id));
-
   vtkNew<vtkFastDelaunay3D> serial;
   serial->SetInputData(fd3test::toPolyData(input));
+  serial->SetAlpha(alpha);
   serial->Update();
-  const std::vector<std::uint32_t> reference = fd3test::tetrahedra(serial->GetOutput());
-  if (fd3test::canonicalTetrahedra(byFirstCopy(input, tets)) !=
-    fd3test::canonicalTetrahedra(byFirstCopy(input, reference)))
-    return fail("the pieces' tetrahedra (" + std::to_string(tets.size() / 4) +
-      ") differ from the one-process run's (" + std::to_string(reference.size() / 4) + ")");
-  const fd3test::ValidityReport report = fd3test::checkTriangulation(input.data(), inputCount, tets);
-  if (!report.valid())
-    return fail(report.summary());
-
-  double hull = 0;
-  for (std::size_t t = 0; t < reference.size(); t += 4)
-    hull += fd3::sixVolume(&input[3 * reference[t]], &input[3 * reference[t + 1]],
-              &input[3 * reference[t + 2]], &input[3 * reference[t + 3]]) / 6;
+  std::vector<std::uint32_t> toInput(n), identity(inputCount);
+  for (vtkIdType i = 0; i < n; ++i)
+    toInput[i] = static_cast<std::uint32_t>(inputIds->GetValue(i));
+  std::iota(identity.begin(), identity.end(), 0u);
+  const std::vector<std::uint32_t> firstCopy = firstCopies(input);
+  const auto cells = cellSet(pieces, firstCopy, toInput);
+  if (cells != cellSet(serial->GetOutput(), firstCopy, identity))
+    return fail("the pieces' cells (" + std::to_string(cells.size()) +
+      ") differ from the one-process run's (" + std::to_string(serial->GetOutput()->GetNumberOfCells()) + ")");
+  std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
+  for (auto& id : tets)
+    id = toInput[id];
+  if (alpha == 0)
+  {
+    const fd3test::ValidityReport report = fd3test::checkTriangulation(input.data(), inputCount, tets);
+    if (!report.valid())
+      return fail(report.summary());
+  }
+  double hull = 0; // of the serial output's tetrahedra: with an alpha, of its alpha shape
+  vtkIdType size;
+  const vtkIdType* ids;
+  auto it = vtk::TakeSmartPointer(serial->GetOutput()->GetCells()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    it->GetCurrentCell(size, ids);
+    if (size == 4)
+      hull += std::abs(fd3::sixVolume(&input[3 * ids[0]], &input[3 * ids[1]], &input[3 * ids[2]],
+                &input[3 * ids[3]])) / 6;
+  }
   const double integrated = std::atof(argv[2]);
   if (!(std::abs(integrated - hull) <= 1e-9 * hull))
     return fail("Integrate Variables gives " + std::string(argv[2]) + ", the hull's volume is " +
       std::to_string(hull));
-  std::cout << "CheckDistributed: OK, " << tets.size() / 4 << " tetrahedra of " << inputCount
+  std::cout << "CheckDistributed: OK, " << cells.size() << " cells of " << inputCount
             << " points, " << n - inputCount << " ghost points\n";
   return 0;
 }

@@ -1,8 +1,8 @@
 """pvbatch under MPI: the distributed filter on points spread over the ranks in some way.
 
-usage: mpiexec -np N pvbatch --mpi TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution>
-       pvpython TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution> <server port>
-(the second as the client of a pvserver running under MPI on this machine)
+usage: mpiexec -np N pvbatch --mpi TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution> [port [alpha]]
+port: connect as the client of a pvserver under MPI on this machine ("-" for none); alpha: the
+filter's Alpha (default 0).
 
 kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points);
 each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
@@ -16,7 +16,8 @@ import sys
 from paraview.simple import *
 
 plugin, pieces_path, kind, distribution = sys.argv[1:5]
-if len(sys.argv) > 5:  # a client: the server may still be starting
+alpha = float(sys.argv[6]) if len(sys.argv) > 6 else 0.0
+if len(sys.argv) > 5 and sys.argv[5] != "-":  # a client: the server may still be starting
     import time
     for attempt in range(60):
         try:
@@ -59,14 +60,15 @@ points.SetData(dsa.numpyTovtkDataArray(np.ascontiguousarray(mine), "Points"))
 self.GetOutput().SetPoints(points)
 out.PointData.append(np.arange(len(mine), dtype=float) + 1000 * rank, "Label")
 """ % (kind, "scattered" if distribution == "pvtp" else distribution)
-source = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
+cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 if distribution == "pvtp":
     pieces = os.path.splitext(pieces_path)[0] + "-input.pvtp"
-    SaveData(pieces, proxy=source)
-    source = XMLPartitionedPolydataReader(FileName=[pieces])
-delaunay = FastDelaunay3D(Input=source)
+    SaveData(pieces, proxy=cloud)
+    cloud = XMLPartitionedPolydataReader(FileName=[pieces])
+delaunay = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1)  # every dimension
 SaveData(pieces_path, proxy=delaunay)
 volume = IntegrateVariables(Input=delaunay)
 volume.UpdatePipeline()
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
-print("TestMPI: volume %.17g on %d ranks" % (servermanager.Fetch(volume).GetCellData().GetArray("Volume").GetValue(0), ranks))
+integrated = servermanager.Fetch(volume).GetCellData().GetArray("Volume")  # absent without 3D cells
+print("TestMPI: volume %.17g on %d ranks" % (integrated.GetValue(0) if integrated else 0.0, ranks))

@@ -148,6 +148,10 @@ AlphaComplex alphaComplex(
 /// is a Delaunay triangulation of the distinct finite input points whose boundary is their convex hull.
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options = Options());
 
+/// An axis-aligned box {xmin, xmax, ymin, ymax, zmin, zmax}, as VTK writes bounds; xmin > xmax
+/// is an empty box.
+using Bounds = std::array<double, 6>;
+
 /// The exact change of coordinates the kernel computes in, x -> (x - shift) * scale: scale is a
 /// power of two and every x - shift is exact, so that every predicate keeps its sign. Every point
 /// lies within [lo, hi].
@@ -194,14 +198,14 @@ public:
   /// What triangulate() does with it, without a copy: the output, which ends the mesh.
   Triangulation release();
 
+  /// haloVertices() of the mesh as it stands, without a snapshot; `xyz`: every point so far, in
+  /// the order given. Empty lists while status() is not Ok.
+  std::vector<std::vector<std::uint32_t>> haloVertices(const double* xyz, const std::vector<Bounds>& boxes) const;
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// An axis-aligned box {xmin, xmax, ymin, ymax, zmin, zmax}, as VTK writes bounds; xmin > xmax
-/// is an empty box.
-using Bounds = std::array<double, 6>;
 
 /// For a point set split into pieces (MPI ranks), what this piece must send to the piece of each
 /// box so that the Delaunay tetrahedra of the whole set that touch that piece's points are all in
