@@ -36,7 +36,7 @@ self.GetOutput().SetPoints(points)
 """ % (count, count, kind)
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 cloud.UpdatePipeline()
-delaunay = FastDelaunay3D(Input=cloud)
+delaunay = FastDelaunay3D(Input=cloud, ComputeStatistics=1)
 start = time.perf_counter()
 delaunay.UpdatePipeline()
 seconds = time.perf_counter() - start
@@ -44,7 +44,9 @@ ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 info = delaunay.GetDataInformation()
 ghosts = info.GetNumberOfPoints() - count
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-print("mpi_benchmark: %s %d points, %d ranks: %.2f s, %d tetrahedra, %d ghost points used (%.2f%%), "
+fields = info.DataInformation.GetFieldDataInformation()  # the figures, times of the slowest rank
+figure = lambda name: fields.GetArrayInformation(name).GetComponentRange(0)[0]
+print("mpi_benchmark: %s %d points, %d ranks: %.2f s (kernel %.2f s, output %.2f s), %d tetrahedra, %d ghost points used (%.2f%%), "
       "rank 0 peak %.0f MB (%.0f B/point of the rank's share)"
-      % (kind, count, ranks, seconds, info.GetNumberOfCells(), ghosts, 100.0 * ghosts / count, peak,
+      % (kind, count, ranks, seconds, figure("KernelSeconds"), figure("OutputSeconds"), info.GetNumberOfCells(), ghosts, 100.0 * ghosts / count, peak,
          peak * 1048576 / (count / ranks)))
