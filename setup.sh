@@ -46,7 +46,12 @@ case "${1:-build}" in
     cmake --build build --target Benchmark -j2
     mkdir -p output
     build/bin/Benchmark --sizes "${2:-10000,100000,1000000}" --markdown output/benchmark.md \
-      --csv output/benchmark.csv
+      --csv output/benchmark.csv --methods Core,vtkFastDelaunay3D,vtkDelaunay3D,CGAL,TetGen,Core-2,CGAL-2
+    for ranks in 1 2 3 4; do # the distributed filter: time, rank 0's peak, ghost points
+      mpiexec --allow-run-as-root --oversubscribe -np $ranks pvbatch --mpi \
+        Testing/Benchmark/mpi_benchmark.py "$plugin" \
+        "$(echo "${2:-1000000}" | tr ',' '\n' | tail -1)" 2>&1 | grep '^mpi_benchmark'
+    done | tee output/mpi-benchmark.txt
     build/bin/Benchmark --table1 --markdown output/table1.md
     /usr/bin/python3 Testing/Benchmark/plot.py output/benchmark.csv output/benchmark.png \
       "$(sed -n 's/^Machine: \([^.]*\)\..*/\1/p' output/benchmark.md)" ;;
