@@ -33,6 +33,7 @@
 #include <exception>
 #include <memory>
 #include <numeric>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkPFastDelaunay3D);
@@ -425,6 +426,47 @@ public:
     return global;
   }
 
+  /// Steps 3 and 4 on every rank: this rank's mesh, the exchange, the received points added.
+  /// False on every rank when any rank failed or was aborted (so that none waits for it in a
+  /// collective call); `failure` then says why on a rank that failed.
+  bool Triangulate(const fd3::Options& options, const fd3::Frame& frame, fd3::Triangulation& result,
+    std::string& failure)
+  {
+    using Clock = std::chrono::steady_clock;
+    std::unique_ptr<fd3::Tetrahedralization> mesh;
+    auto start = Clock::now();
+    double seconds = 0; // meshing only: the exchange is left out
+    try
+    {
+      mesh = std::make_unique<fd3::Tetrahedralization>(this->Xyz.data(), this->OwnCount, options, frame);
+    }
+    catch (const std::exception& error) // out of memory, too many points
+    {
+      failure = error.what();
+    }
+    if (!this->AllSucceeded(mesh && mesh->status() != fd3::Status::Aborted))
+    {
+      return false;
+    }
+    seconds += std::chrono::duration<double>(Clock::now() - start).count();
+    this->Exchange(*mesh);
+    start = Clock::now();
+    try
+    {
+      result = this->AddGhosts(*mesh);
+      result.stats.secondsTotal = seconds + std::chrono::duration<double>(Clock::now() - start).count();
+    }
+    catch (const std::exception& error) // aborted, or out of memory
+    {
+      if (mesh->status() != fd3::Status::Aborted)
+      {
+        failure = error.what();
+      }
+      result.status = fd3::Status::Aborted;
+    }
+    return this->AllSucceeded(result.status != fd3::Status::Aborted);
+  }
+
   /// Whether every rank got through the last step (a rank that failed or was aborted makes all
   /// of them stop, so that none waits in a collective call for it).
   bool AllSucceeded(bool succeeded)
@@ -507,46 +549,19 @@ int vtkPFastDelaunay3D::RequestData(
     return 1;
   }
   const fd3::Frame frame = run.Frame(CoordinatesAsDoubles(run.Own->GetPoints(), run.Xyz));
-  const fd3::Options options = this->KernelOptions(run.Diagonal);
-  std::unique_ptr<fd3::Tetrahedralization> mesh;
   fd3::Triangulation result;
-  using Clock = std::chrono::steady_clock;
-  auto kernelStart = Clock::now();
-  double kernelSeconds = 0; // this rank's meshing, the exchange left out
-  try
+  std::string failure;
+  const bool done = run.Triangulate(this->KernelOptions(run.Diagonal), frame, result, failure);
+  if (!failure.empty())
   {
-    mesh = std::make_unique<fd3::Tetrahedralization>(run.Xyz.data(), run.OwnCount, options, frame);
+    vtkErrorMacro("Triangulation failed: " << failure << "; the output is empty");
   }
-  catch (const std::exception& failure)
-  {
-    vtkErrorMacro("Triangulation failed: " << failure.what() << "; the output is empty");
-  }
-  if (!run.AllSucceeded(mesh && mesh->status() != fd3::Status::Aborted))
-  {
-    return 1;
-  }
-  kernelSeconds += std::chrono::duration<double>(Clock::now() - kernelStart).count();
-  run.Exchange(*mesh);
-  kernelStart = Clock::now();
-  try
-  {
-    result = run.AddGhosts(*mesh);
-    result.stats.secondsTotal = kernelSeconds + std::chrono::duration<double>(Clock::now() - kernelStart).count();
-  }
-  catch (const std::exception& failure) // aborted, or out of memory
-  {
-    if (mesh->status() != fd3::Status::Aborted)
-    {
-      vtkErrorMacro("Triangulation failed: " << failure.what() << "; the output is empty");
-    }
-    result.status = fd3::Status::Aborted;
-  }
-  if (!run.AllSucceeded(result.status != fd3::Status::Aborted))
+  if (!done)
   {
     return 1;
   }
 
-  const auto outputStart = Clock::now();
+  const auto outputStart = std::chrono::steady_clock::now();
   const fd3::Status status = run.GlobalStatus(result.status);
   std::size_t owned = 0;
   auto owns = [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); };
@@ -567,7 +582,8 @@ int vtkPFastDelaunay3D::RequestData(
     std::vector<double> converted;
     this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));
   }
-  figures.secondsOutput += std::chrono::duration<double>(Clock::now() - outputStart).count();
+  figures.secondsOutput +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
   this->RecordFigures(figures);
   if (this->Controller->GetLocalProcessId() == 0) // one report for all ranks
   {
