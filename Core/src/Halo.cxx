@@ -7,6 +7,8 @@
 // tetrahedron's circumsphere (or the hull face's outer half-space) meets B.
 #include "Halo.h"
 
+#include "fd3/Measures.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -30,27 +32,17 @@ struct Ball
 
 Ball circumball(const double* a, const double* b, const double* c, const double* d)
 {
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  const double vw[3] = {v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]};
-  const double wu[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
-  const double uv[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-  const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-  const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-  const double sixVolume = u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2];
+  const Circumcentre centre = circumcentre(a, b, c, d);
   Ball ball{{0, 0, 0}, 0, true};
-  if (!(std::abs(sixVolume) * kIllConditioned > std::sqrt(uu * vv * ww)))
+  if (!(std::abs(centre.sixVolume) * kIllConditioned > std::sqrt(centre.edgeProduct2)))
   {
     return ball;
   }
   double r2 = 0;
   for (int k = 0; k < 3; ++k)
   {
-    const double x = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2 * sixVolume);
-    ball.centre[k] = a[k] + x;
-    r2 += x * x;
+    ball.centre[k] = a[k] + centre.offset[k];
+    r2 += centre.offset[k] * centre.offset[k];
   }
   ball.radius = std::sqrt(r2) * (1 + kMargin);
   ball.unbounded = false;

@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
 #include <random>
 
 namespace
@@ -21,18 +20,6 @@ using Coordinates = std::array<double, 3>;
 Coordinates at(const fd3test::Points& p, std::size_t id)
 {
   return {p[3 * id], p[3 * id + 1], p[3 * id + 2]};
-}
-
-/// The first input id of every position: duplicates compare equal across pieces.
-std::vector<std::uint32_t> firstCopies(const fd3test::Points& p)
-{
-  std::map<Coordinates, std::uint32_t> first;
-  std::vector<std::uint32_t> copy(p.size() / 3);
-  for (std::uint32_t i = 0; i < copy.size(); ++i)
-  {
-    copy[i] = first.emplace(at(p, i), i).first->second;
-  }
-  return copy;
 }
 
 fd3::Bounds boxOf(const fd3test::Points& p, const std::vector<std::uint32_t>& ids)
@@ -115,7 +102,7 @@ std::vector<std::uint32_t> distributedTetrahedra(
       }
     }
   }
-  const std::vector<std::uint32_t> copy = firstCopies(p);
+  const std::vector<std::uint32_t> copy = fd3test::firstCopies(p);
   std::vector<std::uint32_t> kept;
   *haloSize = 0;
   for (int j = 0; j < pieceCount; ++j)
@@ -172,7 +159,7 @@ void expectSameAsOnePiece(const fd3test::Points& p, const std::vector<int>& piec
   ASSERT_EQ(whole.status, fd3::Status::Ok);
   std::size_t haloSize = 0;
   const std::vector<std::uint32_t> kept = distributedTetrahedra(p, pieceOf, pieceCount, &haloSize);
-  const auto copy = firstCopies(p);
+  const auto copy = fd3test::firstCopies(p);
   fd3::IdArray reference(whole.tetrahedra.size());
   std::transform(whole.tetrahedra.begin(), whole.tetrahedra.end(), reference.begin(),
     [&](std::uint32_t id) { return copy[id]; });

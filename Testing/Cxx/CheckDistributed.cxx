@@ -25,7 +25,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <numeric>
 
 namespace
@@ -34,16 +33,6 @@ int fail(const std::string& why)
 {
   std::cerr << "CheckDistributed: " << why << "\n";
   return 1;
-}
-
-/// For every point, the first id of its position, so that duplicates compare equal.
-std::vector<std::uint32_t> firstCopies(const fd3test::Points& p)
-{
-  std::map<std::array<double, 3>, std::uint32_t> first;
-  std::vector<std::uint32_t> copy(p.size() / 3);
-  for (std::uint32_t i = 0; i < copy.size(); ++i)
-    copy[i] = first.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i).first->second;
-  return copy;
 }
 
 /// Every cell as the sorted list of the first copies of its points (ids through `toInput`), all
@@ -118,7 +107,7 @@ int main(int argc, char* argv[])
   for (vtkIdType i = 0; i < n; ++i)
     toInput[i] = static_cast<std::uint32_t>(inputIds->GetValue(i));
   std::iota(identity.begin(), identity.end(), 0u);
-  const std::vector<std::uint32_t> firstCopy = firstCopies(input);
+  const std::vector<std::uint32_t> firstCopy = fd3test::firstCopies(input);
   const auto cells = cellSet(pieces, firstCopy, toInput);
   if (cells != cellSet(serial->GetOutput(), firstCopy, identity))
     return fail("the pieces' cells (" + std::to_string(cells.size()) +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -297,6 +298,15 @@ Points generate(const std::string& kind, std::size_t n, std::uint64_t seed)
   if (kind == "molshell")
     return molecularShell(n, seed);
   throw std::invalid_argument("unknown point set: " + kind);
+}
+
+std::vector<std::uint32_t> firstCopies(const Points& p)
+{
+  std::map<std::array<double, 3>, std::uint32_t> first;
+  std::vector<std::uint32_t> copy(p.size() / 3);
+  for (std::uint32_t i = 0; i < copy.size(); ++i)
+    copy[i] = first.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i).first->second;
+  return copy;
 }
 
 } // namespace fd3test

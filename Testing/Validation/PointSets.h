@@ -42,6 +42,10 @@ Points lidarTerrain(std::size_t n, std::uint64_t seed);
 /// lattice (spacing 1, jitter +-0.15), so no two points are closer than 0.7.
 Points molecularShell(std::size_t n, std::uint64_t seed);
 
+/// For every point, the id of the first point at its position: exact duplicates map to one id, so
+/// that simplices compare equal whichever copy they use.
+std::vector<std::uint32_t> firstCopies(const Points& p);
+
 /// Every generator's name, as generate() takes it.
 const std::vector<std::string>& pointSetNames();
 /// Generator by name (see pointSetNames()).

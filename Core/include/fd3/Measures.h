@@ -25,8 +25,17 @@ inline double sixVolume(const double* a, const double* b, const double* c, const
     (u[0] * v[1] - u[1] * v[0]) * w[2];
 }
 
-/// Squared circumradius of tetrahedron abcd (infinite when flat).
-inline double tetrahedronCircumradius2(const double* a, const double* b, const double* c, const double* d)
+/// The circumcentre of tetrahedron abcd as an offset from a, with what tells how far it can be
+/// trusted: six times the signed volume (0: flat, no centre; the offset is then 0) and
+/// |ab|^2 |ac|^2 |ad|^2, whose root over |sixVolume| bounds the condition of the offset.
+struct Circumcentre
+{
+  double offset[3] = {0, 0, 0};
+  double sixVolume = 0;
+  double edgeProduct2 = 0;
+};
+
+inline Circumcentre circumcentre(const double* a, const double* b, const double* c, const double* d)
 {
   // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
@@ -38,15 +47,26 @@ inline double tetrahedronCircumradius2(const double* a, const double* b, const d
   const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
   const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-  const double denominator = 2 * (u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2]);
-  if (denominator == 0)
+  Circumcentre centre;
+  centre.sixVolume = u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2];
+  centre.edgeProduct2 = uu * vv * ww;
+  if (centre.sixVolume != 0)
+  {
+    for (int k = 0; k < 3; ++k)
+      centre.offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2 * centre.sixVolume);
+  }
+  return centre;
+}
+
+/// Squared circumradius of tetrahedron abcd (infinite when flat).
+inline double tetrahedronCircumradius2(const double* a, const double* b, const double* c, const double* d)
+{
+  const Circumcentre centre = circumcentre(a, b, c, d);
+  if (centre.sixVolume == 0)
     return INFINITY;
   double r2 = 0;
   for (int k = 0; k < 3; ++k)
-  {
-    const double x = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / denominator;
-    r2 += x * x;
-  }
+    r2 += centre.offset[k] * centre.offset[k];
   return r2;
 }
 
