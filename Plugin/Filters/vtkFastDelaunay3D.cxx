@@ -43,26 +43,6 @@ vtkStandardNewMacro(vtkFastDelaunay3D);
 
 namespace
 {
-/// Bounding box of the finite points (NaN or infinite ones would spoil VTK's own bounds).
-void FiniteBounds(vtkDataSet* input, double bounds[6])
-{
-  bounds[0] = bounds[2] = bounds[4] = VTK_DOUBLE_MAX;
-  bounds[1] = bounds[3] = bounds[5] = -VTK_DOUBLE_MAX;
-  double x[3];
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-  {
-    input->GetPoint(i, x);
-    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        bounds[2 * a] = std::min(bounds[2 * a], x[a]);
-        bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
-      }
-    }
-  }
-}
-
 double Diagonal(const double bounds[6])
 {
   double d2 = 0;
@@ -74,10 +54,9 @@ double Diagonal(const double bounds[6])
   return std::sqrt(d2);
 }
 
-/// The output's points: the input's own when nothing changes (shared, same ids), else a copy in
-/// the requested precision, followed by the bounding octahedron's 6 points when asked for.
-vtkSmartPointer<vtkPoints> MakeOutputPoints(
-  vtkDataSet* input, const double bounds[6], int precision, bool bounding, double offset)
+/// The input's points in the requested precision, with room for `extra` more after them: the
+/// input's own array when nothing changes (shared, same ids), else a copy.
+vtkSmartPointer<vtkPoints> PointsInPrecision(vtkDataSet* input, int precision, vtkIdType extra)
 {
   auto* pointSet = vtkPointSet::SafeDownCast(input);
   vtkPoints* given = pointSet ? pointSet->GetPoints() : nullptr;
@@ -90,14 +69,14 @@ vtkSmartPointer<vtkPoints> MakeOutputPoints(
   {
     type = VTK_DOUBLE;
   }
-  if (given && type == given->GetDataType() && !bounding)
+  if (given && type == given->GetDataType() && extra == 0)
   {
     return given;
   }
-  const vtkIdType n = input->GetNumberOfPoints();
+  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
   auto points = vtkSmartPointer<vtkPoints>::New();
   points->SetDataType(type);
-  points->SetNumberOfPoints(n + (bounding ? 6 : 0));
+  points->SetNumberOfPoints(n + extra);
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     double x[3];
     for (vtkIdType i = begin; i < end; ++i)
@@ -106,8 +85,18 @@ vtkSmartPointer<vtkPoints> MakeOutputPoints(
       points->SetPoint(i, x);
     }
   });
+  return points;
+}
+
+/// The output's points: the input's own when nothing changes (shared, same ids), else a copy in
+/// the requested precision, followed by the bounding octahedron's 6 points when asked for.
+vtkSmartPointer<vtkPoints> MakeOutputPoints(
+  vtkDataSet* input, const double bounds[6], int precision, bool bounding, double offset)
+{
+  vtkSmartPointer<vtkPoints> points = PointsInPrecision(input, precision, bounding ? 6 : 0);
   if (bounding) // vtkDelaunay3D's octahedron: centre +- offset * diagonal along each axis
   {
+    const vtkIdType n = input->GetNumberOfPoints();
     const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
       (bounds[4] + bounds[5]) / 2 };
     const double length = offset * (Diagonal(bounds) > 0 ? Diagonal(bounds) : 1.0);
@@ -139,23 +128,6 @@ struct CopyToDoubles
     });
   }
 };
-
-/// The point coordinates as x,y,z doubles: the array itself when it already is one, else a copy.
-const double* PointsAsDoubles(vtkPoints* points, std::vector<double>& copy)
-{
-  vtkDataArray* data = points->GetData();
-  if (auto* doubles = vtkDoubleArray::FastDownCast(data))
-  {
-    return doubles->GetPointer(0);
-  }
-  copy.resize(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
-  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
-  if (!Reals::Execute(data, CopyToDoubles{}, copy.data()))
-  {
-    CopyToDoubles{}(data, copy.data());
-  }
-  return copy.data();
-}
 
 /// A run of cells of one type: cell c is ids[size * (select ? select[c] : c) + k], k < size.
 struct CellBlock
@@ -363,7 +335,7 @@ int vtkFastDelaunay3D::RequestData(
   // VTK points in -> Core -> VTK cells out. The kernel triangulates the output's own coordinates,
   // so the result is exact for what is written.
   double bounds[6];
-  FiniteBounds(input, bounds);
+  BoundsOfFinitePoints(input, bounds);
   vtkSmartPointer<vtkPoints> points = MakeOutputPoints(
     input, bounds, this->OutputPointsPrecision, this->BoundingTriangulation, this->Offset);
   std::vector<double> converted;
@@ -539,7 +511,43 @@ void vtkFastDelaunay3D::AddCellArrays(vtkUnstructuredGrid* output, const double*
 
 const double* vtkFastDelaunay3D::CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
 {
-  return PointsAsDoubles(points, copy);
+  vtkDataArray* data = points->GetData();
+  if (auto* doubles = vtkDoubleArray::FastDownCast(data))
+  {
+    return doubles->GetPointer(0);
+  }
+  copy.resize(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
+  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  if (!Reals::Execute(data, CopyToDoubles{}, copy.data()))
+  {
+    CopyToDoubles{}(data, copy.data());
+  }
+  return copy.data();
+}
+
+vtkSmartPointer<vtkPoints> vtkFastDelaunay3D::InputPoints(vtkDataSet* input, int precision)
+{
+  return PointsInPrecision(input, precision, 0);
+}
+
+// NaN or infinite points would spoil VTK's own bounds.
+void vtkFastDelaunay3D::BoundsOfFinitePoints(vtkDataSet* input, double bounds[6])
+{
+  bounds[0] = bounds[2] = bounds[4] = VTK_DOUBLE_MAX;
+  bounds[1] = bounds[3] = bounds[5] = -VTK_DOUBLE_MAX;
+  double x[3];
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    input->GetPoint(i, x);
+    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        bounds[2 * a] = std::min(bounds[2 * a], x[a]);
+        bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
+      }
+    }
+  }
 }
 
 void vtkFastDelaunay3D::AddFigures(vtkFieldData* fields) const

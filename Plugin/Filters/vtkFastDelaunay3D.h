@@ -39,6 +39,7 @@
 #define vtkFastDelaunay3D_h
 
 #include "FastDelaunay3DFiltersModule.h" // For export macro
+#include "vtkSmartPointer.h"             // for vtkSmartPointer
 #include "vtkUnstructuredGridAlgorithm.h"
 
 #include <cstddef> // for std::size_t
@@ -310,6 +311,11 @@ protected:
   void AddFigures(vtkFieldData* fields) const;
   /// The points' coordinates as x,y,z doubles: the array itself when it is one, else `copy`.
   static const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy);
+  /// The input's points in `precision` (an OutputPointsPrecision): its own array when that is
+  /// already the type, else a copy.
+  static vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input, int precision);
+  /// The bounds of the finite points; xmin > xmax when there are none.
+  static void BoundsOfFinitePoints(vtkDataSet* input, double bounds[6]);
 
 private:
   /// The figures above by name, for the field data and PrintSelf.

@@ -108,9 +108,9 @@ public:
   }
 
   /// Step 1: the finite points spread over the ranks by space, this rank's non-finite ones after
-  /// them (nothing to triangulate, but they stay in the output as unused points).
-  /// False when no rank has a point.
-  bool Distribute(vtkDataSet* input, int precision)
+  /// them (nothing to triangulate, but they stay in the output as unused points). `points`: the
+  /// input's, in the output's precision. False when no rank has a point.
+  bool Distribute(vtkDataSet* input, vtkPoints* points)
   {
     const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
     std::vector<vtkIdType> counts(this->Ranks);
@@ -119,13 +119,6 @@ public:
     this->InputPoints = std::accumulate(counts.begin(), counts.end(), vtkIdType(0));
 
     auto all = vtkSmartPointer<vtkPolyData>::New();
-    vtkNew<vtkPoints> points;
-    auto* pointSet = vtkPointSet::SafeDownCast(input);
-    points->SetDataType(precision == vtkAlgorithm::SINGLE_PRECISION ? VTK_FLOAT
-        : precision == vtkAlgorithm::DOUBLE_PRECISION || !pointSet || !pointSet->GetPoints()
-        ? VTK_DOUBLE
-        : pointSet->GetPoints()->GetDataType());
-    points->SetNumberOfPoints(count);
     vtkNew<vtkIdTypeArray> inputIds;
     inputIds->SetName(kInputIds);
     inputIds->SetNumberOfValues(count);
@@ -133,8 +126,7 @@ public:
     double x[3];
     for (vtkIdType i = 0; i < count; ++i)
     {
-      input->GetPoint(i, x);
-      points->SetPoint(i, x);
+      points->GetPoint(i, x);
       inputIds->SetValue(i, firstId + i);
       (IsFinite(x) ? finite : nonFinite).push_back(i);
     }
@@ -146,6 +138,7 @@ public:
     }
     all->GetPointData()->AddArray(inputIds);
     this->Own = all;
+    this->FiniteCount = 0;
     vtkIdType finiteCount = static_cast<vtkIdType>(finite.size()), finiteTotal = 0;
     this->Controller->AllReduce(&finiteCount, &finiteTotal, 1, vtkCommunicator::SUM_OP);
     if (finiteTotal == 0)
@@ -157,6 +150,7 @@ public:
     spread->SetInputData(nonFinite.empty() ? all.Get() : Subset(all, finite).Get());
     spread->Update();
     this->Own = spread->GetOutput();
+    this->FiniteCount = static_cast<std::size_t>(this->Own->GetNumberOfPoints());
     if (!nonFinite.empty())
     {
       this->Own = Concatenate({ this->Own, Subset(all, nonFinite) });
@@ -169,27 +163,17 @@ public:
   }
 
   /// Step 2: one exact frame for every rank, from the global bounds and the shifts that are
-  /// exact on every rank.
-  /// ownXyz: the coordinates of Own as doubles.
-  fd3::Frame Frame(const double* ownXyz)
+  /// exact on every rank. ownXyz, ownBounds: the coordinates of Own as doubles, the bounds of its
+  /// finite points.
+  fd3::Frame Frame(const double* ownXyz, const double ownBounds[6])
   {
     this->OwnCount = static_cast<std::size_t>(this->Own->GetNumberOfPoints());
     if (this->Xyz.data() != ownXyz)
     {
       this->Xyz.assign(ownXyz, ownXyz + 3 * this->OwnCount);
     }
-    fd3::Bounds box = { 1, -1, 1, -1, 1, -1 };
-    bool first = true;
-    for (std::size_t i = 0; i < this->OwnCount; ++i)
-    {
-      const double* p = &this->Xyz[3 * i];
-      for (int a = 0; a < 3 && IsFinite(p); ++a)
-      {
-        box[2 * a] = first ? p[a] : std::min(box[2 * a], p[a]);
-        box[2 * a + 1] = first ? p[a] : std::max(box[2 * a + 1], p[a]);
-      }
-      first = first && !IsFinite(p);
-    }
+    fd3::Bounds box;
+    std::copy_n(ownBounds, 6, box.begin());
     this->Boxes.assign(this->Ranks, fd3::Bounds());
     this->Controller->AllGather(box.data(), this->Boxes[0].data(), 6);
     double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
@@ -226,12 +210,10 @@ public:
     {
       for (int r = 0; r < this->Ranks; ++r)
       {
-        for (std::uint32_t i = 0; i < this->OwnCount && r != this->Rank; ++i)
+        if (r != this->Rank)
         {
-          if (IsFinite(&this->Xyz[3 * i]))
-          {
-            halo[r].push_back(i);
-          }
+          halo[r].resize(this->FiniteCount);
+          std::iota(halo[r].begin(), halo[r].end(), 0u);
         }
       }
     }
@@ -283,6 +265,7 @@ public:
     fd3::Triangulation result = mesh.release();
     const std::size_t count = this->Xyz.size() / 3;
     std::vector<int> copies(count, INT_MAX);
+    this->VertexCell.assign(count, false);
     this->Holder.insert(this->Holder.begin(), this->OwnCount, this->Rank);
     for (std::size_t k = 0; k < count && result.status == fd3::Status::Ok; ++k)
     {
@@ -303,7 +286,6 @@ public:
   {
     if (size == 1)
     {
-      this->VertexCell.resize(this->Xyz.size() / 3, false);
       this->VertexCell[ids[0]] = true;
       return ids[0] < this->OwnCount;
     }
@@ -320,7 +302,6 @@ public:
   /// lowest rank's copy is the vertex; the copies on other ranks get their vertex cells.
   void AddDuplicateVertexCells(vtkUnstructuredGrid* output, const fd3::Triangulation& result)
   {
-    this->VertexCell.resize(this->Xyz.size() / 3, false);
     for (std::size_t v = 0; v < this->OwnCount; ++v)
     {
       if (result.representative[v] == v && this->Holder[v] != this->Rank && !this->VertexCell[v])
@@ -502,6 +483,7 @@ public:
   double Diagonal = 0;
   vtkSmartPointer<vtkPointSet> Own;       ///< this rank's points: finite ones by space, then its NaN/Inf
   std::size_t OwnCount = 0;
+  std::size_t FiniteCount = 0;            ///< Own's first points, the finite ones
   std::vector<double> Xyz;                ///< own points, then the received ones
   std::vector<fd3::Bounds> Boxes;         ///< every rank's bounds
   std::vector<vtkSmartPointer<vtkPointSet>> Ghosts; ///< received, one set per sender
@@ -540,7 +522,7 @@ int vtkPFastDelaunay3D::RequestData(
   }
 
   DistributedRun run(this->Controller);
-  if (!run.Distribute(input, this->OutputPointsPrecision))
+  if (!run.Distribute(input, InputPoints(input, this->OutputPointsPrecision)))
   {
     if (this->Controller->GetLocalProcessId() == 0)
     {
@@ -548,7 +530,9 @@ int vtkPFastDelaunay3D::RequestData(
     }
     return 1;
   }
-  const fd3::Frame frame = run.Frame(CoordinatesAsDoubles(run.Own->GetPoints(), run.Xyz));
+  double ownBounds[6];
+  BoundsOfFinitePoints(run.Own, ownBounds);
+  const fd3::Frame frame = run.Frame(CoordinatesAsDoubles(run.Own->GetPoints(), run.Xyz), ownBounds);
   fd3::Triangulation result;
   std::string failure;
   const bool done = run.Triangulate(this->KernelOptions(run.Diagonal), frame, result, failure);
