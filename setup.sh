@@ -37,7 +37,10 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/us
 cmake --build build -j2
 
 plugin=build/lib/paraview-5.11/plugins/FastDelaunay3D/FastDelaunay3D.so
-xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
+# -noreset: an X server resets when its last client leaves, and a test connecting during the
+# reset fails ("bad X server connection"); the rendering tests run one after another, so each
+# one's exit would otherwise reset it under the next.
+xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
 case "${1:-build}" in
   build) ;;
   demo) "${xvfb[@]}" pvbatch Testing/Python/demo.py "$plugin" Data/points.vtp output ;;
