@@ -95,7 +95,7 @@ bool Inserter::fillCavity(VertId v)
     pool_.give(tets_, t);
   for (TetId t : cavity_.rejected)
     tets_.setFlags(t, 0);
-  lastCreated_ = created.back();
+  regionStart_ = created.back();
   return true;
 }
 

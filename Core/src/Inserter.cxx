@@ -68,7 +68,7 @@ void Inserter::start()
       mesh_.grid.markInserted(point(v[i]), v[i]);
   }
   lastInserted_ = 3;
-  lastCreated_ = t;
+  regionStart_ = t;
   stats_.insertedPoints = 4;
 }
 
@@ -76,7 +76,7 @@ void Inserter::restrictTo(const Region& region, TetId start)
 {
   region_ = region;
   restricted_ = true;
-  lastCreated_ = start;
+  regionStart_ = start;
 }
 
 void Inserter::unrestricted()
@@ -136,6 +136,11 @@ Inserter::Outcome Inserter::insert(VertId v)
     }
   if (base == kNoTet || !digCavity(base, v))
   {
+    // The base is unchanged and near the next point: walking again from the last tetrahedron
+    // created, perhaps many put-off points back, took 69 steps per point instead of 15 (2 threads,
+    // 300k points on a cylinder, where most insertions reach outside their region).
+    if (base != kNoTet)
+      regionStart_ = base;
     ++stats_.deferredInsertions;
     return Outcome::Deferred;
   }

@@ -161,10 +161,11 @@ private:
   bool restricted_ = false;
   bool lookForDuplicates_ = false;
   std::vector<std::pair<VertId, VertId>> duplicates_;
-  // The start of the next walk: the last inserted vertex (unrestricted), or the last tetrahedron
-  // created in this region (restricted: it is the inserter's, unlike a vertex's tetrahedron).
+  // The start of the next walk: the last inserted vertex (unrestricted), or, restricted, a
+  // tetrahedron of the region near the last point: the last one created, or the base found for a
+  // point that was put off (both the inserter's, unlike a vertex's tetrahedron).
   VertId lastInserted_ = 0;
-  TetId lastCreated_ = 0;
+  TetId regionStart_ = 0;
   std::uint16_t ghostLocalNumber_ = Vertex::kNoLocal;
   std::uint64_t rng_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold

@@ -28,13 +28,12 @@ constexpr std::size_t kOrderedSteps = 1000;
 // The start: a tetrahedron of the inserted vertex nearest to the point among two candidates, the
 // one the grid's onion search finds and the last inserted one (the curve order puts it close). On a
 // surface sample the grid's cells are sized for volume and hold many points each, so the last
-// vertex is often nearer; on volume data the grid's usually is. In a region, the last tetrahedron
-// created there: a vertex's tetrahedron may have vertices in other regions, which their inserters
-// may be changing.
+// vertex is often nearer; on volume data the grid's usually is. In a region, a tetrahedron of the
+// region near the last point (regionStart_): a vertex's tetrahedron is often not the inserter's.
 TetId Inserter::startTet(VertId v) const
 {
   if (restricted_)
-    return lastCreated_;
+    return regionStart_;
   VertId start = lastInserted_;
   if (mesh_.grid.enabled())
   {

@@ -21,12 +21,12 @@ namespace fd3
 namespace
 {
 /// Boxes for `parts` threads holding about as many of `vertices` each (recursive cuts at quantiles).
-/// Cut axes cycle through the set's axes from the longest, starting `variant` places later, so
-/// that the cuts of two variants cross.
+/// Cut axes cycle through the set's axes from the longest. The points a pass puts off crowd around
+/// its cuts, so the next pass, cut across the longest axis of their box, cuts across those.
 class Partition
 {
 public:
-  Partition(const Mesh& mesh, std::vector<VertId> vertices, int parts, int variant)
+  Partition(const Mesh& mesh, std::vector<VertId> vertices, int parts)
     : mesh_(mesh)
     , ids_(std::move(vertices))
   {
@@ -35,7 +35,7 @@ public:
       box.include(mesh.point(v));
     std::iota(axes_, axes_ + 3, 0);
     std::sort(axes_, axes_ + 3, [&box](int a, int b) { return box.extent(a) > box.extent(b); });
-    split(0, ids_.size(), parts, variant, Region());
+    split(0, ids_.size(), parts, 0, Region());
   }
   const std::vector<Region>& regions() const { return regions_; }
 
@@ -73,14 +73,34 @@ private:
   int axes_[3];
   std::vector<Region> regions_;
 };
+
+/// The least share of its points that a pass on `threads` threads must put in to be faster than
+/// inserting them all serially, if a put-off insertion costs half of one that goes in (it stops
+/// at the first tetrahedron outside its region, in the walk or the cavity). A pass with yield y
+/// costs y/threads + (1-y)/(2 threads) and leaves 1-y to the serial pass.
+double worthwhileYield(int threads)
+{
+  return 0.5 / (threads - 1 + 0.5);
+}
 } // namespace
 
 bool Triangulator::insertInParallel(
   std::vector<VertId> vertices, const std::function<bool(double)>& progress)
 {
   const int threads = static_cast<int>(inserters_.size());
-  for (int variant = 0; variant < 2 && !vertices.empty() && !stop_; ++variant)
-    vertices = runPass(vertices, Partition(mesh_, vertices, threads, variant).regions(), progress);
+  for (int pass = 0; pass < 2 && !vertices.empty() && !stop_; ++pass)
+  {
+    if (passYield_[pass] < worthwhileYield(threads))
+    {
+      // Tried again once the guess, doubled every round left out, says so: later rounds, denser,
+      // may do better.
+      passYield_[pass] *= 2;
+      break;
+    }
+    const std::size_t count = vertices.size();
+    vertices = runPass(vertices, Partition(mesh_, vertices, threads).regions(), progress);
+    passYield_[pass] = 1.0 - double(vertices.size()) / double(count);
+  }
   std::sort(vertices.begin(), vertices.end()); // back to curve order
   return !stop_ && insertSerially(vertices.data(), vertices.size(), progress);
 }

@@ -70,7 +70,8 @@ private:
   /// Inserts `vertices` with inserter 0, in this thread.
   bool insertSerially(const VertId* vertices, std::size_t count, const std::function<bool(double)>& progress);
   /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, twice,
-  /// then serially what the regions could not take. ParallelInsertion.cxx.
+  /// then serially what the regions could not take; a pass whose kind last yielded too little to
+  /// pay for itself is left out. ParallelInsertion.cxx.
   bool insertInParallel(std::vector<VertId> vertices, const std::function<bool(double)>& progress);
   /// Inserts `vertices` in `regions`, one thread each; returns those that had to be put off.
   std::vector<VertId> runPass(const std::vector<VertId>& vertices, const std::vector<Region>& regions,
@@ -86,6 +87,11 @@ private:
   std::size_t done_ = 0; // vertices handled, for progress
   std::atomic<std::size_t> passDone_{0};
   std::atomic<bool> stop_{false};
+  // Share of its points that the last first pass and the last second pass put in: on some inputs
+  // (convex surface samples, whose hull faces run across the whole set) nearly every insertion
+  // reaches outside its region, and a pass that puts off nearly all of them only wastes time.
+  // A pass left out doubles its guess instead.
+  double passYield_[2] = {1.0, 1.0};
 };
 
 } // namespace fd3
