@@ -42,6 +42,20 @@ void* allocateBulk(std::size_t bytes)
   return p;
 }
 
+void releasePages(void* begin, std::size_t bytes) noexcept
+{
+#if defined(__linux__)
+  constexpr std::uintptr_t kPage = 4096;
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + kPage - 1) & ~(kPage - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(begin) + bytes) & ~(kPage - 1);
+  if (first < end)
+    madvise(reinterpret_cast<void*>(first), end - first, MADV_DONTNEED);
+#else
+  (void)begin;
+  (void)bytes;
+#endif
+}
+
 void freeBulk(void* p) noexcept
 {
 #if defined(_WIN32)

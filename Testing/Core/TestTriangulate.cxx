@@ -6,11 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#if defined(__linux__)
+#include <unistd.h>
+#endif
 
 namespace
 {
@@ -28,6 +32,38 @@ fd3::Triangulation triangulateAndCheck(const Points& p, const fd3::Options& opti
     n);
   EXPECT_EQ(result.neighbors.size(), result.tetrahedra.size());
   return result;
+}
+
+#if defined(__linux__)
+std::size_t residentBytes()
+{
+  std::ifstream statm("/proc/self/statm");
+  std::size_t total = 0, resident = 0;
+  statm >> total >> resident;
+  return resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+}
+#endif
+
+// The output's tetrahedra are compacted into the front of the mesh's records: the rest is given
+// back, the tetrahedra stay, and the array can grow again.
+TEST(BulkAllocator, SpareCapacityIsGivenBackAndTheElementsStay)
+{
+  constexpr std::size_t kWords = std::size_t(16) << 20; // 64 MB
+  fd3::IdArray ids(kWords);
+  std::iota(ids.begin(), ids.end(), 0u);
+  ids.resize(kWords / 8);
+#if defined(__linux__)
+  const std::size_t before = residentBytes();
+#endif
+  fd3::releaseSpareCapacity(ids);
+#if defined(__linux__)
+  EXPECT_GT(before, residentBytes() + 3 * kWords) << "most of the 56 MB beyond the size given back";
+#endif
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    ASSERT_EQ(ids[i], i);
+  ids.resize(kWords, 7u);
+  EXPECT_EQ(ids[kWords / 8 - 1], kWords / 8 - 1);
+  EXPECT_EQ(ids.back(), 7u);
 }
 
 TEST(Triangulate, UniformPoints)

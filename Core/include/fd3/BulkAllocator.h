@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <new>
 #include <utility>
+#include <vector>
 
 namespace fd3
 {
@@ -16,6 +17,9 @@ namespace detail
 {
 void* allocateBulk(std::size_t bytes); ///< throws std::bad_alloc
 void freeBulk(void* p) noexcept;
+/// Gives the whole pages within [begin, begin + bytes) back to the system (Linux; elsewhere it does
+/// nothing); they read as zeros when touched again.
+void releasePages(void* begin, std::size_t bytes) noexcept;
 } // namespace detail
 
 template <typename T>
@@ -55,6 +59,14 @@ struct BulkAllocator
     return false;
   }
 };
+
+/// Gives back the memory of `v` beyond its size without moving its elements, as a shrink_to_fit
+/// would with a copy (a peak of both sizes). capacity() is unchanged.
+template <typename T>
+void releaseSpareCapacity(std::vector<T, BulkAllocator<T>>& v) noexcept
+{
+  detail::releasePages(v.data() + v.size(), (v.capacity() - v.size()) * sizeof(T));
+}
 
 } // namespace fd3
 
