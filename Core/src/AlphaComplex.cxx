@@ -85,7 +85,7 @@ AlphaComplex alphaComplex(
     }
   }
   for (std::size_t i = 0; i < count; ++i)
-    if (!used[i] && std::isfinite(p(i)[0]) && std::isfinite(p(i)[1]) && std::isfinite(p(i)[2]))
+    if (!used[i] && isFinite(p(i)))
       complex.vertices.push_back(static_cast<std::uint32_t>(i));
   return complex;
 }

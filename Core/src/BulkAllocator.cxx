@@ -6,6 +6,7 @@
 #include <malloc.h>
 #elif defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace fd3
@@ -45,9 +46,10 @@ void* allocateBulk(std::size_t bytes)
 void releasePages(void* begin, std::size_t bytes) noexcept
 {
 #if defined(__linux__)
-  constexpr std::uintptr_t kPage = 4096;
-  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + kPage - 1) & ~(kPage - 1);
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(begin) + bytes) & ~(kPage - 1);
+  // madvise needs a page-aligned start: 4 KB on x86-64, 16 or 64 KB on some ARM systems.
+  static const std::uintptr_t page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) & ~(page - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(begin) + bytes) & ~(page - 1);
   if (first < end)
     madvise(reinterpret_cast<void*>(first), end - first, MADV_DONTNEED);
 #else

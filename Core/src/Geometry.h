@@ -10,11 +10,6 @@
 namespace fd3
 {
 
-inline bool isFinite(const double* p)
-{
-  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-}
-
 /// An axis-aligned bounding box.
 struct Box
 {

@@ -90,7 +90,7 @@ private:
   // Share of its points that the last first pass and the last second pass put in: on some inputs
   // (convex surface samples, whose hull faces run across the whole set) nearly every insertion
   // reaches outside its region, and a pass that puts off nearly all of them only wastes time.
-  // A pass left out doubles its guess instead.
+  // A pass left out doubles its guess instead (one that put nothing in is not tried again).
   double passYield_[2] = {1.0, 1.0};
 };
 

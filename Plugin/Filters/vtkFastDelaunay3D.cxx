@@ -539,7 +539,7 @@ void vtkFastDelaunay3D::BoundsOfFinitePoints(vtkDataSet* input, double bounds[6]
   for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
   {
     input->GetPoint(i, x);
-    if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]))
+    if (fd3::isFinite(x))
     {
       for (int a = 0; a < 3; ++a)
       {

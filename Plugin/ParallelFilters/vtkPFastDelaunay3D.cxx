@@ -43,11 +43,6 @@ namespace
 {
 constexpr const char* kInputIds = "GlobalIds";
 
-bool IsFinite(const double* x)
-{
-  return std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
-}
-
 /// The points `ids` of `source`, with their point data.
 vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkIdType>& ids)
 {
@@ -128,7 +123,7 @@ public:
     {
       points->GetPoint(i, x);
       inputIds->SetValue(i, firstId + i);
-      (IsFinite(x) ? finite : nonFinite).push_back(i);
+      (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
     }
     all->SetPoints(points);
     if (input)

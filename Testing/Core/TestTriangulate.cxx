@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <fstream>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <random>
 #include <stdexcept>

@@ -6,6 +6,7 @@
 #include "fd3/BulkAllocator.h"
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -68,6 +69,13 @@ struct Options
   /// ones do not repay the threads' start and the regions' borders).
   std::size_t pointsPerThread = 4096;
 };
+
+/// Whether none of the point's coordinates is NaN or infinite: the kernel leaves out (and counts,
+/// Statistics::nonFinitePoints) every point for which this is false.
+inline bool isFinite(const double* p)
+{
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
 
 /// Figures of one run. Times are wall-clock seconds per phase.
 struct Statistics
