@@ -28,11 +28,13 @@ void* allocateBulk(std::size_t bytes)
 #else
   if (bytes >= kLarge)
   {
-    bytes = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    p = std::aligned_alloc(kHugePage, bytes);
+    p = std::aligned_alloc(kHugePage, (bytes + kHugePage - 1) / kHugePage * kHugePage);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
+    // A hint, ignored where huge pages are off. Only the whole huge pages within the request: a
+    // huge page at the tail would make resident up to 2 MB that no element uses (1.5 MB of the
+    // 32 MB of vertex records at 1M points).
     if (p)
-      madvise(p, bytes, MADV_HUGEPAGE); // a hint: ignored where huge pages are off
+      madvise(p, bytes / kHugePage * kHugePage, MADV_HUGEPAGE);
 #endif
   }
   else

@@ -134,8 +134,6 @@ std::string Triangulator::checkMesh() const
       tets.vertices(t, tv);
     if (t >= slots || tets.isDead(t) || std::count(tv, tv + 4, u) != 1)
       report.add("vertex tet") << "vertex " << u << " points to tet " << t << ", not one of its own\n";
-    if (mesh_.vertices[u].localNumber != Vertex::kNoLocal)
-      report.add("vertex local number") << "vertex " << u << " keeps a local number\n";
   }
   if (vertices != statistics().insertedPoints)
     report.add("vertices") << vertices << " vertices in the mesh, " << statistics().insertedPoints

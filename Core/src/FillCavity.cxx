@@ -40,6 +40,12 @@ constexpr std::array<std::array<InteriorFace, 3>, 4> interiorFaces()
   return table;
 }
 constexpr auto kInterior = interiorFaces();
+
+// During a fill, the tet field of each boundary vertex holds kLocalTag | its local number. Every
+// tetrahedron id is below 2^30 and kNoTet (a vertex yet to be inserted) has other high bits, so
+// the high half tells a number from a tetrahedron.
+constexpr TetId kLocalTag = 0x80000000u;
+constexpr TetId kHighHalf = 0xFFFF0000u;
 } // namespace
 
 // Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.
@@ -101,7 +107,7 @@ bool Inserter::fillCavity(VertId v)
 
 // Every new face is recorded at its directed edge a->b and linked to the face recorded at b->a.
 // Edges are indexed by local numbers of the boundary's vertices, given on first sight through
-// localNumber() without a branch (a new vertex takes number `count`, which only advances then).
+// localNumberSlot() without a branch (a new vertex takes number `count`, which only advances then).
 // Returns false, changing nothing, when the boundary has more than kMaxLocalVertices vertices.
 bool Inserter::linkByEdgeTable()
 {
@@ -121,10 +127,10 @@ bool Inserter::linkByEdgeTable()
     for (int k = 0; k < 4; ++k)
     {
       const VertId u = nv[k];
-      std::uint16_t& entry = localNumber(u);
-      const bool isNew = entry == Vertex::kNoLocal;
+      TetId& entry = localNumberSlot(u);
+      const bool isNew = (entry & kHighHalf) != kLocalTag;
       const auto number = static_cast<std::uint16_t>(isNew ? count : entry);
-      entry = number;
+      entry = kLocalTag | number;
       local[4 * i + k] = number;
       vertexOf[count] = u;
       firstTet[count] = created[i];
@@ -150,14 +156,10 @@ bool Inserter::linkByEdgeTable()
       cavity_.interiorFaces[3 * i + j] = {faceCode(created[i], face.face), b * width + a};
     }
   }
-  // Hand the numbers back; each vertex gets one of its new tetrahedra.
+  // Each vertex gets one of its new tetrahedra in place of its number.
   for (std::uint32_t k = 0; k < count; ++k)
-  {
-    const VertId u = vertexOf[k];
-    localNumber(u) = Vertex::kNoLocal;
-    if (u != kInfinite)
-      mesh_.vertices[u].tet = firstTet[k];
-  }
+    localNumberSlot(vertexOf[k]) = firstTet[k];
+  ghostTet_ = kNoTet;
   if (!fits)
     return false;
   for (const auto& [face, reversed] : cavity_.interiorFaces)

@@ -24,18 +24,17 @@ namespace fd3
 {
 
 /// One vertex of the kernel, by insertion rank: its normalized coordinates, a live tetrahedron
-/// incident to it, its local number while a cavity is filled (kNoLocal otherwise), and its key in
-/// the symbolic perturbation's order (precedes()). 32 bytes on a 32-byte boundary: the coordinates
-/// that an insphere test loads bring the rest into cache, which the fill that follows needs (fill
-/// phase 4% faster on 400k uniform points than with separate arrays).
+/// incident to it, and the id of the input point it is. 32 bytes on a 32-byte boundary: the
+/// coordinates that an insphere test loads bring the rest into cache, which the fill that follows
+/// needs (fill phase 4% faster on 400k uniform points than with separate arrays). While a cavity is
+/// filled, `tet` of each of its boundary's vertices holds the vertex's local number instead,
+/// tagged (FillCavity.cxx): a mark per vertex that needs no room of its own.
 struct alignas(32) Vertex
 {
-  static constexpr std::uint16_t kNoLocal = 0xFFFF;
   Vertex() {} // uninitialized: the kernel writes millions of them right after allocating them
   double xyz[3];
   TetId tet;
-  std::uint16_t localNumber;
-  std::uint16_t key;
+  std::uint32_t point;
 };
 static_assert(sizeof(Vertex) == 32, "a vertex fills half a cache line");
 
@@ -112,11 +111,9 @@ public:
 private:
   const double* point(VertId v) const { return mesh_.point(v); }
   bool inRegion(VertId u) const { return !restricted_ || u == kInfinite || region_.contains(point(u)); }
-  /// The local-number entry of u; kInfinite's is this inserter's own.
-  std::uint16_t& localNumber(VertId u)
-  {
-    return u == kInfinite ? ghostLocalNumber_ : mesh_.vertices[u].localNumber;
-  }
+  /// The field of u that holds its local number during a fill (its tet); kInfinite's is this
+  /// inserter's own.
+  TetId& localNumberSlot(VertId u) { return u == kInfinite ? ghostTet_ : mesh_.vertices[u].tet; }
 
   // Locate.cxx
   TetId startTet(VertId v) const;
@@ -129,8 +126,7 @@ private:
   {
     const Vertex* v = mesh_.vertices.data();
     const double* p[4] = {v[tet[0]].xyz, v[tet[1]].xyz, v[tet[2]].xyz, v[tet[3]].xyz};
-    const std::uint16_t key[4] = {v[tet[0]].key, v[tet[1]].key, v[tet[2]].key, v[tet[3]].key};
-    return predicates_.inSphereSoS(p, key, v[e].xyz, v[e].key);
+    return predicates_.inSphereSoS(p, v[e].xyz);
   }
   bool isBeyondHullFace(TetId ghost, VertId v);
   bool inConflict(TetId t, VertId v);
@@ -166,7 +162,7 @@ private:
   // point that was put off (both the inserter's, unlike a vertex's tetrahedron).
   VertId lastInserted_ = 0;
   TetId regionStart_ = 0;
-  std::uint16_t ghostLocalNumber_ = Vertex::kNoLocal;
+  TetId ghostTet_ = kNoTet; // the ghost vertex's stand-in for Vertex::tet, during fills only
   std::uint64_t rng_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
   std::uint32_t stamp_ = 0;

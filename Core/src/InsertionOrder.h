@@ -26,14 +26,8 @@ struct InsertionPlan
   std::vector<std::size_t> roundStarts;
 };
 
-/// A point's key in the symbolic perturbation's order, from its coordinates alone (and the seed):
-/// every run computes the same key for the same point. Its top 4 bits are 15 minus the point's
-/// BRIO level (a level-k point is one in 2^(k+1), the levels' rounds going in from the highest),
-/// so that the first point of any set in the perturbation's order is inserted among the first.
-std::uint16_t perturbationKey(const double* p, std::uint64_t seed);
-
 /// Plans the insertion of the points `ids` (indices into xyz, all finite, within `box`); key[i] is
-/// point i's perturbationKey().
+/// point i's perturbationKey() (Predicates.h).
 InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, std::vector<std::uint32_t> ids,
   const Box& box, InsertionOrder order, std::uint64_t seed);
 

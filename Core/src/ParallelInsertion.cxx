@@ -6,8 +6,8 @@
 // serially. Design read from HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code ours.
 //
 // The output does not depend on the number of threads or on their timing: with exact predicates
-// and ties broken by a key fixed before insertion (the vertex id, Predicates::inSphereSoS), the
-// Delaunay triangulation is unique, and every point is inserted in one pass or another.
+// and ties broken by an order of the points' coordinates alone (perturbationKey(), Predicates.h),
+// the Delaunay triangulation is unique, and every point is inserted in one pass or another.
 #include "Triangulator.h"
 
 #include <algorithm>
@@ -102,7 +102,8 @@ bool Triangulator::insertInParallel(
     passYield_[pass] = 1.0 - double(vertices.size()) / double(count);
   }
   std::sort(vertices.begin(), vertices.end()); // back to curve order
-  return !stop_ && insertSerially(vertices.data(), vertices.size(), progress);
+  return !stop_ &&
+    insertSerially(vertices.size(), [&vertices](std::size_t i) { return vertices[i]; }, progress);
 }
 
 std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace fd3
 {
@@ -34,6 +35,26 @@ constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
 // Below this permanent the low parts could reach the subnormal range: left to the exact stage.
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
 } // namespace
+
+std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
+{
+  // splitmix64's finalizer over the coordinates' bits (-0 as 0: the same point).
+  auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  std::uint64_t hash = mix(seed + 0x9E3779B97F4A7C15ull);
+  for (int a = 0; a < 3; ++a)
+  {
+    std::uint64_t bits;
+    const double x = p[a] == 0.0 ? 0.0 : p[a];
+    std::memcpy(&bits, &x, sizeof bits);
+    hash = mix(hash ^ bits);
+  }
+  const int level = std::min(countTrailingZeros(hash | (1ull << 63)), 15);
+  return static_cast<std::uint16_t>(((15 - level) << 12) | ((hash >> 48) & 0xFFFu));
+}
 
 void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box)
 {
@@ -267,10 +288,15 @@ bool Predicates::collinear(const double* a, const double* b, const double* c)
 }
 
 // A tie of inSphere between the positive tetrahedron `tet` (points p) and point e (at pe), broken.
-int Predicates::symbolicInSphere(
-  const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE)
+int Predicates::symbolicInSphere(const double* const p[4], const double* pe)
 {
   ++symbolicTies;
+  // The keys are computed here, not stored with the vertices: ties are rare next to the
+  // insertions, and a vertex record has no room left for them.
+  std::uint16_t key[4];
+  for (int i = 0; i < 4; ++i)
+    key[i] = perturbationKey(p[i], perturbationSeed_);
+  const std::uint16_t keyE = perturbationKey(pe, perturbationSeed_);
   // Lowering the lift of point v by delta_v changes (plane - lift)(e) by
   //   delta_e - sum_{v in tet} delta_v * lambda_v(e),
   // lambda_v(e) being the barycentric coordinate of e, whose sign is orient3d(tet with v := e).

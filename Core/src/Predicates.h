@@ -23,10 +23,16 @@
 namespace fd3
 {
 
-/// The perturbation's order of points: by key (a hash of the input coordinates, Triangulate.cxx),
-/// then by coordinates, so that distinct points are never tied. Every run computes it the same
-/// way for the same point, whatever the other points, the insertion order, the threads or the
-/// MPI ranks; the normalization of coordinates keeps their order.
+/// A point's key in the symbolic perturbation's order, from its (normalized) coordinates alone and
+/// the seed: every run computes the same key for the same point, whatever the other points, the
+/// insertion order, the threads or the MPI ranks (which share one frame). Its top 4 bits are 15
+/// minus the point's BRIO level (a level-k point is one in 2^(k+1), the levels' rounds going in
+/// from the highest), so that the first point of any set in the perturbation's order is inserted
+/// among the first.
+std::uint16_t perturbationKey(const double* p, std::uint64_t seed);
+
+/// The perturbation's order of points: by key, then by coordinates, so that distinct points are
+/// never tied.
 inline bool precedes(std::uint16_t keyA, const double* a, std::uint16_t keyB, const double* b)
 {
   if (keyA != keyB)
@@ -55,6 +61,9 @@ int signOf(T x) // for doubles here, and 128-bit integers in the exact stage
 class Predicates
 {
 public:
+  /// `perturbationSeed` picks the perturbation's order (perturbationKey()).
+  explicit Predicates(std::uint64_t perturbationSeed = 1) : perturbationSeed_(perturbationSeed) {}
+
   int orient3d(const double* a, const double* b, const double* c, const double* d);
   int inSphere(const double* a, const double* b, const double* c, const double* d, const double* e);
   /// inSphere's float stage alone: its sign when the float filters prove it, else 0 (undecided).
@@ -66,11 +75,10 @@ public:
   /// inSphere with ties broken by symbolic perturbation: the lifted coordinate |p|^2 of every point
   /// is lowered by an infinitesimal that is larger for a point earlier in the perturbation's order
   /// (precedes()). Never returns 0 for a non-degenerate tetrahedron. p[i] are the points of a
-  /// positively oriented tetrahedron and key[i] their keys, pe and keyE the query's.
-  /// The first point dominates, which on cospherical input pulls every tetrahedron towards it: a
-  /// fan of about 2 tetrahedra per point instead of a dense tangle.
-  int inSphereSoS(
-    const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE);
+  /// positively oriented tetrahedron, pe the query. The first point dominates, which on
+  /// cospherical input pulls every tetrahedron towards it: a fan of about 2 tetrahedra per point
+  /// instead of a dense tangle.
+  int inSphereSoS(const double* const p[4], const double* pe);
 
   /// Tunes the predicates to a point set within `box` (point i at xyz + i * stride); every point
   /// passed from then on must lie in the box and be one of them or of those include()d later.
@@ -104,13 +112,13 @@ private:
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereDoubleDouble(const double* a, const double* b, const double* c, const double* d, const double* e);
-  int symbolicInSphere(
-    const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE);
+  int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
   void checkUnderflow(const double* const rows[], int count, const double* origin);
 
   ExpansionArena arena_;
+  std::uint64_t perturbationSeed_;
   struct Tuning
   {
     // The points' grid: every |x| < 2^highest, every x a multiple of 2^lowest (kNoGrid when none).
@@ -202,11 +210,10 @@ inline int Predicates::inSphere(
   return inSphereDoubleDouble(a, b, c, d, e);
 }
 
-inline int Predicates::inSphereSoS(
-  const double* const p[4], const std::uint16_t key[4], const double* pe, std::uint16_t keyE)
+inline int Predicates::inSphereSoS(const double* const p[4], const double* pe)
 {
   const int s = inSphere(p[0], p[1], p[2], p[3], pe);
-  return s != 0 ? s : symbolicInSphere(p, key, pe, keyE);
+  return s != 0 ? s : symbolicInSphere(p, pe);
 }
 
 } // namespace fd3

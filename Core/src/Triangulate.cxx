@@ -74,11 +74,11 @@ bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, std::vec
   return true;
 }
 
-/// The live finite tetrahedra of `records` (a mesh's, `slots` of them) with input point ids,
-/// compacted in place (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k, never ahead
+/// The live finite tetrahedra of `records` (a mesh's, `slots` of them, over `vertices`) with input
+/// point ids, compacted in place (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k, never ahead
 /// of what is still to be read), and, when asked for, their neighbours renumbered.
-void extractOutput(IdArray records, std::size_t slots, const std::vector<std::uint32_t>& inputId,
-  bool withNeighbors, Triangulation& out)
+void extractOutput(IdArray records, std::size_t slots, const VertexArray& vertices, bool withNeighbors,
+  Triangulation& out)
 {
   constexpr std::uint32_t kDropped = 0xFFFFFFFFu; // dead or ghost: not in the output
   auto kept = [&](std::size_t t) {
@@ -109,7 +109,7 @@ void extractOutput(IdArray records, std::size_t slots, const std::vector<std::ui
     const std::uint32_t v[4] = {records[8 * t] & (kMaxVertices - 1), records[8 * t + 1],
       records[8 * t + 2], records[8 * t + 3]};
     for (int i = 0; i < 4; ++i)
-      records[4 * count + i] = inputId[v[i]];
+      records[4 * count + i] = vertices[v[i]].point;
     ++count;
   }
   records.resize(4 * count);
@@ -167,8 +167,7 @@ struct Tetrahedralization::Impl
   Frame frame;
   Status status = Status::Ok;
   Statistics stats; // the figures of every batch; the inserters' are added on output
-  std::size_t points = 0;            // point ids handed out
-  std::vector<std::uint32_t> pointOf; // vertex id -> point id
+  std::size_t points = 0; // point ids handed out
   // (point, point it was skipped for), then (duplicate, original): the order representatives
   // are resolved in.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped, duplicates;
@@ -184,8 +183,9 @@ private:
   std::vector<std::uint32_t> finitePoints(const double* xyz, std::size_t count, Box& box);
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
   std::vector<std::uint16_t> keys(const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const;
-  /// Vertex records of `order` (point ids, local to xyz) in the frame, with their keys.
-  VertexArray vertices(const double* xyz, const std::vector<std::uint32_t>& order, const std::uint16_t* key);
+  /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
+  /// the frame.
+  VertexArray vertices(const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint);
 };
 
 std::vector<std::uint32_t> Tetrahedralization::Impl::finitePoints(
@@ -212,14 +212,19 @@ std::vector<std::uint32_t> Tetrahedralization::Impl::finitePoints(
 std::vector<std::uint16_t> Tetrahedralization::Impl::keys(
   const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const
 {
+  // From the coordinates in the frame, as the predicates compute them on a tie.
   std::vector<std::uint16_t> key(count);
   for (const std::uint32_t id : ids)
-    key[id] = perturbationKey(xyz + 3 * std::size_t(id), options.randomSeed);
+  {
+    double p[3];
+    toFrame(frame, xyz + 3 * std::size_t(id), p);
+    key[id] = perturbationKey(p, options.randomSeed);
+  }
   return key;
 }
 
 VertexArray Tetrahedralization::Impl::vertices(
-  const double* xyz, const std::vector<std::uint32_t>& order, const std::uint16_t* key)
+  const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint)
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
@@ -230,8 +235,8 @@ VertexArray Tetrahedralization::Impl::vertices(
     if (i + kAhead < order.size())
       prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
     toFrame(frame, xyz + 3 * std::size_t(order[i]), out[i].xyz);
-    out[i].localNumber = Vertex::kNoLocal;
-    out[i].key = key[order[i]];
+    out[i].tet = kNoTet;
+    out[i].point = static_cast<std::uint32_t>(firstPoint + order[i]);
   }
   return out;
 }
@@ -260,8 +265,8 @@ void Tetrahedralization::Impl::insertFirst(const double* xyz, std::size_t count)
     return;
   }
   status = Status::Ok;
-  VertexArray records = vertices(xyz, plan.order, key.data());
-  pointOf = std::move(plan.order);
+  VertexArray records = vertices(xyz, plan.order, 0);
+  std::vector<std::uint32_t>().swap(plan.order);
   std::vector<std::uint16_t>().swap(key);
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
@@ -306,10 +311,7 @@ void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
     for (const auto& [copy, original] : plan.duplicates)
       duplicates.emplace_back(copy + points, original + points);
     stats.duplicatesMerged += plan.duplicates.size();
-    VertexArray more = vertices(xyz, plan.order, key.data());
-    for (std::uint32_t& id : plan.order)
-      id += static_cast<std::uint32_t>(points);
-    pointOf.insert(pointOf.end(), plan.order.begin(), plan.order.end());
+    VertexArray more = vertices(xyz, plan.order, points);
     stats.secondsSort += secondsSince(start);
     if (!triangulator->insertMore(std::move(more), plan.roundStarts, options.progress))
       status = Status::Aborted;
@@ -353,21 +355,22 @@ Triangulation Tetrahedralization::Impl::output(bool release)
   }
   const std::size_t slots = triangulator->slots();
   IdArray records = release ? triangulator->releaseWorkspace().takeRecords() : triangulator->copyRecords();
-  extractOutput(std::move(records), slots, pointOf, options.computeNeighbors, out);
+  const VertexArray& vertices = triangulator->vertices();
+  extractOutput(std::move(records), slots, vertices, options.computeNeighbors, out);
+  out.representative.assign(points, kNoPoint);
+  for (const Vertex& vertex : vertices)
+    out.representative[vertex.point] = vertex.point;
+  for (const auto& [point, near] : skipped)
+    out.representative[point] = near;
+  for (const auto& [copy, original] : repeated)
+    out.representative[vertices[copy].point] = vertices[original].point;
+  for (const auto& [copy, original] : duplicates)
+    out.representative[copy] = out.representative[original];
   if (release)
   {
     triangulator.reset();
     status = Status::Aborted; // nothing left to add to
   }
-  out.representative.assign(points, kNoPoint);
-  for (const std::uint32_t id : pointOf)
-    out.representative[id] = id;
-  for (const auto& [point, near] : skipped)
-    out.representative[point] = near;
-  for (const auto& [copy, original] : repeated)
-    out.representative[pointOf[copy]] = pointOf[original];
-  for (const auto& [copy, original] : duplicates)
-    out.representative[copy] = out.representative[original];
   out.stats.tetrahedra = out.numberOfTetrahedra();
   out.stats.secondsOutput = secondsSince(start);
   return out;
@@ -415,8 +418,9 @@ std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(
   if (impl_->status != Status::Ok || !impl_->triangulator)
     return halo.take();
   const TetMesh& mesh = impl_->triangulator->tetrahedra();
-  const std::vector<std::uint32_t>& pointOf = impl_->pointOf;
-  auto point = [&](VertId v) { return xyz + 3 * std::size_t(pointOf[v]); };
+  const VertexArray& vertices = impl_->triangulator->vertices();
+  auto pointOf = [&](VertId v) { return vertices[v].point; };
+  auto point = [&](VertId v) { return xyz + 3 * std::size_t(pointOf(v)); };
   for (TetId t = 0; t < impl_->triangulator->slots(); ++t)
   {
     if (mesh.isDead(t))
@@ -426,13 +430,13 @@ std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(
     if (v[3] == kInfinite) // the hull face v0 v1 v2; the finite tetrahedron behind it is inside
     {
       const FaceCode behind = mesh.neighbor(t, 3);
-      const std::uint32_t ids[3] = {pointOf[v[0]], pointOf[v[1]], pointOf[v[2]]};
+      const std::uint32_t ids[3] = {pointOf(v[0]), pointOf(v[1]), pointOf(v[2])};
       const double* p[3] = {point(v[0]), point(v[1]), point(v[2])};
       halo.hullFace(p, point(mesh.vertex(tetOf(behind), faceOf(behind))), ids);
     }
     else
     {
-      const std::uint32_t ids[4] = {pointOf[v[0]], pointOf[v[1]], pointOf[v[2]], pointOf[v[3]]};
+      const std::uint32_t ids[4] = {pointOf(v[0]), pointOf(v[1]), pointOf(v[2]), pointOf(v[3])};
       const double* p[4] = {point(v[0]), point(v[1]), point(v[2]), point(v[3])};
       halo.tetrahedron(p, ids);
     }

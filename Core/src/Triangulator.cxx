@@ -1,12 +1,14 @@
 #include "Triangulator.h"
 
 #include <algorithm>
+#include <numeric>
 #include <utility>
 
 namespace fd3
 {
 Triangulator::Triangulator(
   VertexArray vertices, const Box& box, const Box& bounds, const Options& options, int threads)
+  : tuning_(options.randomSeed)
 {
   mesh_.vertices = std::move(vertices);
   mesh_.options = options;
@@ -64,13 +66,16 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
     const std::size_t last = std::min(r + 1 < roundStarts.size() ? roundStarts[r + 1] : end, end);
     if (first >= last)
       continue;
-    std::vector<VertId> round(last - first);
-    for (std::size_t i = 0; i < round.size(); ++i)
-      round[i] = static_cast<VertId>(first + i);
     // Parallel passes pay for their threads and regions: small rounds go in serially.
-    const bool ok = parallel && round.size() >= mesh_.options.pointsPerThread * inserters_.size()
-      ? insertInParallel(std::move(round), progress)
-      : insertSerially(round.data(), round.size(), progress);
+    bool ok = false;
+    if (parallel && last - first >= mesh_.options.pointsPerThread * inserters_.size())
+    {
+      std::vector<VertId> round(last - first);
+      std::iota(round.begin(), round.end(), static_cast<VertId>(first));
+      ok = insertInParallel(std::move(round), progress);
+    }
+    else
+      ok = insertSerially(last - first, [first](std::size_t i) { return static_cast<VertId>(first + i); }, progress);
     if (!ok)
       return false;
     if (!reserved && done_ >= reserveAt)
@@ -83,23 +88,6 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
   }
   for (auto& pool : pools_)
     pool->retire(mesh_.tets);
-  return true;
-}
-
-bool Triangulator::insertSerially(
-  const VertId* vertices, std::size_t count, const std::function<bool(double)>& progress)
-{
-  Inserter& inserter = *inserters_[0];
-  inserter.unrestricted();
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    if (done_ % kProgressInterval == 0 && !reportProgress(progress))
-      return false;
-    // Unrestricted, an insertion is put off only when the mesh is full (and a duplicate is done).
-    while (inserter.insert(vertices[i]) == Inserter::Outcome::Deferred)
-      makeRoomFor(count - i);
-    ++done_;
-  }
   return true;
 }
 
@@ -165,7 +153,6 @@ TetMesh& Triangulator::releaseWorkspace()
 {
   inserters_.clear();
   pools_.clear();
-  VertexArray().swap(mesh_.vertices);
   mesh_.grid = BackgroundGrid();
   return mesh_.tets;
 }

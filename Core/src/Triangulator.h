@@ -49,7 +49,10 @@ public:
   const TetMesh& tetrahedra() const { return mesh_.tets; }
   /// A copy of the mesh's records (TetMesh::copyRecords()).
   IdArray copyRecords() const { return mesh_.tets.copyRecords(); }
-  /// Frees the points, the grid and the scratch: only the mesh is left for the output.
+  /// The vertices, by insertion rank (each with its input point id).
+  const VertexArray& vertices() const { return mesh_.vertices; }
+  /// Frees the grid and the inserters' scratch: only the mesh and its vertices are left for the
+  /// output.
   TetMesh& releaseWorkspace();
 
   /// Exhaustive check of the invariants listed in TetMesh.h, of the vertices' records and, unless
@@ -67,8 +70,10 @@ private:
   /// `reserveEarly`, once a few rounds tell the tetrahedra per vertex, room for all is made.
   bool insertRounds(std::size_t begin, std::size_t end, const std::vector<std::size_t>& roundStarts,
     bool reserveEarly, const std::function<bool(double)>& progress);
-  /// Inserts `vertices` with inserter 0, in this thread.
-  bool insertSerially(const VertId* vertices, std::size_t count, const std::function<bool(double)>& progress);
+  /// Inserts vertexAt(0), ..., vertexAt(count - 1) with inserter 0, in this thread (a round's
+  /// consecutive ranks need no list: its 4 bytes a vertex would add to the peak at the end).
+  template <typename VertexAt>
+  bool insertSerially(std::size_t count, VertexAt vertexAt, const std::function<bool(double)>& progress);
   /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, twice,
   /// then serially what the regions could not take; a pass whose kind last yielded too little to
   /// pay for itself is left out. ParallelInsertion.cxx.
@@ -93,6 +98,24 @@ private:
   // A pass left out doubles its guess instead (one that put nothing in is not tried again).
   double passYield_[2] = {1.0, 1.0};
 };
+
+template <typename VertexAt>
+bool Triangulator::insertSerially(
+  std::size_t count, VertexAt vertexAt, const std::function<bool(double)>& progress)
+{
+  Inserter& inserter = *inserters_[0];
+  inserter.unrestricted();
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (done_ % kProgressInterval == 0 && !reportProgress(progress))
+      return false;
+    // Unrestricted, an insertion is put off only when the mesh is full (and a duplicate is done).
+    while (inserter.insert(vertexAt(i)) == Inserter::Outcome::Deferred)
+      makeRoomFor(count - i);
+    ++done_;
+  }
+  return true;
+}
 
 } // namespace fd3
 

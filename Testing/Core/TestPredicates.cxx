@@ -316,28 +316,40 @@ TEST(Predicates, ExactTiesOnIntegerLattice)
   EXPECT_FALSE(predicates.collinear(c[0], c[7], c[1]));
 }
 
-TEST(Predicates, SymbolicPerturbationNeverTiesAndIsAntisymmetricAcrossAFace)
+TEST(Predicates, SymbolicPerturbationNeverTiesAndAgreesAcrossAFace)
 {
-  // Vertex ids are priorities. For cospherical points, the verdicts for the two tetrahedra on either
-  // side of a face must agree (both in conflict or both not) when the query lies on their face's
-  // plane, and never be 0.
-  fd3::Predicates predicates;
-  const double xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
-  std::uint32_t tets[][4] = {{0, 1, 2, 4}, {1, 3, 2, 7}, {1, 2, 4, 7}};
-  for (auto& t : tets)
+  // The perturbation's order comes from the points' coordinates (and the seed). For cospherical
+  // points the verdicts are never 0, and the two tetrahedra on either side of a face agree on it:
+  // each has the other's far vertex in its sphere, or neither has.
+  for (std::uint64_t seed = 1; seed <= 8; ++seed)
   {
-    if (predicates.orient3d(xyz + 3 * t[0], xyz + 3 * t[1], xyz + 3 * t[2], xyz + 3 * t[3]) < 0)
-      std::swap(t[0], t[1]);
-    for (std::uint32_t e = 0; e < 8; ++e)
-      if (e != t[0] && e != t[1] && e != t[2] && e != t[3])
-      {
-        const double* p[4] = {xyz + 3 * t[0], xyz + 3 * t[1], xyz + 3 * t[2], xyz + 3 * t[3]};
-        const std::uint16_t key[4] = {std::uint16_t(t[0]), std::uint16_t(t[1]), std::uint16_t(t[2]),
-          std::uint16_t(t[3])};
-        EXPECT_NE(predicates.inSphereSoS(p, key, xyz + 3 * e, std::uint16_t(e)), 0);
-      }
+    fd3::Predicates predicates(seed);
+    const double xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+    std::uint32_t tets[][4] = {{0, 1, 2, 4}, {1, 3, 2, 7}, {1, 2, 4, 7}};
+    for (auto& t : tets)
+    {
+      if (predicates.orient3d(xyz + 3 * t[0], xyz + 3 * t[1], xyz + 3 * t[2], xyz + 3 * t[3]) < 0)
+        std::swap(t[0], t[1]);
+      for (std::uint32_t e = 0; e < 8; ++e)
+        if (e != t[0] && e != t[1] && e != t[2] && e != t[3])
+        {
+          const double* p[4] = {xyz + 3 * t[0], xyz + 3 * t[1], xyz + 3 * t[2], xyz + 3 * t[3]};
+          EXPECT_NE(predicates.inSphereSoS(p, xyz + 3 * e), 0);
+        }
+    }
+    // tets[0] and tets[2] share the face {1, 2, 4}; their far vertices are 0 and 7.
+    auto points = [&xyz](const std::uint32_t* t, const double* out[4]) {
+      for (int i = 0; i < 4; ++i)
+        out[i] = xyz + 3 * t[i];
+    };
+    const double* first[4];
+    const double* second[4];
+    points(tets[0], first);
+    points(tets[2], second);
+    EXPECT_EQ(predicates.inSphereSoS(first, xyz + 3 * 7), predicates.inSphereSoS(second, xyz + 3 * 0))
+      << "seed " << seed;
+    EXPECT_GT(predicates.symbolicTies, 0u);
   }
-  EXPECT_GT(predicates.symbolicTies, 0u);
 }
 
 } // namespace
