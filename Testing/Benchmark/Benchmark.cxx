@@ -3,7 +3,11 @@
 // run.
 //
 //   Benchmark [--kinds cube,ball,...] [--sizes 10000,100000] [--methods Core,CGAL,Core-2,...]
-//             [--vtk-limit 60] [--validate-limit N] [--markdown FILE] [--csv FILE]
+//             [--vtk-limit 60] [--validate-limit N] [--repeat K] [--markdown FILE] [--csv FILE]
+//
+// --repeat K runs the methods K times in turn on each point set and keeps each one's fastest run:
+// on a shared machine whose speed drifts by tens of percent for minutes at a time, interleaved
+// best-of-K ratios compare methods under the same conditions (the validator runs on the first).
 //
 // Methods: Core, vtkFastDelaunay3D, vtkDelaunay3D, CGAL, TetGen; "-T" after Core,
 // vtkFastDelaunay3D or CGAL runs it on T threads (CGAL: its Parallel_tag triangulation with TBB).
@@ -405,6 +409,7 @@ int main(int argc, char* argv[])
     methods.push_back(method(name));
   double vtkLimit = 60;
   std::size_t validateLimit = 200000;
+  int repeat = 1;
   std::string markdownFile, csvFile;
   bool paperTable = false;
   for (int i = 1; i < argc; i += 2)
@@ -433,6 +438,8 @@ int main(int argc, char* argv[])
       vtkLimit = std::stod(value);
     else if (key == "--validate-limit")
       validateLimit = static_cast<std::size_t>(std::stod(value));
+    else if (key == "--repeat")
+      repeat = std::max(1, std::stoi(value));
     else if (key == "--markdown")
       markdownFile = value;
     else if (key == "--csv")
@@ -454,7 +461,9 @@ int main(int argc, char* argv[])
   };
   const int ratioColumns[3] = {column("Core"), column("vtkDelaunay3D"), column("CGAL")};
   std::ostringstream md, csv;
-  md << "Machine: " << machineName() << ". Kernel single-threaded; peak memory is each run's own "
+  md << "Machine: " << machineName() << ". "
+     << (repeat > 1 ? "Best of " + std::to_string(repeat) + " interleaved runs of every method. " : "")
+     << "Kernel single-threaded; peak memory is each run's own "
      << "(above its input). Walk: tetrahedra visited per point location, mean and max. Speed-up "
      << "columns: the other method's time over this one's.\n\n"
      << "| points | n | method | seconds | points/s | tets/s | peak MiB | B/point | walk | max walk | vs Core | vs vtkDelaunay3D | vs CGAL | exact validity |\n"
@@ -468,23 +477,32 @@ int main(int argc, char* argv[])
     {
       const fd3test::Points p = fd3test::generate(kind, size, 1);
       const std::size_t n = p.size() / 3;
-      std::vector<Measurement> rows;
-      for (const Method& method : methods)
-      {
-        Measurement m;
-        if (!method.run)
-          m.note = "not built";
-        else if (method.name != "vtkDelaunay3D")
-          m = measure([&] { return method.run(p, validateLimit); }, hugeLimit);
-        else if (vtkSecondsPerPoint * n * 1.5 > vtkLimit) // it grows faster than linearly
-          m.note = "skipped (over " + std::to_string(int(vtkLimit)) + " s)";
-        else
+      std::vector<Measurement> rows(methods.size());
+      for (int r = 0; r < repeat; ++r)
+        for (std::size_t i = 0; i < methods.size(); ++i)
         {
-          m = measure([&] { return method.run(p, validateLimit); }, vtkLimit);
-          vtkSecondsPerPoint = m.ran ? m.seconds / n : vtkLimit; // a time-out stops larger sizes
+          const Method& method = methods[i];
+          const std::size_t validate = r == 0 ? validateLimit : 0;
+          Measurement m;
+          if (!method.run)
+            m.note = "not built";
+          else if (method.name != "vtkDelaunay3D")
+            m = measure([&] { return method.run(p, validate); }, hugeLimit);
+          else if (vtkSecondsPerPoint * n * 1.5 > vtkLimit) // it grows faster than linearly
+            m.note = "skipped (over " + std::to_string(int(vtkLimit)) + " s)";
+          else
+          {
+            m = measure([&] { return method.run(p, validate); }, vtkLimit);
+            vtkSecondsPerPoint = m.ran ? m.seconds / n : vtkLimit; // a time-out stops larger sizes
+          }
+          if (r == 0)
+            rows[i] = m;
+          else if (m.ran && (!rows[i].ran || m.seconds < rows[i].seconds))
+          {
+            m.valid = rows[i].valid;
+            rows[i] = m;
+          }
         }
-        rows.push_back(m);
-      }
       auto speedup = [&](const Measurement& m, int other) {
         if (other < 0)
           return std::string("-");
