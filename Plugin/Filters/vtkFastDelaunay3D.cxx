@@ -34,6 +34,8 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -197,6 +199,78 @@ void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
   {
     SetCells<vtkTypeInt64Array>(output, blocks);
   }
+}
+
+/// The kernel's tetrahedra become the output's 32-bit connectivity without a copy, which would hold
+/// both at once (16 bytes per tetrahedron, 108 per point on uniform points). VTK frees an array's
+/// memory through a plain function of its address, so the kernel's array waits here, by that
+/// address, until VTK lets it go.
+class HandedOverIds
+{
+public:
+  static void Into(vtkTypeInt32Array* connectivity, fd3::IdArray ids)
+  {
+    // Ids below 2^31 (checked by the caller) read the same as signed values.
+    auto* data = reinterpret_cast<vtkTypeInt32*>(ids.data());
+    const auto size = static_cast<vtkIdType>(ids.size());
+    {
+      std::lock_guard<std::mutex> lock(Mutex());
+      Held().emplace(data, std::move(ids));
+    }
+    connectivity->SetArray(data, size, 0, vtkTypeInt32Array::VTK_DATA_ARRAY_USER_DEFINED);
+    connectivity->SetArrayFreeFunction(&HandedOverIds::Free);
+  }
+
+private:
+  static void Free(void* data)
+  {
+    fd3::IdArray released; // destroyed outside the lock
+    std::lock_guard<std::mutex> lock(Mutex());
+    const auto it = Held().find(data);
+    if (it != Held().end())
+    {
+      released = std::move(it->second);
+      Held().erase(it);
+    }
+  }
+  // Never destroyed: an output may outlive the statics of this library.
+  static std::mutex& Mutex()
+  {
+    static auto* mutex = new std::mutex;
+    return *mutex;
+  }
+  static std::map<void*, fd3::IdArray>& Held()
+  {
+    static auto* held = new std::map<void*, fd3::IdArray>;
+    return *held;
+  }
+};
+
+/// Tetrahedra only (4 ids each): the connectivity is `tets` itself where its ids fit 32 bits.
+void SetTetrahedra(vtkUnstructuredGrid* output, fd3::IdArray tets)
+{
+  const std::size_t cells = tets.size() / 4;
+  if (cells == 0 || tets.size() >= static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+  {
+    SetCells(output, { { VTK_TETRA, 4, tets.data(), nullptr, cells } });
+    return;
+  }
+  vtkNew<vtkTypeInt32Array> offsets, connectivity;
+  vtkNew<vtkUnsignedCharArray> types;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(cells) + 1);
+  types->SetNumberOfValues(static_cast<vtkIdType>(cells));
+  vtkTypeInt32* offset = offsets->GetPointer(0);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(cells) + 1, [offset](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      offset[c] = static_cast<vtkTypeInt32>(4 * c);
+    }
+  });
+  std::fill_n(types->GetPointer(0), cells, static_cast<unsigned char>(VTK_TETRA));
+  HandedOverIds::Into(connectivity, std::move(tets));
+  vtkNew<vtkCellArray> cellArray;
+  cellArray->SetData(offsets, connectivity);
+  output->SetCells(types, cellArray);
 }
 
 /// "Circumradius", "Volume" and "RadiusEdgeRatio" cell arrays, as requested.
@@ -455,14 +529,29 @@ bool vtkFastDelaunay3D::ReportOnInput(
 }
 
 void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double* xyz,
-  std::size_t count, const fd3::Triangulation& result, const CellFilter& keep)
+  std::size_t count, fd3::Triangulation& result, const CellFilter& keep)
 {
-  const std::uint32_t* tets = result.tetrahedra.data();
-  if (this->Alpha <= 0 && !keep)
+  if (this->Alpha <= 0)
   {
-    SetCells(output, { { VTK_TETRA, 4, tets, nullptr, result.numberOfTetrahedra() } });
+    fd3::IdArray& ids = result.tetrahedra;
+    if (keep)
+    {
+      std::size_t kept = 0;
+      for (std::size_t t = 0; t < result.numberOfTetrahedra(); ++t)
+      {
+        if (keep(&ids[4 * t], 4))
+        {
+          std::copy_n(&ids[4 * t], 4, &ids[4 * kept++]);
+        }
+      }
+      ids.resize(4 * kept);
+      fd3::releaseSpareCapacity(ids);
+    }
+    SetTetrahedra(output, std::move(ids));
+    ids = fd3::IdArray();
     return;
   }
+  const std::uint32_t* tets = result.tetrahedra.data();
   fd3::AlphaComplex shape;
   if (this->Alpha > 0)
   {

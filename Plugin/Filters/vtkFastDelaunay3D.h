@@ -301,9 +301,9 @@ protected:
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);
   /// The tetrahedra, or the alpha shape's cells, of `result` (ids into xyz), those that `keep`
-  /// accepts.
+  /// accepts. Without an alpha shape the output takes result.tetrahedra over (left empty).
   void SetOutputCells(vtkUnstructuredGrid* output, const double* xyz, std::size_t count,
-    const fd3::Triangulation& result, const CellFilter& keep = CellFilter());
+    fd3::Triangulation& result, const CellFilter& keep = CellFilter());
   /// The requested Circumradius, Volume and RadiusEdgeRatio cell arrays; xyz: the output points.
   void AddCellArrays(vtkUnstructuredGrid* output, const double* xyz);
   /// The figures as field data: all of them with ComputeStatistics, else the counts of left-out

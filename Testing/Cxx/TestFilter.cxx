@@ -10,6 +10,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -58,6 +59,52 @@ TEST(Filter, KeepsPointsAndPointDataAndProducesExactTetrahedra)
     const auto report = checkOutput(out);
     EXPECT_TRUE(report.valid()) << report.summary();
   }
+}
+
+TEST(Filter, OutputCellsOutliveTheFilterAndGrow)
+{
+  // The tetrahedra are handed to the output's cell array without a copy: the cells must stay
+  // valid after the filter and its kernel are gone and after the filter runs again, and the
+  // array must grow like any other when cells are added.
+  auto cloud = toPolyData(fd3test::uniformBall(2000, 7), VTK_DOUBLE);
+  vtkNew<vtkUnstructuredGrid> kept, rerun;
+  {
+    vtkNew<vtkFastDelaunay3D> filter;
+    filter->SetInputData(cloud);
+    filter->Update();
+    kept->ShallowCopy(filter->GetOutput());
+    cloud->Modified();
+    filter->Update(); // a new output array; kept holds the first one
+    rerun->DeepCopy(filter->GetOutput());
+  }
+  ASSERT_GT(kept->GetNumberOfCells(), 0);
+  ASSERT_EQ(kept->GetNumberOfCells(), rerun->GetNumberOfCells());
+  vtkNew<vtkIdList> a, b;
+  for (vtkIdType c = 0; c < kept->GetNumberOfCells(); ++c)
+  {
+    kept->GetCellPoints(c, a);
+    rerun->GetCellPoints(c, b);
+    ASSERT_EQ(a->GetNumberOfIds(), 4);
+    for (vtkIdType k = 0; k < 4; ++k)
+      ASSERT_EQ(a->GetId(k), b->GetId(k)) << "cell " << c;
+  }
+  const auto report = checkOutput(kept);
+  EXPECT_TRUE(report.valid()) << report.summary();
+
+  const vtkIdType cells = kept->GetNumberOfCells();
+  const vtkIdType extra[4] = {0, 1, 2, 3};
+  for (int i = 0; i < 1000; ++i)
+    kept->InsertNextCell(VTK_TETRA, 4, extra);
+  ASSERT_EQ(kept->GetNumberOfCells(), cells + 1000);
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    kept->GetCellPoints(c, a);
+    rerun->GetCellPoints(c, b);
+    for (vtkIdType k = 0; k < 4; ++k)
+      ASSERT_EQ(a->GetId(k), b->GetId(k)) << "cell " << c << " after growing";
+  }
+  kept->GetCellPoints(cells + 999, a);
+  EXPECT_EQ(a->GetId(3), 3);
 }
 
 TEST(Filter, LatticeThroughStructuredGrid)
