@@ -168,6 +168,7 @@ struct Tetrahedralization::Impl
   Status status = Status::Ok;
   Statistics stats; // the figures of every batch; the inserters' are added on output
   std::size_t points = 0; // point ids handed out
+  std::size_t room = 0;   // vertex records reserved beyond the first batch's
   // (point, point it was skipped for), then (duplicate, original): the order representatives
   // are resolved in.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped, duplicates;
@@ -184,8 +185,9 @@ private:
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
   std::vector<std::uint16_t> keys(const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
-  /// the frame.
-  VertexArray vertices(const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint);
+  /// the frame, with capacity for `extra` more.
+  VertexArray vertices(
+    const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra);
 };
 
 std::vector<std::uint32_t> Tetrahedralization::Impl::finitePoints(
@@ -224,12 +226,14 @@ std::vector<std::uint16_t> Tetrahedralization::Impl::keys(
 }
 
 VertexArray Tetrahedralization::Impl::vertices(
-  const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint)
+  const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra)
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
   constexpr std::size_t kAhead = 16;
-  VertexArray out(order.size());
+  VertexArray out;
+  out.reserve(order.size() + extra);
+  out.resize(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
   {
     if (i + kAhead < order.size())
@@ -265,7 +269,7 @@ void Tetrahedralization::Impl::insertFirst(const double* xyz, std::size_t count)
     return;
   }
   status = Status::Ok;
-  VertexArray records = vertices(xyz, plan.order, 0);
+  VertexArray records = vertices(xyz, plan.order, 0, room);
   std::vector<std::uint32_t>().swap(plan.order);
   std::vector<std::uint16_t>().swap(key);
   stats.secondsSort = secondsSince(start);
@@ -311,7 +315,7 @@ void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
     for (const auto& [copy, original] : plan.duplicates)
       duplicates.emplace_back(copy + points, original + points);
     stats.duplicatesMerged += plan.duplicates.size();
-    VertexArray more = vertices(xyz, plan.order, points);
+    VertexArray more = vertices(xyz, plan.order, points, 0);
     stats.secondsSort += secondsSince(start);
     if (!triangulator->insertMore(std::move(more), plan.roundStarts, options.progress))
       status = Status::Aborted;
@@ -377,11 +381,12 @@ Triangulation Tetrahedralization::Impl::output(bool release)
 }
 
 Tetrahedralization::Tetrahedralization(
-  const double* xyz, std::size_t count, const Options& options, const Frame& frame)
+  const double* xyz, std::size_t count, const Options& options, const Frame& frame, std::size_t room)
   : impl_(std::make_unique<Impl>())
 {
   impl_->options = options;
   impl_->frame = frame;
+  impl_->room = room;
   impl_->insertFirst(xyz, count);
   if (!impl_->triangulator && impl_->status != Status::Aborted)
     impl_->held.assign(xyz, xyz + 3 * count);

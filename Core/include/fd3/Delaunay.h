@@ -188,8 +188,11 @@ class Tetrahedralization
 {
 public:
   /// Tetrahedralizes the first `count` points in `frame`, which must hold every point added later
-  /// too (frameFor() over all of them). Throws as triangulate() does.
-  Tetrahedralization(const double* xyz, std::size_t count, const Options& options, const Frame& frame);
+  /// too (frameFor() over all of them). Throws as triangulate() does. `room`: about how many points
+  /// will be added; the kernel's vertex records are reserved for them (address space, which costs
+  /// no memory until used), so that add() does not copy the records of the first ones.
+  Tetrahedralization(
+    const double* xyz, std::size_t count, const Options& options, const Frame& frame, std::size_t room = 0);
   ~Tetrahedralization();
   Tetrahedralization(const Tetrahedralization&) = delete;
   Tetrahedralization& operator=(const Tetrahedralization&) = delete;
