@@ -54,13 +54,15 @@ TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
 
 // Points on a cylinder all lie on its hull, whose faces run its whole length: nearly every
 // insertion reaches outside any region. Passes that put off nearly all their points must stop
-// being tried (they put off each point twice before: 80,000 times for 40,000 points).
+// being tried (they put off each point twice before: 78,488 times for 40,000 points). The first
+// rounds are tried before their yield is known: about 1,200-1,500 put off whatever the size, 3%
+// of 40,000 points and 25% of the 6,000 of the thread sanitizer's run.
 TEST(Threads, PassesThatPutOffNearlyEveryPointAreLeftOut)
 {
   const fd3test::Points p = fd3test::cylinderSurface(kPoints, 4);
   const fd3::Triangulation parallel = run(p, 2);
   ASSERT_EQ(parallel.status, fd3::Status::Ok);
-  EXPECT_LT(parallel.stats.deferredInsertions, kPoints / 4);
+  EXPECT_LT(parallel.stats.deferredInsertions, kPoints / 2);
   const fd3::Triangulation cube = run(fd3test::uniformCube(kPoints, 4), 2);
   EXPECT_GT(cube.stats.deferredInsertions, 0u) << "passes on volume points must still be tried";
 }
