@@ -1,10 +1,7 @@
 #include "InsertionOrder.h"
 
-#include "Platform.h"
-
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <unordered_map>
 #include <utility>

@@ -75,8 +75,8 @@ bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, std::vec
 }
 
 /// The live finite tetrahedra of `records` (a mesh's, `slots` of them, over `vertices`) with input
-/// point ids, compacted in place (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k, never ahead
-/// of what is still to be read), and, when asked for, their neighbours renumbered.
+/// point ids, compacted in place (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k,
+/// never ahead of what is still to be read), and, when asked for, their neighbours renumbered.
 void extractOutput(IdArray records, std::size_t slots, const VertexArray& vertices, bool withNeighbors,
   Triangulation& out)
 {

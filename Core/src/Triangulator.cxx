@@ -75,7 +75,10 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
       ok = insertInParallel(std::move(round), progress);
     }
     else
-      ok = insertSerially(last - first, [first](std::size_t i) { return static_cast<VertId>(first + i); }, progress);
+    {
+      auto rank = [first](std::size_t i) { return static_cast<VertId>(first + i); };
+      ok = insertSerially(last - first, rank, progress);
+    }
     if (!ok)
       return false;
     if (!reserved && done_ >= reserveAt)

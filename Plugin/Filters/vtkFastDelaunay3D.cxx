@@ -36,7 +36,6 @@
 #include <limits>
 #include <map>
 #include <mutex>
-#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -533,35 +532,18 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
 {
   if (this->Alpha <= 0)
   {
-    fd3::IdArray& ids = result.tetrahedra;
+    fd3::IdArray& tets = result.tetrahedra;
     if (keep)
     {
-      std::size_t kept = 0;
-      for (std::size_t t = 0; t < result.numberOfTetrahedra(); ++t)
-      {
-        if (keep(&ids[4 * t], 4))
-        {
-          std::copy_n(&ids[4 * t], 4, &ids[4 * kept++]);
-        }
-      }
-      ids.resize(4 * kept);
-      fd3::releaseSpareCapacity(ids);
+      KeepCells(tets, 4, [&](const std::uint32_t* ids) { return keep(ids, 4); });
+      fd3::releaseSpareCapacity(tets);
     }
-    SetTetrahedra(output, std::move(ids));
-    ids = fd3::IdArray();
+    SetTetrahedra(output, std::move(tets));
+    tets = fd3::IdArray();
     return;
   }
   const std::uint32_t* tets = result.tetrahedra.data();
-  fd3::AlphaComplex shape;
-  if (this->Alpha > 0)
-  {
-    shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
-  }
-  else
-  {
-    shape.tetrahedra.resize(result.numberOfTetrahedra());
-    std::iota(shape.tetrahedra.begin(), shape.tetrahedra.end(), 0u);
-  }
+  fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
   if (keep)
   {
     KeepCells(shape.tetrahedra, 1, [&](const std::uint32_t* t) { return keep(tets + 4 * *t, 4); });
@@ -570,19 +552,19 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
     KeepCells(shape.vertices, 1, [&](const std::uint32_t* ids) { return keep(ids, 1); });
   }
   std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
-  if (this->AlphaTris || this->Alpha <= 0)
+  if (this->AlphaTris)
   {
     blocks.push_back({ VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
   }
-  if (this->AlphaLines || this->Alpha <= 0)
+  if (this->AlphaLines)
   {
     blocks.push_back({ VTK_LINE, 2, shape.lines.data(), nullptr, shape.lines.size() / 2 });
   }
-  if (this->AlphaVerts || this->Alpha <= 0)
+  if (this->AlphaVerts)
   {
     blocks.push_back({ VTK_VERTEX, 1, shape.vertices.data(), nullptr, shape.vertices.size() });
   }
-  if (this->AlphaTets || this->Alpha <= 0)
+  if (this->AlphaTets)
   {
     blocks.push_back({ VTK_TETRA, 4, tets, shape.tetrahedra.data(), shape.tetrahedra.size() });
   }

@@ -545,6 +545,8 @@ int vtkPFastDelaunay3D::RequestData(
   }
   double ownBounds[6];
   BoundsOfFinitePoints(run.Own, ownBounds);
+  // Here, not in Distribute(): its scratch is freed by now (rank 0's peak at 4M points on 2
+  // ranks, 969 MB, is 978 MB when Xyz is reserved before it is).
   run.Xyz.reserve(3 * (static_cast<std::size_t>(run.Own->GetNumberOfPoints()) + run.GhostRoom()));
   const fd3::Frame frame = run.Frame(CoordinatesAsDoubles(run.Own->GetPoints(), run.Xyz), ownBounds);
   fd3::Triangulation result;
