@@ -8,9 +8,9 @@
  *
  * With more than one process in its controller, the filter tetrahedralizes the points of every
  * rank together, whatever rank holds them:
- * 1. the finite points are spread over the ranks by space, balanced by count
- *    (vtkDistributedPointCloudFilter), each with its input id (position in the input pieces taken
- *    in rank order) in a "GlobalIds" array;
+ * 1. the finite points are spread over the ranks by space, balanced by count (a k-d split of a
+ *    sample of all ranks' points, sent with vtkDIYDataExchanger), each with its point data and
+ *    its input id (position in the input pieces taken in rank order) in a "GlobalIds" array;
  * 2. every rank computes in one exact frame made from the global bounds, so that every rank
  *    decides every predicate, and every tie, alike;
  * 3. each rank tetrahedralizes its points and sends every other rank the vertices of its
@@ -32,7 +32,7 @@
  * an error). Tolerance, when above 0, is applied by each rank to its own points.
  *
  * @sa
- * vtkFastDelaunay3D vtkDistributedPointCloudFilter vtkDIYDataExchanger
+ * vtkFastDelaunay3D vtkDIYDataExchanger
  */
 #ifndef vtkPFastDelaunay3D_h
 #define vtkPFastDelaunay3D_h

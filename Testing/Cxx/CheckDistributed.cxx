@@ -1,7 +1,8 @@
 // Checks the pieces that the distributed filter wrote (TestMPI.py) against the one-process run:
 // every input point is one rank's own point exactly once, ghost points repeat input points, the
 // tetrahedra of all pieces (in input ids) are exactly those of vtkFastDelaunay3D on the whole
-// input, each once, and pass the exact validator; the volume Integrate Variables found is that of
+// input, each once, and pass the exact validator; every point keeps its point data ("Label", made
+// from its coordinates); the volume Integrate Variables found is that of
 // the convex hull, once. With an alpha, the alpha shape's cells of every dimension are compared.
 //
 // usage: CheckDistributed <pieces .pvtu> <volume printed by TestMPI.py> [alpha]
@@ -98,6 +99,12 @@ int main(int argc, char* argv[])
   for (vtkIdType i = 0; i < n; ++i)
     if (!std::equal(&xyz[3 * i], &xyz[3 * i + 3], &input[3 * inputIds->GetValue(i)]))
       return fail("a ghost point differs from the input point it repeats");
+  vtkDataArray* label = pieces->GetPointData()->GetArray("Label");
+  if (!label)
+    return fail("the input's point data is lost");
+  for (vtkIdType i = 0; i < n; ++i)
+    if (label->GetComponent(i, 0) != xyz[3 * i] + 2 * xyz[3 * i + 1] + 4 * xyz[3 * i + 2])
+      return fail("point " + std::to_string(i) + " has another point's data");
 
   vtkNew<vtkFastDelaunay3D> serial;
   serial->SetInputData(fd3test::toPolyData(input));

@@ -7,7 +7,8 @@ filter's Alpha (default 0).
 kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points);
 each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
 a random rank), empty (rank 0 holds none), pvtp (written as a partitioned .pvtp, read back in
-pieces). Writes the pieces to the .pvtu (CheckDistributed then compares them with the
+pieces, with single-precision points as files often have). Every point carries a "Label" made from
+its coordinates. Writes the pieces to the .pvtu (CheckDistributed then compares them with the
 one-process run) and prints the volume that Integrate Variables finds.
 """
 import os
@@ -37,7 +38,7 @@ from vtkmodules.vtkCommonCore import vtkPoints
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 rng = np.random.default_rng(7)
-kind, distribution = "%s", "%s"
+kind, distribution, single = "%s", "%s", %s
 if kind == "cube":
     p = rng.random((4000, 3))
 elif kind == "lattice":
@@ -53,13 +54,14 @@ else:  # integer points with x^2 + y^2 + z^2 = 25^2, and the centre
 p = np.concatenate([p, p[:50]])  # exact duplicates
 owner = {"one": np.zeros(len(p), int), "scattered": rng.integers(0, ranks, len(p)),
          "empty": 1 + rng.integers(0, ranks - 1, len(p))}[distribution]
-mine = p[owner == rank]
+mine = np.ascontiguousarray(p[owner == rank], dtype=np.float32 if single else float)
 out = dsa.WrapDataObject(self.GetOutput())
 points = vtkPoints()
-points.SetData(dsa.numpyTovtkDataArray(np.ascontiguousarray(mine), "Points"))
+points.SetData(dsa.numpyTovtkDataArray(mine, "Points"))
 self.GetOutput().SetPoints(points)
-out.PointData.append(np.arange(len(mine), dtype=float) + 1000 * rank, "Label")
-""" % (kind, "scattered" if distribution == "pvtp" else distribution)
+m = mine.astype(float)
+out.PointData.append(m[:, 0] + 2 * m[:, 1] + 4 * m[:, 2], "Label")  # CheckDistributed recomputes it
+""" % (kind, "scattered" if distribution == "pvtp" else distribution, distribution == "pvtp")
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 if distribution == "pvtp":
     pieces = os.path.splitext(pieces_path)[0] + "-input.pvtp"
