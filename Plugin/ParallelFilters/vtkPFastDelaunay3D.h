@@ -17,7 +17,8 @@
  *    tetrahedra whose circumsphere meets that rank's bounds (fd3::haloVertices, with
  *    vtkDIYDataExchanger); one exchange is enough (Funke and Sanders, 2017);
  * 4. each rank adds the points it received and keeps the tetrahedra whose lexicographically
- *    smallest vertex it owns (the lowest rank holding a copy of that position owns it).
+ *    smallest vertex it owns (every position is one rank's: the cuts send a point by its
+ *    coordinates, so the copies of a position all go to one rank, which merges them).
  *
  * Each rank's output then holds the tetrahedra it owns (or, with Alpha, the alpha shape's cells it
  * owns), its own points with their point data, and the other ranks' points that those cells use,
