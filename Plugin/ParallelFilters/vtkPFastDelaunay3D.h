@@ -9,13 +9,13 @@
  * With more than one process in its controller, the filter tetrahedralizes the points of every
  * rank together, whatever rank holds them:
  * 1. the finite points are spread over the ranks by space, balanced by count (a k-d split of a
- *    sample of all ranks' points, sent with vtkDIYDataExchanger), each with its point data and
+ *    sample of all ranks' points, sent as arrays through DIY), each with its point data and
  *    its input id (position in the input pieces taken in rank order) in a "GlobalIds" array;
  * 2. every rank computes in one exact frame made from the global bounds, so that every rank
  *    decides every predicate, and every tie, alike;
  * 3. each rank tetrahedralizes its points and sends every other rank the vertices of its
- *    tetrahedra whose circumsphere meets that rank's bounds (fd3::haloVertices, with
- *    vtkDIYDataExchanger); one exchange is enough (Funke and Sanders, 2017);
+ *    tetrahedra whose circumsphere meets that rank's bounds (fd3::haloVertices), sent the same
+ *    way; one exchange is enough (Funke and Sanders, 2017);
  * 4. each rank adds the points it received and keeps the tetrahedra whose lexicographically
  *    smallest vertex it owns (every position is one rank's: the cuts send a point by its
  *    coordinates, so the copies of a position all go to one rank, which merges them).
@@ -33,7 +33,7 @@
  * an error). Tolerance, when above 0, is applied by each rank to its own points.
  *
  * @sa
- * vtkFastDelaunay3D vtkDIYDataExchanger
+ * vtkFastDelaunay3D vtkDIYUtilities
  */
 #ifndef vtkPFastDelaunay3D_h
 #define vtkPFastDelaunay3D_h
