@@ -577,11 +577,16 @@ public:
     data->AddArray(ghostType);
   }
 
-  /// The figures of all ranks: counts summed (each vertex counted by its owner), times the
-  /// slowest rank's.
-  fd3::Statistics GlobalFigures(const fd3::Triangulation& result, std::size_t ownedTetrahedra)
+  /// The figures of all ranks: counts summed (each vertex and tetrahedron counted by its owner),
+  /// times the slowest rank's.
+  fd3::Statistics GlobalFigures(const fd3::Triangulation& result)
   {
     const fd3::Statistics& s = result.stats;
+    std::size_t ownedTetrahedra = 0;
+    for (std::size_t t = 0; t < result.numberOfTetrahedra(); ++t)
+    {
+      ownedTetrahedra += this->Owns(result.tetrahedra.data() + 4 * t, 4);
+    }
     std::size_t inserted = 0, skipped = 0;
     for (std::size_t k = 0; k < this->OwnCount && result.status == fd3::Status::Ok; ++k)
     {
@@ -760,17 +765,12 @@ int vtkPFastDelaunay3D::RequestData(
 
   const auto outputStart = std::chrono::steady_clock::now();
   const fd3::Status status = run.GlobalStatus(result.status);
-  std::size_t owned = 0;
-  auto owns = [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); };
-  for (std::size_t t = 0; t < result.numberOfTetrahedra(); ++t)
-  {
-    owned += owns(result.tetrahedra.data() + 4 * t, 4);
-  }
-  fd3::Statistics figures = run.GlobalFigures(result, owned);
+  fd3::Statistics figures = run.GlobalFigures(result);
   this->NumberOfGhostPoints = run.GhostPoints;
   if (status == fd3::Status::Ok && result.status == fd3::Status::Ok)
   {
-    this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, result, owns);
+    this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, result,
+      [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); });
     run.SetOutputPoints(output);
     std::vector<double> converted;
     this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));
