@@ -760,6 +760,9 @@ int vtkPFastDelaunay3D::RequestData(
   }
   if (!done)
   {
+    // Every rank stops as the one that aborted or failed, and runs again on the next update as
+    // an aborted filter does; else that rank alone would, and wait for the others.
+    this->SetAbortOutput(true);
     return 1;
   }
 
