@@ -587,17 +587,21 @@ public:
     {
       ownedTetrahedra += this->Owns(result.tetrahedra.data() + 4 * t, 4);
     }
-    std::size_t inserted = 0, skipped = 0;
+    std::size_t inserted = 0, skipped = 0, merged = 0;
     for (std::size_t k = 0; k < this->OwnCount && result.status == fd3::Status::Ok; ++k)
     {
       const std::uint32_t v = result.representative[k];
       inserted += v == k;
-      skipped += v != k && v != fd3::kNoPoint && !this->SamePosition(k, v);
+      if (v != k && v != fd3::kNoPoint)
+      {
+        (this->SamePosition(k, v) ? merged : skipped) += 1;
+      }
     }
-    std::array<double, 9> sums = { double(s.nonFinitePoints), double(inserted), double(skipped),
+    std::array<double, 10> sums = { double(s.nonFinitePoints), double(inserted), double(skipped),
       double(ownedTetrahedra), double(s.walkSteps), double(s.cavityTetrahedra),
-      double(s.underflowRisks), double(s.insertedPoints), double(this->Xyz.size() / 3 - this->OwnCount) },
-                           total;
+      double(s.underflowRisks), double(s.insertedPoints), double(this->Xyz.size() / 3 - this->OwnCount),
+      double(merged) },
+                            total;
     std::array<double, 7> maxima = { double(s.maxWalkSteps), s.secondsSort, s.secondsLocate,
       s.secondsCavity, s.secondsFill, s.secondsOutput, s.secondsTotal },
                           slowest;
@@ -608,8 +612,7 @@ public:
     global.nonFinitePoints = static_cast<std::size_t>(total[0]);
     global.insertedPoints = static_cast<std::size_t>(total[1]);
     global.closePointsSkipped = static_cast<std::size_t>(total[2]);
-    global.duplicatesMerged = global.inputPoints - global.insertedPoints - global.closePointsSkipped -
-      global.nonFinitePoints;
+    global.duplicatesMerged = static_cast<std::size_t>(total[9]);
     global.tetrahedra = static_cast<std::size_t>(total[3]);
     // Walks and cavities of ghost insertions count too: that is the work done.
     global.walkSteps = static_cast<std::size_t>(total[4] * total[1] / std::max(total[7], 1.0));
