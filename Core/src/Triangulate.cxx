@@ -26,10 +26,15 @@ double secondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+double toFrame(const Frame& frame, double x, int axis)
+{
+  return (x - frame.shift[axis]) * frame.scale;
+}
+
 void toFrame(const Frame& frame, const double* p, double* out)
 {
   for (int a = 0; a < 3; ++a)
-    out[a] = (p[a] - frame.shift[a]) * frame.scale;
+    out[a] = toFrame(frame, p[a], a);
 }
 
 Box toFrame(const Frame& frame, const Box& box)
@@ -416,16 +421,24 @@ Triangulation Tetrahedralization::release()
   return impl_->output(true);
 }
 
-std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(
-  const double* xyz, const std::vector<Bounds>& boxes) const
+std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(const std::vector<Bounds>& boxes) const
 {
-  HaloBuilder halo(boxes);
+  // In the frame, from the vertex records: they lie in insertion order, as the tetrahedra that
+  // use them were made, where the input's coordinates lie in input order and a pass over the
+  // tetrahedra would miss the cache at almost every vertex (2.4 of 2.6 s at 2M points). The frame
+  // is monotone on each axis, so a point within a box is within the box's image.
+  std::vector<Bounds> framed = boxes;
+  for (Bounds& box : framed)
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side)
+        box[2 * a + side] = toFrame(impl_->frame, box[2 * a + side], a);
+  HaloBuilder halo(framed);
   if (impl_->status != Status::Ok || !impl_->triangulator)
     return halo.take();
   const TetMesh& mesh = impl_->triangulator->tetrahedra();
   const VertexArray& vertices = impl_->triangulator->vertices();
   auto pointOf = [&](VertId v) { return vertices[v].point; };
-  auto point = [&](VertId v) { return xyz + 3 * std::size_t(pointOf(v)); };
+  auto point = [&](VertId v) { return vertices[v].xyz; };
   for (TetId t = 0; t < impl_->triangulator->slots(); ++t)
   {
     if (mesh.isDead(t))

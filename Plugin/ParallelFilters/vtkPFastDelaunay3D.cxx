@@ -443,7 +443,7 @@ public:
   {
     std::vector<fd3::Bounds> others = this->Boxes;
     others[this->Rank] = { 1, -1, 1, -1, 1, -1 };
-    std::vector<std::vector<std::uint32_t>> halo = mesh.haloVertices(this->Xyz.data(), others);
+    std::vector<std::vector<std::uint32_t>> halo = mesh.haloVertices(others);
     if (mesh.status() != fd3::Status::Ok) // no tetrahedron to choose from: every point might matter
     {
       for (int r = 0; r < this->Ranks; ++r)

@@ -82,7 +82,7 @@ std::vector<std::uint32_t> distributedTetrahedra(
     std::vector<std::vector<std::uint32_t>> halo(pieceCount);
     if (t.status == fd3::Status::Ok)
     {
-      halo = piece.mesh->haloVertices(piece.xyz.data(), boxes);
+      halo = piece.mesh->haloVertices(boxes);
       EXPECT_EQ(halo, fd3::haloVertices(piece.xyz.data(), t, boxes)) << "live mesh and snapshot";
     }
     else

@@ -209,9 +209,9 @@ public:
   /// What triangulate() does with it, without a copy: the output, which ends the mesh.
   Triangulation release();
 
-  /// haloVertices() of the mesh as it stands, without a snapshot; `xyz`: every point so far, in
-  /// the order given. Empty lists while status() is not Ok.
-  std::vector<std::vector<std::uint32_t>> haloVertices(const double* xyz, const std::vector<Bounds>& boxes) const;
+  /// haloVertices() of the mesh as it stands, without a snapshot, computed in the frame; `boxes`
+  /// in the input's coordinates. Empty lists while status() is not Ok.
+  std::vector<std::vector<std::uint32_t>> haloVertices(const std::vector<Bounds>& boxes) const;
 
 private:
   struct Impl;
