@@ -79,6 +79,39 @@ vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkId
   return Subset(points->GetData(), source->GetPointData(), ids, points->GetDataType());
 }
 
+/// Calls visit(i, x) for every point i of a 3-component array, x its coordinates as doubles,
+/// without a virtual call per point.
+struct VisitPoints
+{
+  template <typename Array, typename Visit>
+  void operator()(Array* coordinates, Visit&& visit) const
+  {
+    vtkIdType i = 0;
+    for (const auto tuple : vtk::DataArrayTupleRange<3>(coordinates))
+    {
+      const double x[3] = { static_cast<double>(tuple[0]), static_cast<double>(tuple[1]),
+        static_cast<double>(tuple[2]) };
+      visit(i++, x);
+    }
+  }
+};
+
+template <typename Visit>
+void ForEachPoint(vtkDataArray* coordinates, Visit&& visit)
+{
+  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  if (!Reals::Execute(coordinates, VisitPoints{}, visit))
+  {
+    VisitPoints{}(coordinates, visit);
+  }
+}
+
+/// Appends the coordinates of a 3-component array to xyz.
+void AppendPoints(vtkDataArray* coordinates, std::vector<double>& xyz)
+{
+  ForEachPoint(coordinates, [&xyz](vtkIdType, const double x[3]) { xyz.insert(xyz.end(), x, x + 3); });
+}
+
 /// The point data of `parts` one after the other: the arrays that all of them have, as
 /// vtkAppendFilter keeps them.
 vtkSmartPointer<vtkPointData> GatherPointData(const std::vector<vtkPointData*>& parts)
@@ -236,13 +269,13 @@ public:
     vtkNew<vtkIdTypeArray> inputIds;
     inputIds->SetName(kInputIds);
     inputIds->SetNumberOfValues(count);
+    std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + count, firstId);
     std::vector<vtkIdType> finite, nonFinite;
-    double x[3];
-    for (vtkIdType i = 0; i < count; ++i)
+    if (count > 0)
     {
-      points->GetPoint(i, x);
-      inputIds->SetValue(i, firstId + i);
-      (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
+      ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
+        (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
+      });
     }
     data->AddArray(inputIds);
     std::vector<vtkSmartPointer<vtkPointSet>> parts;
@@ -253,10 +286,14 @@ public:
     {
       const SpaceCuts cuts = this->BalancedCuts(points->GetData(), finite);
       std::vector<std::vector<vtkIdType>> lists(this->Ranks);
-      for (vtkIdType i : finite)
+      if (count > 0)
       {
-        points->GetPoint(i, x);
-        lists[cuts.RankOf(x)].push_back(i);
+        ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
+          if (fd3::isFinite(x))
+          {
+            lists[cuts.RankOf(x)].push_back(i);
+          }
+        });
       }
       finite = std::vector<vtkIdType>();
       this->Send(points->GetData(), data, lists, parts, senders);
@@ -275,11 +312,7 @@ public:
     std::vector<vtkPointData*> partData;
     for (const auto& part : parts)
     {
-      for (vtkIdType i = 0; i < part->GetNumberOfPoints(); ++i)
-      {
-        part->GetPoint(i, x);
-        this->Xyz.insert(this->Xyz.end(), x, x + 3);
-      }
+      AppendPoints(part->GetPoints()->GetData(), this->Xyz);
       partData.push_back(part->GetPointData());
     }
     this->OwnData = GatherPointData(partData);
@@ -478,12 +511,7 @@ public:
     this->Xyz.reserve(ownValues + 3 * received); // beyond GhostRoom(), exactly: the peak is near
     for (const auto& ghosts : this->Ghosts)
     {
-      double x[3];
-      for (vtkIdType i = 0; i < ghosts->GetNumberOfPoints(); ++i)
-      {
-        ghosts->GetPoint(i, x);
-        this->Xyz.insert(this->Xyz.end(), x, x + 3);
-      }
+      AppendPoints(ghosts->GetPoints()->GetData(), this->Xyz);
     }
     mesh.add(this->Xyz.data() + ownValues, (this->Xyz.size() - ownValues) / 3);
     fd3::Triangulation result = mesh.release();
