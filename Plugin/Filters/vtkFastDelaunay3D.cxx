@@ -35,6 +35,7 @@
 #include <exception>
 #include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -200,30 +201,34 @@ void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
   }
 }
 
-/// The kernel's tetrahedra become the output's 32-bit connectivity without a copy, which would hold
-/// both at once (16 bytes per tetrahedron, 108 per point on uniform points). VTK frees an array's
-/// memory through a plain function of its address, so the kernel's array waits here, by that
-/// address, until VTK lets it go.
-class HandedOverIds
+/// Memory of the kernel's allocator becomes an output array without a copy: the kernel's
+/// tetrahedra its 32-bit connectivity (a copy would hold both at once, 16 bytes per tetrahedron,
+/// 108 per point on uniform points), and the offsets and types, written in huge pages (every first
+/// touch of a 4 KB page is a page fault: 80 MB of offsets and types at 1M points cost 0.2 s of
+/// them on a 2-core virtual machine). VTK frees an array's memory through a plain function of its
+/// address, so each vector waits here, by that address, until VTK lets it go.
+class HandedOver
 {
 public:
-  static void Into(vtkTypeInt32Array* connectivity, fd3::IdArray ids)
+  template <typename Array, typename T>
+  static void Into(Array* array, std::vector<T, fd3::BulkAllocator<T>> values)
   {
-    // Ids below 2^31 (checked by the caller) read the same as signed values.
-    auto* data = reinterpret_cast<vtkTypeInt32*>(ids.data());
-    const auto size = static_cast<vtkIdType>(ids.size());
+    static_assert(sizeof(T) == sizeof(typename Array::ValueType), "values are taken as they are");
+    auto held = std::make_shared<std::vector<T, fd3::BulkAllocator<T>>>(std::move(values));
+    auto* data = reinterpret_cast<typename Array::ValueType*>(held->data());
+    const auto size = static_cast<vtkIdType>(held->size());
     {
       std::lock_guard<std::mutex> lock(Mutex());
-      Held().emplace(data, std::move(ids));
+      Held().emplace(data, std::move(held));
     }
-    connectivity->SetArray(data, size, 0, vtkTypeInt32Array::VTK_DATA_ARRAY_USER_DEFINED);
-    connectivity->SetArrayFreeFunction(&HandedOverIds::Free);
+    array->SetArray(data, size, 0, Array::VTK_DATA_ARRAY_USER_DEFINED);
+    array->SetArrayFreeFunction(&HandedOver::Free);
   }
 
 private:
   static void Free(void* data)
   {
-    fd3::IdArray released; // destroyed outside the lock
+    std::shared_ptr<void> released; // destroyed outside the lock
     std::lock_guard<std::mutex> lock(Mutex());
     const auto it = Held().find(data);
     if (it != Held().end())
@@ -238,9 +243,9 @@ private:
     static auto* mutex = new std::mutex;
     return *mutex;
   }
-  static std::map<void*, fd3::IdArray>& Held()
+  static std::map<void*, std::shared_ptr<void>>& Held()
   {
-    static auto* held = new std::map<void*, fd3::IdArray>;
+    static auto* held = new std::map<void*, std::shared_ptr<void>>;
     return *held;
   }
 };
@@ -254,19 +259,21 @@ void SetTetrahedra(vtkUnstructuredGrid* output, fd3::IdArray tets)
     SetCells(output, { { VTK_TETRA, 4, tets.data(), nullptr, cells } });
     return;
   }
-  vtkNew<vtkTypeInt32Array> offsets, connectivity;
-  vtkNew<vtkUnsignedCharArray> types;
-  offsets->SetNumberOfValues(static_cast<vtkIdType>(cells) + 1);
-  types->SetNumberOfValues(static_cast<vtkIdType>(cells));
-  vtkTypeInt32* offset = offsets->GetPointer(0);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(cells) + 1, [offset](vtkIdType begin, vtkIdType end) {
+  std::vector<vtkTypeInt32, fd3::BulkAllocator<vtkTypeInt32>> offset(cells + 1);
+  std::vector<unsigned char, fd3::BulkAllocator<unsigned char>> type(cells);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(cells) + 1, [&offset](vtkIdType begin, vtkIdType end) {
     for (vtkIdType c = begin; c < end; ++c)
     {
       offset[c] = static_cast<vtkTypeInt32>(4 * c);
     }
   });
-  std::fill_n(types->GetPointer(0), cells, static_cast<unsigned char>(VTK_TETRA));
-  HandedOverIds::Into(connectivity, std::move(tets));
+  std::fill(type.begin(), type.end(), static_cast<unsigned char>(VTK_TETRA));
+  vtkNew<vtkTypeInt32Array> offsets, connectivity;
+  vtkNew<vtkUnsignedCharArray> types;
+  HandedOver::Into(offsets.Get(), std::move(offset));
+  HandedOver::Into(types.Get(), std::move(type));
+  // Ids below 2^31 (checked above) read the same as signed values.
+  HandedOver::Into(connectivity.Get(), std::move(tets));
   vtkNew<vtkCellArray> cellArray;
   cellArray->SetData(offsets, connectivity);
   output->SetCells(types, cellArray);
