@@ -26,15 +26,17 @@ constexpr double kMargin = 1e-6;
 struct Ball
 {
   double centre[3];
-  double radius;
+  double radius2; ///< squared, widened by kMargin
   bool unbounded; ///< too flat to trust: meets every box
 };
 
+// Squared lengths throughout: the pass visits every tetrahedron of the mesh, and square roots
+// cost as much as the rest of the test.
 Ball circumball(const double* a, const double* b, const double* c, const double* d)
 {
   const Circumcentre centre = circumcentre(a, b, c, d);
   Ball ball{{0, 0, 0}, 0, true};
-  if (!(std::abs(centre.sixVolume) * kIllConditioned > std::sqrt(centre.edgeProduct2)))
+  if (!(centre.sixVolume * centre.sixVolume * (kIllConditioned * kIllConditioned) > centre.edgeProduct2))
   {
     return ball;
   }
@@ -44,7 +46,7 @@ Ball circumball(const double* a, const double* b, const double* c, const double*
     ball.centre[k] = a[k] + centre.offset[k];
     r2 += centre.offset[k] * centre.offset[k];
   }
-  ball.radius = std::sqrt(r2) * (1 + kMargin);
+  ball.radius2 = r2 * ((1 + kMargin) * (1 + kMargin));
   ball.unbounded = false;
   return ball;
 }
@@ -61,7 +63,7 @@ bool meets(const Ball& ball, const Bounds& box)
     const double gap = std::max({box[2 * k] - ball.centre[k], ball.centre[k] - box[2 * k + 1], 0.0});
     d2 += gap * gap;
   }
-  return d2 <= ball.radius * ball.radius;
+  return d2 <= ball.radius2;
 }
 
 /// Whether the closed half-space beyond face abc, away from the inner vertex d, meets the box.

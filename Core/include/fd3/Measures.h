@@ -52,8 +52,9 @@ inline Circumcentre circumcentre(const double* a, const double* b, const double*
   centre.edgeProduct2 = uu * vv * ww;
   if (centre.sixVolume != 0)
   {
+    const double inverse = 0.5 / centre.sixVolume; // one division, not three: the halo's pass
     for (int k = 0; k < 3; ++k)
-      centre.offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2 * centre.sixVolume);
+      centre.offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]) * inverse;
   }
   return centre;
 }
