@@ -276,12 +276,9 @@ public:
     inputIds->SetNumberOfValues(count);
     std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + count, firstId);
     std::vector<vtkIdType> finite, nonFinite;
-    if (count > 0)
-    {
-      ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
-        (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
-      });
-    }
+    ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
+      (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
+    });
     data->AddArray(inputIds);
     std::vector<vtkSmartPointer<vtkPointSet>> parts;
     std::vector<int> senders;
@@ -291,15 +288,12 @@ public:
     {
       const SpaceCuts cuts = this->BalancedCuts(points->GetData(), finite);
       std::vector<std::vector<vtkIdType>> lists(this->Ranks);
-      if (count > 0)
-      {
-        ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
-          if (fd3::isFinite(x))
-          {
-            lists[cuts.RankOf(x)].push_back(i);
-          }
-        });
-      }
+      ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
+        if (fd3::isFinite(x))
+        {
+          lists[cuts.RankOf(x)].push_back(i);
+        }
+      });
       finite = std::vector<vtkIdType>();
       this->Send(points->GetData(), data, lists, parts, senders);
     }
