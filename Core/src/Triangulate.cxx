@@ -31,6 +31,12 @@ double toFrame(const Frame& frame, double x, int axis)
   return (x - frame.shift[axis]) * frame.scale;
 }
 
+// Exact where toFrame() was: the scale is a power of two, and x - shift was exact.
+double fromFrame(const Frame& frame, double y, int axis)
+{
+  return y / frame.scale + frame.shift[axis];
+}
+
 void toFrame(const Frame& frame, const double* p, double* out)
 {
   for (int a = 0; a < 3; ++a)
@@ -180,9 +186,12 @@ struct Tetrahedralization::Impl
   std::unique_ptr<Triangulator> triangulator;
   std::vector<double> held; // every point so far, until the mesh starts
 
-  void insertFirst(const double* xyz, std::size_t count);
+  void insertFirst(const double* xyz, std::size_t count, const std::function<void()>& pointsRead);
   void insertMore(const double* xyz, std::size_t count);
-  Triangulation output(bool release);
+  /// The output; with `release`, the mesh's records go into it, which ends the mesh, and with
+  /// `xyz` too, the points are written back there (Tetrahedralization::release(xyz)).
+  Triangulation output(bool release, double* xyz = nullptr);
+  void writePoints(double* xyz) const;
 
 private:
   /// The finite ones of `count` points, as point ids, and their bounding box.
@@ -250,7 +259,8 @@ VertexArray Tetrahedralization::Impl::vertices(
   return out;
 }
 
-void Tetrahedralization::Impl::insertFirst(const double* xyz, std::size_t count)
+void Tetrahedralization::Impl::insertFirst(
+  const double* xyz, std::size_t count, const std::function<void()>& pointsRead)
 {
   const auto start = Clock::now();
   Box box;
@@ -277,6 +287,8 @@ void Tetrahedralization::Impl::insertFirst(const double* xyz, std::size_t count)
   VertexArray records = vertices(xyz, plan.order, 0, room);
   std::vector<std::uint32_t>().swap(plan.order);
   std::vector<std::uint16_t>().swap(key);
+  if (pointsRead)
+    pointsRead();
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
   // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its
@@ -304,7 +316,7 @@ void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
     held.insert(held.end(), xyz, xyz + 3 * count);
     stats = Statistics();
     skipped.clear();
-    insertFirst(held.data(), held.size() / 3);
+    insertFirst(held.data(), held.size() / 3, nullptr);
     if (triangulator)
       std::vector<double>().swap(held);
     return;
@@ -328,7 +340,7 @@ void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
   points += count;
 }
 
-Triangulation Tetrahedralization::Impl::output(bool release)
+Triangulation Tetrahedralization::Impl::output(bool release, double* xyz)
 {
   const auto start = Clock::now();
   Triangulation out;
@@ -366,6 +378,8 @@ Triangulation Tetrahedralization::Impl::output(bool release)
   IdArray records = release ? triangulator->releaseWorkspace().takeRecords() : triangulator->copyRecords();
   const VertexArray& vertices = triangulator->vertices();
   extractOutput(std::move(records), slots, vertices, options.computeNeighbors, out);
+  if (xyz)
+    writePoints(xyz);
   out.representative.assign(points, kNoPoint);
   for (const Vertex& vertex : vertices)
     out.representative[vertex.point] = vertex.point;
@@ -385,14 +399,45 @@ Triangulation Tetrahedralization::Impl::output(bool release)
   return out;
 }
 
-Tetrahedralization::Tetrahedralization(
-  const double* xyz, std::size_t count, const Options& options, const Frame& frame, std::size_t room)
+void Tetrahedralization::Impl::writePoints(double* xyz) const
+{
+  const VertexArray& vertices = triangulator->vertices();
+  std::vector<bool> written(points, false);
+  for (const Vertex& vertex : vertices) // repeated vertices (duplicates() of add()) included
+  {
+    for (int a = 0; a < 3; ++a)
+      xyz[3 * std::size_t(vertex.point) + a] = fromFrame(frame, vertex.xyz[a], a);
+    written[vertex.point] = true;
+  }
+  for (const auto& [copy, original] : duplicates) // an original skipped for the tolerance is not
+    if (written[original])
+      std::copy_n(xyz + 3 * std::size_t(original), 3, xyz + 3 * std::size_t(copy));
+}
+
+bool recoverable(const Frame& frame, const double* xyz, std::size_t count)
+{
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!isFinite(xyz + 3 * i))
+      continue;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = xyz[3 * i + a];
+      if (fromFrame(frame, toFrame(frame, x, a), a) != x || (x == 0 && std::signbit(x)))
+        return false;
+    }
+  }
+  return true;
+}
+
+Tetrahedralization::Tetrahedralization(const double* xyz, std::size_t count, const Options& options,
+  const Frame& frame, std::size_t room, const std::function<void()>& pointsRead)
   : impl_(std::make_unique<Impl>())
 {
   impl_->options = options;
   impl_->frame = frame;
   impl_->room = room;
-  impl_->insertFirst(xyz, count);
+  impl_->insertFirst(xyz, count, pointsRead);
   if (!impl_->triangulator && impl_->status != Status::Aborted)
     impl_->held.assign(xyz, xyz + 3 * count);
 }
@@ -419,6 +464,32 @@ Triangulation Tetrahedralization::snapshot() const
 Triangulation Tetrahedralization::release()
 {
   return impl_->output(true);
+}
+
+Triangulation Tetrahedralization::release(double* xyz)
+{
+  return impl_->output(true, xyz);
+}
+
+std::vector<double> Tetrahedralization::points(const std::vector<std::uint32_t>& ids) const
+{
+  std::vector<double> out(3 * ids.size());
+  if (ids.empty())
+    return out;
+  if (!impl_->triangulator)
+    throw std::invalid_argument("fd3::Tetrahedralization::points: no vertex yet");
+  const VertexArray& vertices = impl_->triangulator->vertices();
+  std::vector<VertId> vertexOf(impl_->points, kNoVertex);
+  for (VertId v = 0; v < vertices.size(); ++v)
+    vertexOf[vertices[v].point] = v;
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    if (ids[k] >= vertexOf.size() || vertexOf[ids[k]] == kNoVertex)
+      throw std::invalid_argument("fd3::Tetrahedralization::points: not a vertex");
+    for (int a = 0; a < 3; ++a)
+      out[3 * k + a] = fromFrame(impl_->frame, vertices[vertexOf[ids[k]]].xyz[a], a);
+  }
+  return out;
 }
 
 std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(const std::vector<Bounds>& boxes) const

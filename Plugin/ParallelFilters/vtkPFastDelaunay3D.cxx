@@ -50,9 +50,8 @@ namespace
 {
 constexpr const char* kInputIds = "GlobalIds";
 
-/// The points `ids`, from their coordinates (3 components) and point data, as points of `type`.
-vtkSmartPointer<vtkPolyData> Subset(
-  vtkDataArray* coordinates, vtkPointData* data, const std::vector<vtkIdType>& ids, int type)
+/// `points`, one for each of `ids`, with the point data of `ids`.
+vtkSmartPointer<vtkPolyData> WithPointData(vtkPoints* points, vtkPointData* data, const std::vector<vtkIdType>& ids)
 {
   vtkNew<vtkIdList> from, to;
   from->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
@@ -62,15 +61,25 @@ vtkSmartPointer<vtkPolyData> Subset(
     from->SetId(static_cast<vtkIdType>(k), ids[k]);
     to->SetId(static_cast<vtkIdType>(k), static_cast<vtkIdType>(k));
   }
-  vtkNew<vtkPoints> points;
-  points->SetDataType(type);
-  points->SetNumberOfPoints(from->GetNumberOfIds());
-  coordinates->GetTuples(from, points->GetData());
   auto subset = vtkSmartPointer<vtkPolyData>::New();
   subset->SetPoints(points);
   subset->GetPointData()->CopyAllocate(data, from->GetNumberOfIds());
   subset->GetPointData()->CopyData(data, from, to);
   return subset;
+}
+
+/// The points `ids`, from their coordinates (3 components) and point data, as points of `type`.
+vtkSmartPointer<vtkPolyData> Subset(
+  vtkDataArray* coordinates, vtkPointData* data, const std::vector<vtkIdType>& ids, int type)
+{
+  vtkNew<vtkIdList> from;
+  from->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::copy(ids.begin(), ids.end(), from->begin());
+  vtkNew<vtkPoints> points;
+  points->SetDataType(type);
+  points->SetNumberOfPoints(from->GetNumberOfIds());
+  coordinates->GetTuples(from, points->GetData());
+  return WithPointData(points, data, ids);
 }
 
 vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkIdType>& ids)
@@ -295,7 +304,14 @@ public:
         }
       });
       finite = std::vector<vtkIdType>();
-      this->Send(points->GetData(), data, lists, parts, senders);
+      this->Send(
+        lists, [&](int r) { return Subset(points->GetData(), data, lists[r], this->PointType); }, parts, senders);
+      if (!lists[this->Rank].empty()) // in rank order
+      {
+        const auto at = std::upper_bound(senders.begin(), senders.end(), this->Rank) - senders.begin();
+        parts.insert(parts.begin() + at, Subset(points->GetData(), data, lists[this->Rank], this->PointType));
+        senders.insert(senders.begin() + at, this->Rank);
+      }
     }
     this->FiniteCount = 0;
     for (const auto& part : parts)
@@ -349,13 +365,14 @@ public:
     return cuts;
   }
 
-  /// Sends every rank r the points lists[r] (ids into `coordinates` and `data`, sent as points of
-  /// PointType); what this rank receives, one set per sender, in rank order, with its sender.
+  /// Sends every other rank r the points part(r), made when sent, where lists[r] is not empty;
+  /// what this rank receives, one set per sender, in rank order, with its sender.
   /// With DIY, as vtkDIYDataExchanger, but as raw arrays: vtkDIYDataExchanger writes each data
   /// set as a compressed XML file, and that took 1.8 s of the 2.8 s the redistribution took at
   /// 4M points on 2 ranks.
-  void Send(vtkDataArray* coordinates, vtkPointData* data, const std::vector<std::vector<vtkIdType>>& lists,
-    std::vector<vtkSmartPointer<vtkPointSet>>& received, std::vector<int>& senders)
+  template <typename List, typename Part>
+  void Send(const std::vector<List>& lists, Part&& part, std::vector<vtkSmartPointer<vtkPointSet>>& received,
+    std::vector<int>& senders)
   {
     diy::mpi::communicator comm = vtkDIYUtilities::GetCommunicator(this->Controller);
     std::vector<int> sends(this->Ranks);
@@ -382,9 +399,9 @@ public:
       {
         if (sends[to.gid])
         {
-          vtkSmartPointer<vtkPolyData> part = Subset(coordinates, data, lists[to.gid], this->PointType);
-          proxy.enqueue<vtkDataArray*>(to, part->GetPoints()->GetData());
-          proxy.enqueue<vtkFieldData*>(to, part->GetPointData());
+          vtkSmartPointer<vtkPolyData> points = part(to.gid);
+          proxy.enqueue<vtkDataArray*>(to, points->GetPoints()->GetData());
+          proxy.enqueue<vtkFieldData*>(to, points->GetPointData());
         }
       }
     });
@@ -406,10 +423,6 @@ public:
         }
       }
     });
-    if (!lists[this->Rank].empty())
-    {
-      byRank[this->Rank] = Subset(coordinates, data, lists[this->Rank], this->PointType);
-    }
     for (int r = 0; r < this->Ranks; ++r)
     {
       if (byRank[r] && byRank[r]->GetNumberOfPoints() > 0)
@@ -487,33 +500,63 @@ public:
         }
       }
     }
-    vtkNew<vtkDoubleArray> coordinates; // Xyz's own points, not copied
-    coordinates->SetNumberOfComponents(3);
-    coordinates->SetArray(this->Xyz.data(), static_cast<vtkIdType>(3 * this->OwnCount), 1);
-    std::vector<std::vector<vtkIdType>> lists(this->Ranks);
-    for (int r = 0; r < this->Ranks; ++r)
+    this->Send(halo, [&](int r) { return this->HaloPart(mesh, halo[r]); }, this->Ghosts, this->GhostSenders);
+  }
+
+  /// The own points `halo` with their point data, from the mesh's records once Xyz is dropped.
+  vtkSmartPointer<vtkPolyData> HaloPart(const fd3::Tetrahedralization& mesh, const std::vector<std::uint32_t>& halo)
+  {
+    const std::vector<vtkIdType> ids(halo.begin(), halo.end());
+    if (!this->PointsInMesh)
     {
-      lists[r].assign(halo[r].begin(), halo[r].end());
+      vtkNew<vtkDoubleArray> coordinates; // Xyz's own points, not copied
+      coordinates->SetNumberOfComponents(3);
+      coordinates->SetArray(this->Xyz.data(), static_cast<vtkIdType>(3 * this->OwnCount), 1);
+      return Subset(coordinates, this->OwnData, ids, this->PointType);
     }
-    this->Send(coordinates, this->OwnData, lists, this->Ghosts, this->GhostSenders);
+    const std::vector<double> xyz = mesh.points(halo);
+    vtkNew<vtkPoints> points;
+    points->SetDataType(this->PointType);
+    points->SetNumberOfPoints(static_cast<vtkIdType>(halo.size()));
+    for (std::size_t k = 0; k < halo.size(); ++k)
+    {
+      points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
+    }
+    return WithPointData(points, this->OwnData, ids);
+  }
+
+  /// Frees Xyz once the mesh has read the points into its records, which give them back exactly
+  /// (fd3::recoverable()), so that it is not in the peak, the mesh's: rank 0's peak at 4M points
+  /// on 2 ranks 929 -> 887 MB. The non-finite points, which the mesh does not hold, are kept aside.
+  void DropPoints()
+  {
+    this->NonFinite.assign(this->Xyz.begin() + 3 * this->FiniteCount, this->Xyz.begin() + 3 * this->OwnCount);
+    Coordinates().swap(this->Xyz);
+    this->PointsInMesh = true;
   }
 
   /// Step 4: the received points added to this rank's mesh; the owner of every vertex.
   fd3::Triangulation AddGhosts(fd3::Tetrahedralization& mesh)
   {
-    const std::size_t ownValues = this->Xyz.size();
-    std::size_t received = 0;
+    Coordinates ghostXyz;
     for (const auto& ghosts : this->Ghosts)
     {
-      received += static_cast<std::size_t>(ghosts->GetNumberOfPoints());
+      AppendPoints(ghosts->GetPoints()->GetData(), ghostXyz);
     }
-    this->Xyz.reserve(ownValues + 3 * received); // beyond GhostRoom(), exactly: the peak is near
-    for (const auto& ghosts : this->Ghosts)
+    mesh.add(ghostXyz.data(), ghostXyz.size() / 3);
+    fd3::Triangulation result;
+    if (this->PointsInMesh)
     {
-      AppendPoints(ghosts->GetPoints()->GetData(), this->Xyz);
+      this->Xyz.resize(3 * this->OwnCount + ghostXyz.size()); // not filled: no page is touched yet
+      result = mesh.release(this->Xyz.data());
+      std::copy(this->NonFinite.begin(), this->NonFinite.end(), this->Xyz.begin() + 3 * this->FiniteCount);
+      std::copy(ghostXyz.begin(), ghostXyz.end(), this->Xyz.begin() + 3 * this->OwnCount);
     }
-    mesh.add(this->Xyz.data() + ownValues, (this->Xyz.size() - ownValues) / 3);
-    fd3::Triangulation result = mesh.release();
+    else
+    {
+      result = mesh.release();
+      this->Xyz.insert(this->Xyz.end(), ghostXyz.begin(), ghostXyz.end());
+    }
     // Made after the release, which gives back most of the mesh.
     this->Owner.assign(this->OwnCount, this->Rank);
     for (std::size_t k = 0; k < this->Ghosts.size(); ++k)
@@ -664,10 +707,17 @@ public:
     std::unique_ptr<fd3::Tetrahedralization> mesh;
     auto start = Clock::now();
     double seconds = 0; // meshing only: the exchange is left out
+    const bool recoverable =
+      options.tolerance == 0 && fd3::recoverable(frame, this->Xyz.data(), this->FiniteCount);
     try
     {
-      mesh = std::make_unique<fd3::Tetrahedralization>(
-        this->Xyz.data(), this->OwnCount, options, frame, this->GhostRoom());
+      mesh = std::make_unique<fd3::Tetrahedralization>(this->Xyz.data(), this->OwnCount, options, frame,
+        this->GhostRoom(), [this, recoverable] {
+          if (recoverable)
+          {
+            this->DropPoints();
+          }
+        });
     }
     catch (const std::exception& error) // out of memory, too many points
     {
@@ -733,7 +783,9 @@ public:
   std::size_t OwnCount = 0;
   std::size_t FiniteCount = 0;            ///< the first own points, the finite ones
   int PointType = VTK_DOUBLE;              ///< of the output's points
-  Coordinates Xyz;                        ///< own points, then the received ones
+  Coordinates Xyz;                        ///< own points, then the received ones (not while PointsInMesh)
+  bool PointsInMesh = false;              ///< Xyz dropped while the mesh holds the points
+  std::vector<double> NonFinite;          ///< own non-finite points, while PointsInMesh
   std::vector<fd3::Bounds> Boxes;         ///< every rank's bounds
   std::vector<vtkSmartPointer<vtkPointSet>> Ghosts; ///< received, one set per sender
   std::vector<int> GhostSenders;

@@ -15,7 +15,9 @@
  *    decides every predicate, and every tie, alike;
  * 3. each rank tetrahedralizes its points and sends every other rank the vertices of its
  *    tetrahedra whose circumsphere meets that rank's bounds (fd3::haloVertices), sent the same
- *    way; one exchange is enough (Funke and Sanders, 2017);
+ *    way; one exchange is enough (Funke and Sanders, 2017); while its mesh holds its points, a
+ *    rank frees its own copy of their coordinates and takes them back from the mesh's records
+ *    after (fd3::recoverable), so that the copy is not in the rank's peak;
  * 4. each rank adds the points it received and keeps the tetrahedra whose lexicographically
  *    smallest vertex it owns (every position is one rank's: the cuts send a point by its
  *    coordinates, so the copies of a position all go to one rank, which merges them).

@@ -130,6 +130,58 @@ TEST(AddPoints, SnapshotsLeaveTheMeshToGrowAndReleaseEndsIt)
   EXPECT_THROW(mesh.add(p.data(), 1), std::logic_error);
 }
 
+// The distributed filter frees its copy of the points once the kernel has read them, and takes
+// them back from the vertex records: far from the origin (the frame's shift), with exact
+// duplicates within a batch and across batches, and a point that is not finite.
+TEST(AddPoints, ThePointsComeBackBitForBit)
+{
+  fd3test::Points p = fd3test::uniformCube(4000, 17);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = 5e5 + std::round(p[i] * 1e4) / 100; // a 1 cm grid near 5e5, as LiDAR coordinates
+  for (std::size_t k = 0; k < 40; ++k) // duplicates: of the first batch, in it and in the second
+    std::copy_n(p.begin() + 3 * (37 * k), 3, p.begin() + 3 * (1000 + 51 * k));
+  const fd3::Frame frame = fd3test::frameOf(p);
+  p[3 * 2500 + 1] = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_NE(frame.shift[0], 0.0);
+  ASSERT_TRUE(fd3::recoverable(frame, p.data(), p.size() / 3));
+
+  int reads = 0;
+  fd3::Tetrahedralization mesh(p.data(), 2000, fd3::Options(), frame, 0, [&reads] { ++reads; });
+  EXPECT_EQ(reads, 1);
+  const std::vector<std::uint32_t> vertices = {0, 1, 999, 1999};
+  const std::vector<double> some = mesh.points(vertices);
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    EXPECT_TRUE(std::equal(some.begin() + 3 * k, some.begin() + 3 * k + 3, p.begin() + 3 * vertices[k]));
+  EXPECT_THROW(mesh.points({1000}), std::invalid_argument); // a duplicate of point 0
+  mesh.add(p.data() + 3 * 2000, p.size() / 3 - 2000);
+
+  std::vector<double> back(p.size(), -1.0);
+  const fd3::Triangulation out = mesh.release(back.data());
+  ASSERT_EQ(out.status, fd3::Status::Ok);
+  EXPECT_EQ(out.stats.duplicatesMerged, 40u);
+  for (std::size_t i = 0; i < p.size() / 3; ++i)
+  {
+    if (i == 2500)
+      EXPECT_EQ(back[3 * i + 1], -1.0); // not finite: left as it was
+    else
+      EXPECT_TRUE(std::equal(back.begin() + 3 * i, back.begin() + 3 * i + 3, p.begin() + 3 * i)) << i;
+  }
+
+  // Not recoverable: a -0 (its duplicate at +0 would come back as +0), a coordinate the frame's
+  // scale takes below the smallest double.
+  fd3test::Points q = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+  q[0] = -0.0;
+  EXPECT_FALSE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+  q = {-1e300, 0, 0, 1e300, 0, 0, 0, 1, 0, 1e-300, 0, 1};
+  EXPECT_FALSE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+
+  // A mesh that cannot start yet has not read the points into its records.
+  fd3::Tetrahedralization few(p.data(), 3, fd3::Options(), frame, 0, [&reads] { ++reads; });
+  EXPECT_EQ(few.status(), fd3::Status::TooFewPoints);
+  EXPECT_EQ(reads, 1);
+}
+
 TEST(AddPoints, PointsOutsideTheFrameAreRefused)
 {
   const fd3test::Points p = fd3test::uniformCube(500, 3);

@@ -177,6 +177,10 @@ void checkShifts(const double* xyz, std::size_t count, const double centre[3], b
 /// The frame for points within [lo, hi], shifted by the box's centre on the axes where exact (as
 /// checkShifts() found for every point) and scaled into [-1, 1].
 Frame frameFor(const double lo[3], const double hi[3], const bool exact[3]);
+/// Whether the kernel's records of `count` points in `frame` give each finite one back bit for bit
+/// (Tetrahedralization::points(), release(xyz)): every coordinate maps into the frame and back
+/// exactly (no underflow), and none is -0, which an exact duplicate at +0 would come back as.
+bool recoverable(const Frame& frame, const double* xyz, std::size_t count);
 
 /// A Delaunay tetrahedralization that points can be added to once it is built: the distributed
 /// filter inserts the ghost points it receives from other MPI ranks, round after round, into one
@@ -191,8 +195,11 @@ public:
   /// too (frameFor() over all of them). Throws as triangulate() does. `room`: about how many points
   /// will be added; the kernel's vertex records are reserved for them (address space, which costs
   /// no memory until used), so that add() does not copy the records of the first ones.
-  Tetrahedralization(
-    const double* xyz, std::size_t count, const Options& options, const Frame& frame, std::size_t room = 0);
+  /// `pointsRead`: called once the points are in the vertex records, before they are inserted (not
+  /// when the mesh cannot start yet): a caller whose points are recoverable() can free its copy
+  /// there, and have them back from points() and release(xyz), so that they are not in the peak.
+  Tetrahedralization(const double* xyz, std::size_t count, const Options& options, const Frame& frame,
+    std::size_t room = 0, const std::function<void()>& pointsRead = nullptr);
   ~Tetrahedralization();
   Tetrahedralization(const Tetrahedralization&) = delete;
   Tetrahedralization& operator=(const Tetrahedralization&) = delete;
@@ -208,6 +215,14 @@ public:
 
   /// What triangulate() does with it, without a copy: the output, which ends the mesh.
   Triangulation release();
+  /// release(), which also writes the input coordinates of every vertex and of every exact
+  /// duplicate to xyz[3 * id], as the records give them back (exactly for recoverable() points),
+  /// once the tetrahedra are compacted: the records of half their size are given back by then.
+  /// Other points (not finite, skipped for the tolerance) are left as they are.
+  Triangulation release(double* xyz);
+  /// The input coordinates of vertices `ids` (point ids, as haloVertices() gives), 3 each, as the
+  /// records give them back. Throws std::invalid_argument for an id that is not a vertex.
+  std::vector<double> points(const std::vector<std::uint32_t>& ids) const;
 
   /// haloVertices() of the mesh as it stands, without a snapshot, computed in the frame; `boxes`
   /// in the input's coordinates. Empty lists while status() is not Ok.
