@@ -471,23 +471,31 @@ Triangulation Tetrahedralization::release(double* xyz)
   return impl_->output(true, xyz);
 }
 
-std::vector<double> Tetrahedralization::points(const std::vector<std::uint32_t>& ids) const
+std::vector<std::vector<double>> Tetrahedralization::points(
+  const std::vector<std::vector<std::uint32_t>>& lists) const
 {
-  std::vector<double> out(3 * ids.size());
-  if (ids.empty())
-    return out;
+  std::vector<std::vector<double>> out(lists.size());
   if (!impl_->triangulator)
-    throw std::invalid_argument("fd3::Tetrahedralization::points: no vertex yet");
+  {
+    if (std::any_of(lists.begin(), lists.end(), [](const auto& ids) { return !ids.empty(); }))
+      throw std::invalid_argument("fd3::Tetrahedralization::points: no vertex yet");
+    return out;
+  }
   const VertexArray& vertices = impl_->triangulator->vertices();
   std::vector<VertId> vertexOf(impl_->points, kNoVertex);
   for (VertId v = 0; v < vertices.size(); ++v)
     vertexOf[vertices[v].point] = v;
-  for (std::size_t k = 0; k < ids.size(); ++k)
+  for (std::size_t l = 0; l < lists.size(); ++l)
   {
-    if (ids[k] >= vertexOf.size() || vertexOf[ids[k]] == kNoVertex)
-      throw std::invalid_argument("fd3::Tetrahedralization::points: not a vertex");
-    for (int a = 0; a < 3; ++a)
-      out[3 * k + a] = fromFrame(impl_->frame, vertices[vertexOf[ids[k]]].xyz[a], a);
+    out[l].resize(3 * lists[l].size());
+    for (std::size_t k = 0; k < lists[l].size(); ++k)
+    {
+      const std::uint32_t id = lists[l][k];
+      if (id >= vertexOf.size() || vertexOf[id] == kNoVertex)
+        throw std::invalid_argument("fd3::Tetrahedralization::points: not a vertex");
+      for (int a = 0; a < 3; ++a)
+        out[l][3 * k + a] = fromFrame(impl_->frame, vertices[vertexOf[id]].xyz[a], a);
+    }
   }
   return out;
 }

@@ -500,27 +500,30 @@ public:
         }
       }
     }
-    this->Send(halo, [&](int r) { return this->HaloPart(mesh, halo[r]); }, this->Ghosts, this->GhostSenders);
+    // Once Xyz is dropped, the coordinates come from the mesh's records, for all ranks at once.
+    const std::vector<std::vector<double>> haloXyz =
+      this->PointsInMesh ? mesh.points(halo) : std::vector<std::vector<double>>();
+    this->Send(halo, [&](int r) { return this->HaloPart(halo[r], this->PointsInMesh ? &haloXyz[r] : nullptr); },
+      this->Ghosts, this->GhostSenders);
   }
 
-  /// The own points `halo` with their point data, from the mesh's records once Xyz is dropped.
-  vtkSmartPointer<vtkPolyData> HaloPart(const fd3::Tetrahedralization& mesh, const std::vector<std::uint32_t>& halo)
+  /// The own points `halo` with their point data, at `xyz` (3 each), or from Xyz without it.
+  vtkSmartPointer<vtkPolyData> HaloPart(const std::vector<std::uint32_t>& halo, const std::vector<double>* xyz)
   {
     const std::vector<vtkIdType> ids(halo.begin(), halo.end());
-    if (!this->PointsInMesh)
+    if (!xyz)
     {
       vtkNew<vtkDoubleArray> coordinates; // Xyz's own points, not copied
       coordinates->SetNumberOfComponents(3);
       coordinates->SetArray(this->Xyz.data(), static_cast<vtkIdType>(3 * this->OwnCount), 1);
       return Subset(coordinates, this->OwnData, ids, this->PointType);
     }
-    const std::vector<double> xyz = mesh.points(halo);
     vtkNew<vtkPoints> points;
     points->SetDataType(this->PointType);
     points->SetNumberOfPoints(static_cast<vtkIdType>(halo.size()));
     for (std::size_t k = 0; k < halo.size(); ++k)
     {
-      points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
+      points->SetPoint(static_cast<vtkIdType>(k), &(*xyz)[3 * k]);
     }
     return WithPointData(points, this->OwnData, ids);
   }

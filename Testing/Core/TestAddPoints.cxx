@@ -148,11 +148,16 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
   int reads = 0;
   fd3::Tetrahedralization mesh(p.data(), 2000, fd3::Options(), frame, 0, [&reads] { ++reads; });
   EXPECT_EQ(reads, 1);
-  const std::vector<std::uint32_t> vertices = {0, 1, 999, 1999};
-  const std::vector<double> some = mesh.points(vertices);
-  for (std::size_t k = 0; k < vertices.size(); ++k)
-    EXPECT_TRUE(std::equal(some.begin() + 3 * k, some.begin() + 3 * k + 3, p.begin() + 3 * vertices[k]));
-  EXPECT_THROW(mesh.points({1000}), std::invalid_argument); // a duplicate of point 0
+  const std::vector<std::vector<std::uint32_t>> vertices = {{0, 1, 999}, {}, {1999, 0}};
+  const std::vector<std::vector<double>> some = mesh.points(vertices);
+  ASSERT_EQ(some.size(), vertices.size());
+  for (std::size_t l = 0; l < vertices.size(); ++l)
+  {
+    ASSERT_EQ(some[l].size(), 3 * vertices[l].size());
+    for (std::size_t k = 0; k < vertices[l].size(); ++k)
+      EXPECT_TRUE(std::equal(&some[l][3 * k], &some[l][3 * k + 3], &p[3 * vertices[l][k]]));
+  }
+  EXPECT_THROW(mesh.points({{1000}}), std::invalid_argument); // a duplicate of point 0
   mesh.add(p.data() + 3 * 2000, p.size() / 3 - 2000);
 
   std::vector<double> back(p.size(), -1.0);

@@ -220,9 +220,10 @@ public:
   /// once the tetrahedra are compacted: the records of half their size are given back by then.
   /// Other points (not finite, skipped for the tolerance) are left as they are.
   Triangulation release(double* xyz);
-  /// The input coordinates of vertices `ids` (point ids, as haloVertices() gives), 3 each, as the
-  /// records give them back. Throws std::invalid_argument for an id that is not a vertex.
-  std::vector<double> points(const std::vector<std::uint32_t>& ids) const;
+  /// For each list of vertices (point ids, as haloVertices() gives), their input coordinates, 3
+  /// each, as the records give them back. Throws std::invalid_argument for an id that is not a
+  /// vertex.
+  std::vector<std::vector<double>> points(const std::vector<std::vector<std::uint32_t>>& lists) const;
 
   /// haloVertices() of the mesh as it stands, without a snapshot, computed in the frame; `boxes`
   /// in the input's coordinates. Empty lists while status() is not Ok.
