@@ -87,7 +87,12 @@ bool Inserter::digCavity(TetId base, VertId v)
         tets_.setFlags(n, kNotInCavity);
         cavity_.rejected.push_back(n);
       }
-      cavity_.boundary.push_back({t, f});
+      // Field by field in place: push_back({t, f}) spilled t and f to the stack as two 4-byte
+      // stores and reloaded them as one 8-byte value, which stalls store forwarding (a fifth of
+      // this function's samples on the 1M cube).
+      BoundaryFacet& facet = cavity_.boundary.emplace_back();
+      facet.inner = t;
+      facet.face = f;
     }
   }
   stats_.cavityTetrahedra += tets.size();
