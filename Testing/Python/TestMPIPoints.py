@@ -1,9 +1,10 @@
 """pvbatch under MPI: the output's own points are the input points bit for bit, non-finite ones
 included. A rank drops its copy of the points while its mesh holds them and takes them back from
 the mesh's records afterwards; a rank with a -0 coordinate (which the records would give back as
-+0) keeps its copy instead. Both kinds of rank run here.
++0) keeps its copy instead, as every rank does with a Tolerance above 0 (the points skipped for it
+are not in the records). Both kinds of rank run here.
 
-usage: mpiexec -np N pvbatch --mpi TestMPIPoints.py <plugin .so>
+usage: mpiexec -np N pvbatch --mpi TestMPIPoints.py <plugin .so> [tolerance]
 (Names here avoid those that the programmable source defines in __main__: output, source.)
 """
 import struct
@@ -21,7 +22,8 @@ from vtkmodules.vtkCommonCore import vtkPoints
 rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
 rng = np.random.default_rng(3 + rank)
 p = 5e5 + np.round(rng.random((2000, 3)) * 1e4) / 100  # far from the origin, on a 1 cm grid
-p = np.concatenate([p, [[np.nan, 5e5, 5e5], [5e5, np.inf, 5e5], [-np.inf, np.nan, 5e5 + rank]]])
+p = np.concatenate([p, p[:5] + 0.01,  # 1 cm from a point: skipped for a Tolerance of 1e-7
+                    [[np.nan, 5e5, 5e5], [5e5, np.inf, 5e5], [-np.inf, np.nan, 5e5 + rank]]])
 if rank == 1:
     p = np.concatenate([p, [[-0.0, 5e5, 5e5]]])
 points = vtkPoints()
@@ -29,7 +31,8 @@ points.SetData(dsa.numpyTovtkDataArray(np.ascontiguousarray(p), "Points"))
 self.GetOutput().SetPoints(points)
 """
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
-delaunay = FastDelaunay3D(Input=cloud)
+tolerance = float(sys.argv[2]) if len(sys.argv) > 2 else 0.0
+delaunay = FastDelaunay3D(Input=cloud, Tolerance=tolerance)
 delaunay.UpdatePipeline()
 
 
@@ -55,4 +58,4 @@ if ranks < 2:
     sys.exit("TestMPIPoints: needs 2 ranks or more")
 if bits(own) != bits(given):
     sys.exit("TestMPIPoints: the output's own points (%d) are not the input's (%d)" % (len(own), len(given)))
-print("TestMPIPoints: OK, %d points on %d ranks" % (len(own), ranks))
+print("TestMPIPoints: OK, %d points on %d ranks, tolerance %g" % (len(own), ranks, tolerance))
