@@ -11,7 +11,6 @@
 #include "vtkDIYUtilities.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataSetAttributesFieldList.h"
-#include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformationVector.h"
@@ -500,32 +499,38 @@ public:
         }
       }
     }
-    // Once Xyz is dropped, the coordinates come from the mesh's records, for all ranks at once.
-    const std::vector<std::vector<double>> haloXyz =
+    // Their coordinates from Xyz, made as each part is sent (with no tetrahedron, a rank sends all
+    // its points to every other), or from the mesh's records once Xyz is dropped, all at once.
+    const std::vector<std::vector<double>> fromMesh =
       this->PointsInMesh ? mesh.points(halo) : std::vector<std::vector<double>>();
-    this->Send(halo, [&](int r) { return this->HaloPart(halo[r], this->PointsInMesh ? &haloXyz[r] : nullptr); },
+    this->Send(halo,
+      [&](int r) { return this->HaloPart(halo[r], this->PointsInMesh ? fromMesh[r] : this->PointsOf(halo[r])); },
       this->Ghosts, this->GhostSenders);
   }
 
-  /// The own points `halo` with their point data, at `xyz` (3 each), or from Xyz without it.
-  vtkSmartPointer<vtkPolyData> HaloPart(const std::vector<std::uint32_t>& halo, const std::vector<double>* xyz)
+  /// The coordinates of own points `ids` in Xyz, 3 each.
+  std::vector<double> PointsOf(const std::vector<std::uint32_t>& ids) const
   {
-    const std::vector<vtkIdType> ids(halo.begin(), halo.end());
-    if (!xyz)
+    std::vector<double> xyz;
+    xyz.reserve(3 * ids.size());
+    for (const std::uint32_t id : ids)
     {
-      vtkNew<vtkDoubleArray> coordinates; // Xyz's own points, not copied
-      coordinates->SetNumberOfComponents(3);
-      coordinates->SetArray(this->Xyz.data(), static_cast<vtkIdType>(3 * this->OwnCount), 1);
-      return Subset(coordinates, this->OwnData, ids, this->PointType);
+      xyz.insert(xyz.end(), &this->Xyz[3 * std::size_t(id)], &this->Xyz[3 * std::size_t(id) + 3]);
     }
+    return xyz;
+  }
+
+  /// The own points `halo`, at `xyz` (3 each), with their point data.
+  vtkSmartPointer<vtkPolyData> HaloPart(const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz)
+  {
     vtkNew<vtkPoints> points;
     points->SetDataType(this->PointType);
     points->SetNumberOfPoints(static_cast<vtkIdType>(halo.size()));
     for (std::size_t k = 0; k < halo.size(); ++k)
     {
-      points->SetPoint(static_cast<vtkIdType>(k), &(*xyz)[3 * k]);
+      points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
     }
-    return WithPointData(points, this->OwnData, ids);
+    return WithPointData(points, this->OwnData, std::vector<vtkIdType>(halo.begin(), halo.end()));
   }
 
   /// Frees Xyz once the mesh has read the points into its records, which give them back exactly
