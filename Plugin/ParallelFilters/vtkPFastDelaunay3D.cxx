@@ -37,6 +37,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -49,17 +50,22 @@ namespace
 {
 constexpr const char* kInputIds = "GlobalIds";
 
-/// `points`, one for each of `ids`, with the point data of `ids`.
-vtkSmartPointer<vtkPolyData> WithPointData(vtkPoints* points, vtkPointData* data, const std::vector<vtkIdType>& ids)
+/// The point ids `ids` as a vtkIdList.
+template <typename Id>
+vtkSmartPointer<vtkIdList> IdList(const std::vector<Id>& ids)
 {
-  vtkNew<vtkIdList> from, to;
-  from->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
-  to->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
-  for (std::size_t k = 0; k < ids.size(); ++k)
-  {
-    from->SetId(static_cast<vtkIdType>(k), ids[k]);
-    to->SetId(static_cast<vtkIdType>(k), static_cast<vtkIdType>(k));
-  }
+  auto list = vtkSmartPointer<vtkIdList>::New();
+  list->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::copy(ids.begin(), ids.end(), list->begin());
+  return list;
+}
+
+/// `points`, one for each of `from`, with the point data of `from`.
+vtkSmartPointer<vtkPolyData> WithPointData(vtkPoints* points, vtkPointData* data, vtkIdList* from)
+{
+  vtkNew<vtkIdList> to;
+  to->SetNumberOfIds(from->GetNumberOfIds());
+  std::iota(to->begin(), to->end(), vtkIdType(0));
   auto subset = vtkSmartPointer<vtkPolyData>::New();
   subset->SetPoints(points);
   subset->GetPointData()->CopyAllocate(data, from->GetNumberOfIds());
@@ -71,14 +77,12 @@ vtkSmartPointer<vtkPolyData> WithPointData(vtkPoints* points, vtkPointData* data
 vtkSmartPointer<vtkPolyData> Subset(
   vtkDataArray* coordinates, vtkPointData* data, const std::vector<vtkIdType>& ids, int type)
 {
-  vtkNew<vtkIdList> from;
-  from->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
-  std::copy(ids.begin(), ids.end(), from->begin());
+  vtkSmartPointer<vtkIdList> from = IdList(ids);
   vtkNew<vtkPoints> points;
   points->SetDataType(type);
   points->SetNumberOfPoints(from->GetNumberOfIds());
   coordinates->GetTuples(from, points->GetData());
-  return WithPointData(points, data, ids);
+  return WithPointData(points, data, from);
 }
 
 vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkIdType>& ids)
@@ -530,7 +534,7 @@ public:
     {
       points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
     }
-    return WithPointData(points, this->OwnData, std::vector<vtkIdType>(halo.begin(), halo.end()));
+    return WithPointData(points, this->OwnData, IdList(halo));
   }
 
   /// Frees Xyz once the mesh has read the points into its records, which give them back exactly
@@ -558,6 +562,8 @@ public:
       this->Xyz.resize(3 * this->OwnCount + ghostXyz.size()); // not filled: no page is touched yet
       result = mesh.release(this->Xyz.data());
       std::copy(this->NonFinite.begin(), this->NonFinite.end(), this->Xyz.begin() + 3 * this->FiniteCount);
+      // The release wrote the ghosts too, but they are other ranks' points, which this rank did
+      // not check with fd3::recoverable().
       std::copy(ghostXyz.begin(), ghostXyz.end(), this->Xyz.begin() + 3 * this->OwnCount);
     }
     else
@@ -720,12 +726,7 @@ public:
     try
     {
       mesh = std::make_unique<fd3::Tetrahedralization>(this->Xyz.data(), this->OwnCount, options, frame,
-        this->GhostRoom(), [this, recoverable] {
-          if (recoverable)
-          {
-            this->DropPoints();
-          }
-        });
+        this->GhostRoom(), recoverable ? std::function<void()>([this] { this->DropPoints(); }) : nullptr);
     }
     catch (const std::exception& error) // out of memory, too many points
     {
