@@ -7,6 +7,7 @@
 
 #include "Geometry.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -29,9 +30,14 @@ public:
     cells_[cellIndex(p)].store(vertex, std::memory_order_relaxed);
   }
 
-  /// The vertex remembered by the first non-empty cell met when searching layer by layer outwards
-  /// from p's cell, or kEmpty when the first `maxLayers` layers are all empty.
-  std::uint32_t nearestInserted(const double* p, int maxLayers) const;
+  /// The vertex remembered by the first cell met when searching layer by layer outwards from p's
+  /// cell whose vertex passes `accept`, or kEmpty when the first `maxLayers` layers have none.
+  template <typename Accept>
+  std::uint32_t nearestInserted(const double* p, int maxLayers, Accept accept) const;
+  std::uint32_t nearestInserted(const double* p, int maxLayers) const
+  {
+    return nearestInserted(p, maxLayers, [](std::uint32_t) { return true; });
+  }
 
 private:
   void cellCoordinates(const double* p, int ijk[3]) const;
@@ -45,8 +51,10 @@ private:
   {
     return (std::size_t(k) * dims_[1] + j) * dims_[0] + i;
   }
-  std::uint32_t scanRow(int i0, int i1, int j, int k) const;
-  std::uint32_t scanLayer(const int c[3], int n) const;
+  template <typename Accept>
+  std::uint32_t scanRow(int i0, int i1, int j, int k, Accept& accept) const;
+  template <typename Accept>
+  std::uint32_t scanLayer(const int c[3], int n, Accept& accept) const;
   std::uint32_t cell(std::size_t i) const { return cells_[i].load(std::memory_order_relaxed); }
 
   std::unique_ptr<std::atomic<std::uint32_t>[]> cells_;
@@ -55,6 +63,57 @@ private:
   double inverseSize_[3] = {0, 0, 0};
   int dims_[3] = {0, 0, 0};
 };
+
+template <typename Accept>
+std::uint32_t BackgroundGrid::scanRow(int i0, int i1, int j, int k, Accept& accept) const
+{
+  if (j < 0 || j >= dims_[1] || k < 0 || k >= dims_[2])
+    return kEmpty;
+  i0 = std::max(i0, 0);
+  i1 = std::min(i1, dims_[0] - 1);
+  const std::size_t row = index(0, j, k);
+  for (int i = i0; i <= i1; ++i)
+    if (const std::uint32_t v = cell(row + i); v != kEmpty && accept(v))
+      return v;
+  return kEmpty;
+}
+
+// Layer n around cell c: the top and bottom squares (k = k0 +- n) and, between them, the open
+// cylinder of the square rings at Chebyshev distance n (the paper's Fig. 10).
+template <typename Accept>
+std::uint32_t BackgroundGrid::scanLayer(const int c[3], int n, Accept& accept) const
+{
+  const int i0 = c[0] - n, i1 = c[0] + n;
+  for (int k : {c[2] - n, c[2] + n})
+    for (int j = c[1] - n; j <= c[1] + n; ++j)
+      if (const std::uint32_t v = scanRow(i0, i1, j, k, accept); v != kEmpty)
+        return v;
+  for (int k = c[2] - n + 1; k <= c[2] + n - 1; ++k)
+  {
+    for (int j : {c[1] - n, c[1] + n})
+      if (const std::uint32_t v = scanRow(i0, i1, j, k, accept); v != kEmpty)
+        return v;
+    for (int j = c[1] - n + 1; j <= c[1] + n - 1; ++j)
+      for (int i : {i0, i1})
+        if (const std::uint32_t v = scanRow(i, i, j, k, accept); v != kEmpty)
+          return v;
+  }
+  return kEmpty;
+}
+
+template <typename Accept>
+std::uint32_t BackgroundGrid::nearestInserted(const double* p, int maxLayers, Accept accept) const
+{
+  int c[3];
+  cellCoordinates(p, c);
+  if (const std::uint32_t v = cell(index(c[0], c[1], c[2])); v != kEmpty && accept(v))
+    return v;
+  const int widest = std::max({dims_[0], dims_[1], dims_[2]});
+  for (int n = 1; n <= maxLayers && n < widest; ++n)
+    if (const std::uint32_t v = scanLayer(c, n, accept); v != kEmpty)
+      return v;
+  return kEmpty;
+}
 
 } // namespace fd3
 

@@ -117,6 +117,7 @@ private:
 
   // Locate.cxx
   TetId startTet(VertId v) const;
+  TetId regionStart(VertId v) const;
   TetId walk(TetId from, VertId v);
   TetId locate(VertId v);
   /// The vertex of base (which contains v's point) that v repeats, or kNoVertex.

@@ -52,6 +52,22 @@ TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
   }
 }
 
+// A thread's share of a round, in the whole set's curve order, leaves its region and comes back in
+// elsewhere; on a surface sample the curve also jumps across empty space. Walks from the thread's
+// last tetrahedron alone then crossed the region: a torus of 100k points took up to 2,583 steps on
+// 2 threads, 70 on one. Here (40k points) it took up to 365 and 668 steps on 2 and 4 threads, now
+// 55 and 104 (a start from the grid's vertex of the region); issue 10 bounds every walk by 500.
+TEST(Threads, WalksInARegionStartNearThePoint)
+{
+  const fd3test::Points p = fd3test::torusSurface(kPoints, 4);
+  for (int threads : {2, 4})
+  {
+    const fd3::Triangulation parallel = run(p, threads);
+    ASSERT_EQ(parallel.status, fd3::Status::Ok);
+    EXPECT_LE(parallel.stats.maxWalkSteps, 500u) << threads << " threads";
+  }
+}
+
 // Points on a cylinder all lie on its hull, whose faces run its whole length: nearly every
 // insertion reaches outside any region. Passes that put off nearly all their points must stop
 // being tried (they put off each point twice before: 78,488 times for 40,000 points). The first
