@@ -27,15 +27,15 @@ struct Cavity
   std::vector<BoundaryFacet> boundary;
   std::vector<TetId> created;  ///< created[i] is the new tetrahedron on boundary[i]
 
-  // The edge table of FillCavity.cxx. Boundary vertices get local numbers 0..count-1 (kept in the
-  // triangulator's per-vertex localNumber array during the fill); edgeFace[a * width + b] is the
-  // new face on the directed boundary edge a->b, width being the smallest power of two >= count.
-  // Every entry read was written in the same insertion, so the table is never cleared.
+  // The edge table of FillCavity.cxx. The new tetrahedra's vertices get local numbers
+  // 0..count-1 (kept in their Vertex::tet during the fill); edgeFace[a * width + b] is the new
+  // face on the directed boundary edge a->b, width being a power of two >= count, known from the
+  // number of facets. Every entry read was written in the same insertion, so the table is never
+  // cleared.
   static constexpr std::uint32_t kMaxLocalVertices = 512;
   std::vector<VertId> localVertex;           ///< the vertex of each local number
   std::vector<TetId> localTet;               ///< a new tetrahedron of each local number
   std::vector<FaceCode> edgeFace;            ///< grown on demand, up to kMaxLocalVertices^2
-  std::vector<std::uint16_t> localNumbers;   ///< 4 per new tetrahedron
   std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces; ///< face, entry of its reversed edge
 
   void clear()

@@ -58,10 +58,58 @@ bool Inserter::fillCavity(VertId v)
     undoCavity();
     return false;
   }
-  // Pass 1: create the tetrahedra and link them across the cavity's boundary. The new tetrahedron
-  // of facet (t, f) is t with vertex f replaced by v, which keeps the orientation positive because
-  // v sees the facet from t's side. The deleted t's slot for face f is pointed at the new
-  // tetrahedron, which is how the rotation recognizes a boundary facet and finds its tetrahedron.
+  if (!createAndLink(v))
+  {
+    // More boundary vertices than the edge table takes: the new tetrahedra exist and are linked
+    // across the boundary; each interior face is linked by rotating about its boundary edge.
+    for (std::size_t i = 0; i < created.size(); ++i)
+    {
+      VertId nv[4];
+      tets_.vertices(created[i], nv);
+      for (int k = 0; k < 4; ++k)
+        if (nv[k] != kInfinite)
+          mesh_.vertices[nv[k]].tet = created[i];
+      for (int f = 0; f < 4; ++f)
+        if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
+          linkAroundEdge(i, f);
+    }
+  }
+  for (TetId t : cavity_.tets)
+    pool_.give(tets_, t);
+  for (TetId t : cavity_.rejected)
+    tets_.setFlags(t, 0);
+  regionStart_ = created.back();
+  return true;
+}
+
+// One pass over the boundary facets. The new tetrahedron of facet (t, f) is t with vertex f
+// replaced by v, which keeps the orientation positive because v sees the facet from t's side; it is
+// linked to the tetrahedron across the facet, and the deleted t's slot for face f is pointed at it
+// (how the rotation of linkAroundEdge recognizes a boundary facet). Its three faces through v are
+// recorded at their directed boundary edges a->b and, once every facet is done, linked to the face
+// recorded at b->a. Edges are indexed by local numbers of the boundary's vertices, given on first
+// sight through localNumberSlot() without a branch (a new vertex takes number `count`, which only
+// advances then); v takes one too, which costs less than a branch on which vertex it is. The
+// boundary is a triangulated sphere, so its vertices number F/2 + 2 for F facets (Euler), which
+// sizes the table before the pass. Returns false, with every new tetrahedron created and linked
+// across the boundary but not to each other, when the table is too small.
+bool Inserter::createAndLink(VertId v)
+{
+  const std::vector<TetId>& created = cavity_.created;
+  std::vector<VertId>& vertexOf = cavity_.localVertex;
+  std::vector<TetId>& firstTet = cavity_.localTet;
+  const std::uint32_t expected = static_cast<std::uint32_t>(created.size() / 2 + 3); // with v
+  std::uint32_t width = 16;
+  while (width < expected)
+    width *= 2;
+  const bool fits = expected <= Cavity::kMaxLocalVertices;
+  if (fits && cavity_.edgeFace.size() < std::size_t(width) * width)
+    cavity_.edgeFace.resize(std::size_t(width) * width);
+  vertexOf.resize(width + 4);
+  firstTet.resize(width + 4);
+  cavity_.interiorFaces.resize(3 * created.size());
+  std::uint32_t count = 0;
+  bool linked = fits;
   for (std::size_t i = 0; i < created.size(); ++i)
   {
     const BoundaryFacet b = cavity_.boundary[i];
@@ -80,87 +128,38 @@ bool Inserter::fillCavity(VertId v)
     tets_.create(n, nv);
     tets_.link(faceCode(n, b.face), tets_.neighbor(b.inner, b.face));
     tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
-  }
-  // Pass 2: link the new tetrahedra to each other (which also points each vertex at one).
-  if (!linkByEdgeTable())
-  {
-    for (std::size_t i = 0; i < created.size(); ++i)
-    {
-      VertId nv[4];
-      tets_.vertices(created[i], nv);
-      for (int k = 0; k < 4; ++k)
-        if (nv[k] != kInfinite)
-          mesh_.vertices[nv[k]].tet = created[i];
-      for (int f = 0; f < 4; ++f)
-        if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
-          linkAroundEdge(i, f);
-    }
-  }
-
-  for (TetId t : cavity_.tets)
-    pool_.give(tets_, t);
-  for (TetId t : cavity_.rejected)
-    tets_.setFlags(t, 0);
-  regionStart_ = created.back();
-  return true;
-}
-
-// Every new face is recorded at its directed edge a->b and linked to the face recorded at b->a.
-// Edges are indexed by local numbers of the boundary's vertices, given on first sight through
-// localNumberSlot() without a branch (a new vertex takes number `count`, which only advances then).
-// Returns false, changing nothing, when the boundary has more than kMaxLocalVertices vertices.
-bool Inserter::linkByEdgeTable()
-{
-  const std::vector<TetId>& created = cavity_.created;
-  std::vector<std::uint16_t>& local = cavity_.localNumbers;
-  std::vector<VertId>& vertexOf = cavity_.localVertex;
-  std::vector<TetId>& firstTet = cavity_.localTet;
-  local.resize(4 * created.size());
-  vertexOf.resize(Cavity::kMaxLocalVertices + 4);
-  firstTet.resize(Cavity::kMaxLocalVertices + 4);
-  std::uint32_t count = 0;
-  bool fits = true;
-  for (std::size_t i = 0; i < created.size() && fits; ++i)
-  {
-    VertId nv[4];
-    tets_.vertices(created[i], nv);
+    if (!linked)
+      continue;
+    std::uint32_t local[4];
     for (int k = 0; k < 4; ++k)
     {
       const VertId u = nv[k];
       TetId& entry = localNumberSlot(u);
       const bool isNew = (entry & kHighHalf) != kLocalTag;
-      const auto number = static_cast<std::uint16_t>(isNew ? count : entry);
-      entry = kLocalTag | number;
-      local[4 * i + k] = number;
+      local[k] = isNew ? count : (entry & 0xFFFFu);
+      entry = kLocalTag | local[k];
       vertexOf[count] = u;
-      firstTet[count] = created[i];
+      firstTet[count] = n;
       count += isNew;
     }
-    fits = count <= Cavity::kMaxLocalVertices;
-  }
-  // The width of the table is a power of two >= count, so small cavities use a small corner of it.
-  std::uint32_t width = 16;
-  while (width < count)
-    width *= 2;
-  if (fits && cavity_.edgeFace.size() < std::size_t(width) * width)
-    cavity_.edgeFace.resize(std::size_t(width) * width);
-  cavity_.interiorFaces.resize(3 * created.size());
-  for (std::size_t i = 0; i < created.size() && fits; ++i)
-  {
-    const int g = cavity_.boundary[i].face;
+    if (count > width)
+    {
+      linked = false; // not a sphere after all: the numbers would leave the table
+      continue;
+    }
     for (int j = 0; j < 3; ++j)
     {
-      const InteriorFace& face = kInterior[g][j];
-      const std::uint32_t a = local[4 * i + face.a], b = local[4 * i + face.b];
-      cavity_.edgeFace[a * width + b] = faceCode(created[i], face.face);
-      cavity_.interiorFaces[3 * i + j] = {faceCode(created[i], face.face), b * width + a};
+      const InteriorFace& face = kInterior[b.face][j];
+      const std::uint32_t from = local[face.a], to = local[face.b];
+      cavity_.edgeFace[from * width + to] = faceCode(n, face.face);
+      cavity_.interiorFaces[3 * i + j] = {faceCode(n, face.face), to * width + from};
     }
   }
   // Each vertex gets one of its new tetrahedra in place of its number.
   for (std::uint32_t k = 0; k < count; ++k)
     localNumberSlot(vertexOf[k]) = firstTet[k];
   ghostTet_ = kNoTet;
-  if (!fits)
+  if (!linked)
     return false;
   for (const auto& [face, reversed] : cavity_.interiorFaces)
     tets_.setNeighbor(face, cavity_.edgeFace[reversed]);

@@ -143,7 +143,7 @@ private:
   bool keepEnclosedVertex(VertId v);
   // FillCavity.cxx
   bool fillCavity(VertId v);
-  bool linkByEdgeTable();
+  bool createAndLink(VertId v);
   void linkAroundEdge(std::size_t created, int face);
 
   std::uint32_t nextRandom();
