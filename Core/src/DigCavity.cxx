@@ -14,19 +14,17 @@ bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
   return predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v)) > 0;
 }
 
-bool Inserter::inConflict(TetId t, VertId v)
+// A ghost's circumsphere is the open half-space beyond its hull face. A point on the face's plane
+// takes the verdict of the finite tetrahedron behind the face, so that the two never disagree and
+// no flat tetrahedron is created.
+bool Inserter::ghostInConflict(TetId ghost, VertId v)
 {
   VertId tv[4];
-  tets_.vertices(t, tv);
-  if (tv[3] != kInfinite)
-    return inSphereSoS(tv, v) > 0;
-  // A ghost's circumsphere is the open half-space beyond its hull face. A point on the face's
-  // plane takes the verdict of the finite tetrahedron behind the face, so that the two never
-  // disagree and no flat tetrahedron is created.
+  tets_.vertices(ghost, tv);
   const int side = predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v));
   if (side != 0)
     return side > 0;
-  tets_.vertices(tetOf(tets_.neighbor(t, 3)), tv);
+  tets_.vertices(tetOf(tets_.neighbor(ghost, 3)), tv);
   return inSphereSoS(tv, v) > 0;
 }
 

@@ -130,7 +130,16 @@ private:
     return predicates_.inSphereSoS(p, v[e].xyz);
   }
   bool isBeyondHullFace(TetId ghost, VertId v);
-  bool inConflict(TetId t, VertId v);
+  /// Whether v lies in t's circumsphere. Inline: it runs tens of times per insertion, and as a
+  /// call it cost 3-4% of the time on 1M uniform points (best of 5, twice: 3.30 -> 3.16 s and
+  /// 3.21 -> 3.11 s), 2-3% on the torus and the noisy shell.
+  bool inConflict(TetId t, VertId v)
+  {
+    VertId tv[4];
+    tets_.vertices(t, tv);
+    return tv[3] != kInfinite ? inSphereSoS(tv, v) > 0 : ghostInConflict(t, v);
+  }
+  bool ghostInConflict(TetId ghost, VertId v);
   void undoCavity();
   bool digCavity(TetId base, VertId v);
   // CorrectCavity.cxx
