@@ -84,10 +84,8 @@ void Inserter::unrestricted()
   restricted_ = false;
 }
 
-bool Inserter::isOwned(TetId t) const
+bool Inserter::isInRegion(TetId t) const
 {
-  if (!restricted_)
-    return true;
   VertId tv[4];
   tets_.vertices(t, tv);
   return inRegion(tv[0]) && inRegion(tv[1]) && inRegion(tv[2]) && inRegion(tv[3]);
