@@ -19,6 +19,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace fd3
 {
@@ -161,14 +164,16 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
   return orient3dExact(a, b, c, d);
 }
 
-inline int Predicates::inSphereFiltered(
-  const double* a, const double* b, const double* c, const double* d, const double* e) const
+/// det[(x-e, |x-e|^2) for x = a,b,c,d]: positive means inside for the negative orientation, i.e.
+/// outside for VTK's positive one. In the order of operations that the error bounds of
+/// inSphereFiltered() assume.
+inline double inSphereDeterminantPlain(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
   const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
   const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
   const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
-
   const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey, cd = cex * dey - dex * cey;
   const double da = dex * aey - aex * dey, ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
   const double abc = aez * bc - bez * ac + cez * ab;
@@ -179,9 +184,56 @@ inline int Predicates::inSphereFiltered(
   const double blift = bex * bex + bey * bey + bez * bez;
   const double clift = cex * cex + cey * cey + cez * cez;
   const double dlift = dex * dex + dey * dey + dez * dez;
-  // det[(x-e, |x-e|^2) for x = a,b,c,d]; positive means inside for the negative orientation,
-  // i.e. outside for VTK's positive one.
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  return (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+}
+
+/// inSphereDeterminantPlain(), with SSE2 (every x86-64) two lanes at once: each lane does the very
+/// operations of the plain form, so both give the same double (TestPredicates checks it). 4% of
+/// the time on 1M uniform points (best of 5: 3.20 -> 3.08 s).
+inline double inSphereDeterminant(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+#if defined(__SSE2__)
+  const __m128d exy = _mm_loadu_pd(e), ez = _mm_set1_pd(e[2]);
+  const __m128d axy = _mm_sub_pd(_mm_loadu_pd(a), exy), bxy = _mm_sub_pd(_mm_loadu_pd(b), exy);
+  const __m128d cxy = _mm_sub_pd(_mm_loadu_pd(c), exy), dxy = _mm_sub_pd(_mm_loadu_pd(d), exy);
+  const __m128d zab = _mm_sub_pd(_mm_set_pd(b[2], a[2]), ez); // (aez, bez)
+  const __m128d zcd = _mm_sub_pd(_mm_set_pd(d[2], c[2]), ez); // (cez, dez)
+  const __m128d zbc = _mm_shuffle_pd(zab, zcd, 1), zda = _mm_shuffle_pd(zcd, zab, 1);
+  const __m128d xac = _mm_unpacklo_pd(axy, cxy), yac = _mm_unpackhi_pd(axy, cxy);
+  const __m128d xbd = _mm_unpacklo_pd(bxy, dxy), ybd = _mm_unpackhi_pd(bxy, dxy);
+  const __m128d xab = _mm_unpacklo_pd(axy, bxy), yab = _mm_unpackhi_pd(axy, bxy);
+  const __m128d xcd = _mm_unpacklo_pd(cxy, dxy), ycd = _mm_unpackhi_pd(cxy, dxy);
+  const __m128d xca = _mm_shuffle_pd(xac, xac, 1), yca = _mm_shuffle_pd(yac, yac, 1);
+  // The 2x2 minors in pairs: (ab, cd), (bc, da), (ac, bd).
+  const __m128d abcd = _mm_sub_pd(_mm_mul_pd(xac, ybd), _mm_mul_pd(xbd, yac));
+  const __m128d bcda = _mm_sub_pd(_mm_mul_pd(xbd, yca), _mm_mul_pd(xca, ybd));
+  const __m128d acbd = _mm_sub_pd(_mm_mul_pd(xab, ycd), _mm_mul_pd(xcd, yab));
+  // (abc, bcd) and (cda, dab).
+  const __m128d t1 = _mm_add_pd(
+    _mm_sub_pd(_mm_mul_pd(zab, _mm_move_sd(abcd, bcda)), _mm_mul_pd(zbc, acbd)),
+    _mm_mul_pd(zcd, _mm_unpacklo_pd(abcd, bcda)));
+  const __m128d t2 = _mm_add_pd(
+    _mm_add_pd(_mm_mul_pd(zcd, _mm_shuffle_pd(bcda, abcd, 1)), _mm_mul_pd(zda, acbd)),
+    _mm_mul_pd(zab, _mm_unpackhi_pd(abcd, bcda)));
+  // (alift, blift) and (clift, dlift).
+  const __m128d lab =
+    _mm_add_pd(_mm_add_pd(_mm_mul_pd(xab, xab), _mm_mul_pd(yab, yab)), _mm_mul_pd(zab, zab));
+  const __m128d lcd =
+    _mm_add_pd(_mm_add_pd(_mm_mul_pd(xcd, xcd), _mm_mul_pd(ycd, ycd)), _mm_mul_pd(zcd, zcd));
+  // (dlift * abc - clift * dab, blift * cda - alift * bcd), then the sum of the two.
+  const __m128d halves = _mm_sub_pd(_mm_mul_pd(_mm_unpackhi_pd(lcd, lab), _mm_unpacklo_pd(t1, t2)),
+    _mm_mul_pd(_mm_unpacklo_pd(lcd, lab), _mm_shuffle_pd(t2, t1, 3)));
+  return _mm_cvtsd_f64(_mm_add_sd(halves, _mm_unpackhi_pd(halves, halves)));
+#else
+  return inSphereDeterminantPlain(a, b, c, d, e);
+#endif
+}
+
+inline int Predicates::inSphereFiltered(
+  const double* a, const double* b, const double* c, const double* d, const double* e) const
+{
+  const double det = inSphereDeterminant(a, b, c, d, e);
   if (det > tuning_.inSphereStatic || -det > tuning_.inSphereStatic)
     return -filter::signOf(det);
   if (tuning_.floatExactInSphere)
@@ -190,11 +242,12 @@ inline int Predicates::inSphereFiltered(
   // Semi-static filter: each lift is at most 3 m^2 (m the largest difference) and each 3x3
   // permanent at most 6 mx my mz, so the permanent is at most 72 m^2 mx my mz and Shewchuk's bound
   // (16 + 224 eps) eps * permanent is below filter::kInSphereSemiStatic * m^2 * mx * my * mz.
-  const double mx = std::max({std::fabs(aex), std::fabs(bex), std::fabs(cex), std::fabs(dex)});
-  const double my = std::max({std::fabs(aey), std::fabs(bey), std::fabs(cey), std::fabs(dey)});
-  const double mz = std::max({std::fabs(aez), std::fabs(bez), std::fabs(cez), std::fabs(dez)});
-  const double m = std::max({mx, my, mz});
-  const double scale = m * m * mx * my * mz;
+  double largest[3];
+  for (int k = 0; k < 3; ++k)
+    largest[k] = std::max({std::fabs(a[k] - e[k]), std::fabs(b[k] - e[k]), std::fabs(c[k] - e[k]),
+      std::fabs(d[k] - e[k])});
+  const double m = std::max({largest[0], largest[1], largest[2]});
+  const double scale = m * m * largest[0] * largest[1] * largest[2];
   const double bound = filter::kInSphereSemiStatic * scale;
   if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
     return -filter::signOf(det);

@@ -7,6 +7,7 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -64,6 +65,40 @@ int insideByCircumcentre(const double* a, const double* b, const double* c, cons
     d2 += (centre[k] - e[k]) * (centre[k] - e[k]);
   }
   return sgn(r2 - d2);
+}
+
+// The filter's error bounds hold for one order of operations; the SSE2 form must give the plain
+// form's double bit for bit, on spread and on nearly cospherical points, at every scale.
+TEST(Predicates, InSphereDeterminantLanesGiveThePlainDouble)
+{
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t compared = 0;
+  for (double scale : {1.0, 1e-3, 1e-9, 3e5})
+    for (int trial = 0; trial < 20000; ++trial)
+    {
+      double p[5][3];
+      for (auto& q : p)
+        for (double& x : q)
+          x = scale * unit(rng);
+      if (trial % 2 == 1) // e on the circumsphere of a regular-ish tetrahedron, up to rounding
+      {
+        const double r = scale * 0.5;
+        for (int i = 0; i < 5; ++i)
+        {
+          const double z = unit(rng), phi = 3.14159 * unit(rng), s = std::sqrt(1 - z * z);
+          p[i][0] = r * s * std::cos(phi);
+          p[i][1] = r * s * std::sin(phi);
+          p[i][2] = r * z;
+        }
+      }
+      const double plain = fd3::inSphereDeterminantPlain(p[0], p[1], p[2], p[3], p[4]);
+      const double lanes = fd3::inSphereDeterminant(p[0], p[1], p[2], p[3], p[4]);
+      ASSERT_EQ(std::memcmp(&plain, &lanes, sizeof plain), 0)
+        << "scale " << scale << ", trial " << trial << ": " << plain << " against " << lanes;
+      ++compared;
+    }
+  EXPECT_EQ(compared, 80000u);
 }
 
 TEST(Predicates, SignConventionsOnTheUnitTetrahedron)
