@@ -84,7 +84,7 @@ void Inserter::unrestricted()
   restricted_ = false;
 }
 
-bool Inserter::isInRegion(TetId t) const
+bool Inserter::allVerticesInRegion(TetId t) const
 {
   VertId tv[4];
   tets_.vertices(t, tv);

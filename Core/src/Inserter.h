@@ -101,7 +101,7 @@ public:
 
   /// A tetrahedron in conflict with vertex v, reading only (for the start of a parallel pass).
   TetId locateForStart(VertId v) { return locate(v); }
-  bool isOwned(TetId t) const { return !restricted_ || isInRegion(t); }
+  bool isOwned(TetId t) const { return !restricted_ || allVerticesInRegion(t); }
 
   const Statistics& stats() const { return stats_; }
   const Predicates& predicates() const { return predicates_; }
@@ -110,7 +110,7 @@ public:
 
 private:
   const double* point(VertId v) const { return mesh_.point(v); }
-  bool isInRegion(TetId t) const; ///< all four vertices in region_
+  bool allVerticesInRegion(TetId t) const;
   bool inRegion(VertId u) const { return !restricted_ || u == kInfinite || region_.contains(point(u)); }
   /// The field of u that holds its local number during a fill (its tet); kInfinite's is this
   /// inserter's own.
