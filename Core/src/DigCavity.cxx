@@ -49,18 +49,8 @@ bool Inserter::digCavity(TetId base, VertId v)
   for (std::size_t i = 0; i < tets.size(); ++i)
   {
     const TetId t = tets[i];
-    // The neighbours' records were requested when t joined; now their points, all at once.
-    for (int f = 0; f < 4; ++f)
-    {
-      const TetId n = tetOf(tets_.neighbor(t, f));
-      if (tets_.flags(n) != 0)
-        continue;
-      VertId nv[4];
-      tets_.vertices(n, nv);
-      for (int k = 0; k < 4; ++k)
-        if (nv[k] != kInfinite)
-          prefetch(point(nv[k]));
-    }
+    // The neighbours' records were requested when t joined. Their points are not: a neighbour
+    // shares three of them with t, which its test has just read.
     for (int f = 0; f < 4; ++f)
     {
       const TetId n = tetOf(tets_.neighbor(t, f));
