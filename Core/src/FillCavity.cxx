@@ -9,43 +9,21 @@
 // rest of the insertion.
 #include "Inserter.h"
 
-#include <array>
-
 namespace fd3
 {
 namespace
 {
-// The interior faces of a new tetrahedron whose vertex g is the new point: each face f != g, with
-// the directed boundary edge a->b it holds (its outward order kFaceVertices[f], rotated to start
-// at g). The two new tetrahedra on one boundary edge hold it in opposite directions.
-struct InteriorFace
-{
-  int face, a, b;
-};
-constexpr std::array<std::array<InteriorFace, 3>, 4> interiorFaces()
-{
-  std::array<std::array<InteriorFace, 3>, 4> table{};
-  for (int g = 0; g < 4; ++g)
-  {
-    int j = 0;
-    for (int f = 0; f < 4; ++f)
-    {
-      if (f == g)
-        continue;
-      const int* v = kFaceVertices[f];
-      const int r = v[0] == g ? 0 : (v[1] == g ? 1 : 2);
-      table[g][j++] = {f, v[(r + 1) % 3], v[(r + 2) % 3]};
-    }
-  }
-  return table;
-}
-constexpr auto kInterior = interiorFaces();
-
 // During a fill, the tet field of each boundary vertex holds kLocalTag | its local number. Every
 // tetrahedron id is below 2^30 and kNoTet (a vertex yet to be inserted) has other high bits, so
 // the high half tells a number from a tetrahedron.
 constexpr TetId kLocalTag = 0x80000000u;
 constexpr TetId kHighHalf = 0xFFFF0000u;
+
+// kKeep[f][k]: all ones where a new tetrahedron built on face f keeps vertex k of the deleted one,
+// zero at k == f, where the new point goes: the replacement as masks, neither a store into the
+// vertices then a wide reload of them (which stalls store forwarding) nor a branch on f.
+constexpr std::uint32_t kKeep[4][4] = {{0, ~0u, ~0u, ~0u}, {~0u, 0, ~0u, ~0u}, {~0u, ~0u, 0, ~0u},
+  {~0u, ~0u, ~0u, 0}};
 } // namespace
 
 // Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.
@@ -85,60 +63,61 @@ bool Inserter::fillCavity(VertId v)
 // One pass over the boundary facets. The new tetrahedron of facet (t, f) is t with vertex f
 // replaced by v, which keeps the orientation positive because v sees the facet from t's side; it is
 // linked to the tetrahedron across the facet, and the deleted t's slot for face f is pointed at it
-// (how the rotation of linkAroundEdge recognizes a boundary facet). Its three faces through v are
-// recorded at their directed boundary edges a->b and, once every facet is done, linked to the face
-// recorded at b->a. Edges are indexed by local numbers of the boundary's vertices, given on first
-// sight through localNumberSlot() without a branch (a new vertex takes number `count`, which only
-// advances then); v takes one too, which costs less than a branch on which vertex it is. The
-// boundary is a triangulated sphere, so its vertices number F/2 + 2 for F facets (Euler), which
-// sizes the table before the pass. Returns false, with every new tetrahedron created and linked
-// across the boundary but not to each other, when the table is too small.
+// (how the rotation of linkAroundEdge recognizes a boundary facet). Every facet, in its outward
+// order q0 q1 q2 (kFaceVertices[f]), runs along its edges q0->q1, q1->q2, q2->q0, and the facet
+// across each edge runs along it the other way: the new face through v and edge qj->qk (opposite
+// the facet's third vertex) is recorded at that directed edge and, once every facet is done,
+// linked to the face recorded at qk->qj. Edges are indexed by local numbers of the boundary's
+// vertices, given on first sight through localNumberSlot() without a branch (a new vertex takes
+// number `count`, which only advances then). The boundary is a triangulated sphere, so its
+// vertices number F/2 + 2 for F facets (Euler), which sizes the table before the pass. Returns
+// false, with every new tetrahedron created and linked across the boundary but not to each other,
+// when the table is too small.
 bool Inserter::createAndLink(VertId v)
 {
-  const std::vector<TetId>& created = cavity_.created;
-  std::vector<VertId>& vertexOf = cavity_.localVertex;
-  std::vector<TetId>& firstTet = cavity_.localTet;
-  const std::uint32_t expected = static_cast<std::uint32_t>(created.size() / 2 + 3); // with v
+  const std::size_t facets = cavity_.created.size();
+  const std::uint32_t expected = static_cast<std::uint32_t>(facets / 2 + 2);
   std::uint32_t width = 16;
   while (width < expected)
     width *= 2;
   const bool fits = expected <= Cavity::kMaxLocalVertices;
   if (fits && cavity_.edgeFace.size() < std::size_t(width) * width)
     cavity_.edgeFace.resize(std::size_t(width) * width);
-  vertexOf.resize(width + 4);
-  firstTet.resize(width + 4);
-  cavity_.interiorFaces.resize(3 * created.size());
+  cavity_.localVertex.resize(width + 3);
+  cavity_.localTet.resize(width + 3);
+  cavity_.interiorFaces.resize(3 * facets);
+  // Raw pointers: the stores through the vertex records would otherwise make the compiler reload
+  // each vector's address at every use.
+  const BoundaryFacet* boundary = cavity_.boundary.data();
+  const TetId* created = cavity_.created.data();
+  VertId* vertexOf = cavity_.localVertex.data();
+  TetId* firstTet = cavity_.localTet.data();
+  FaceCode* edgeFace = cavity_.edgeFace.data();
+  auto* interiorFaces = cavity_.interiorFaces.data();
   std::uint32_t count = 0;
   bool linked = fits;
-  for (std::size_t i = 0; i < created.size(); ++i)
+  for (std::size_t i = 0; i < facets; ++i)
   {
-    const BoundaryFacet b = cavity_.boundary[i];
+    const BoundaryFacet b = boundary[i];
     const TetId n = created[i];
-    VertId tv[4];
-    tets_.vertices(b.inner, tv);
-    // Vertex b.face replaced by masks, neither by a store into tv (a narrow store then a wide
-    // reload of the same bytes, which stalls store forwarding) nor by a branch on b.face (a coin
-    // toss to the predictor): GCC turns both plain forms into one or the other.
     VertId nv[4];
+    tets_.vertices(b.inner, nv);
     for (int k = 0; k < 4; ++k)
-    {
-      const VertId replace = 0u - VertId(k == b.face);
-      nv[k] = (tv[k] & ~replace) | (v & replace);
-    }
+      nv[k] = (nv[k] & kKeep[b.face][k]) | (v & ~kKeep[b.face][k]);
     tets_.create(n, nv);
     tets_.link(faceCode(n, b.face), tets_.neighbor(b.inner, b.face));
     tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
     if (!linked)
       continue;
-    std::uint32_t local[4];
-    for (int k = 0; k < 4; ++k)
+    const int* q = kFaceVertices[b.face];
+    std::uint32_t local[3];
+    for (int j = 0; j < 3; ++j)
     {
-      const VertId u = nv[k];
-      TetId& entry = localNumberSlot(u);
+      TetId& entry = localNumberSlot(nv[q[j]]);
       const bool isNew = (entry & kHighHalf) != kLocalTag;
-      local[k] = isNew ? count : (entry & 0xFFFFu);
-      entry = kLocalTag | local[k];
-      vertexOf[count] = u;
+      local[j] = isNew ? count : (entry & 0xFFFFu);
+      entry = kLocalTag | local[j];
+      vertexOf[count] = nv[q[j]];
       firstTet[count] = n;
       count += isNew;
     }
@@ -149,20 +128,21 @@ bool Inserter::createAndLink(VertId v)
     }
     for (int j = 0; j < 3; ++j)
     {
-      const InteriorFace& face = kInterior[b.face][j];
-      const std::uint32_t from = local[face.a], to = local[face.b];
-      cavity_.edgeFace[from * width + to] = faceCode(n, face.face);
-      cavity_.interiorFaces[3 * i + j] = {faceCode(n, face.face), to * width + from};
+      const std::uint32_t from = local[j], to = local[j == 2 ? 0 : j + 1];
+      const FaceCode face = faceCode(n, q[j == 0 ? 2 : j - 1]);
+      edgeFace[from * width + to] = face;
+      interiorFaces[3 * i + j] = {face, to * width + from};
     }
   }
   // Each vertex gets one of its new tetrahedra in place of its number.
   for (std::uint32_t k = 0; k < count; ++k)
     localNumberSlot(vertexOf[k]) = firstTet[k];
+  mesh_.vertices[v].tet = created[0];
   ghostTet_ = kNoTet;
   if (!linked)
     return false;
-  for (const auto& [face, reversed] : cavity_.interiorFaces)
-    tets_.setNeighbor(face, cavity_.edgeFace[reversed]);
+  for (std::size_t i = 0; i < 3 * facets; ++i)
+    tets_.setNeighbor(interiorFaces[i].first, edgeFace[interiorFaces[i].second]);
   return true;
 }
 
