@@ -138,7 +138,11 @@ private:
   {
     VertId tv[4];
     tets_.vertices(t, tv);
-    return tv[3] != kInfinite ? inSphereSoS(tv, v) > 0 : ghostInConflict(t, v);
+    if (tv[3] == kInfinite)
+      return ghostInConflict(t, v);
+    const Vertex* p = mesh_.vertices.data();
+    const double* q[4] = {p[tv[0]].xyz, p[tv[1]].xyz, p[tv[2]].xyz, p[tv[3]].xyz};
+    return predicates_.insideSoS(q, p[v].xyz);
   }
   bool ghostInConflict(TetId ghost, VertId v);
   void undoCavity();

@@ -72,6 +72,9 @@ public:
   /// inSphere's float stage alone: its sign when the float filters prove it, else 0 (undecided).
   int inSphereFiltered(
     const double* a, const double* b, const double* c, const double* d, const double* e) const;
+  /// inSphereFiltered() for the determinant `det` already computed from the same points.
+  int inSphereFiltered(double det, const double* a, const double* b, const double* c,
+    const double* d, const double* e) const;
   /// Exactly: is c on the line through a and b (or a == b)?
   bool collinear(const double* a, const double* b, const double* c);
 
@@ -82,6 +85,9 @@ public:
   /// cospherical input pulls every tetrahedron towards it: a fan of about 2 tetrahedra per point
   /// instead of a dense tangle.
   int inSphereSoS(const double* const p[4], const double* pe);
+  /// inSphereSoS(p, pe) > 0, all the cavity search asks: where the static filter decides, which
+  /// it does for nearly every test, one comparison after the determinant.
+  bool insideSoS(const double* const p[4], const double* pe);
 
   /// Tunes the predicates to a point set within `box` (point i at xyz + i * stride); every point
   /// passed from then on must lie in the box and be one of them or of those include()d later.
@@ -233,7 +239,12 @@ inline double inSphereDeterminant(
 inline int Predicates::inSphereFiltered(
   const double* a, const double* b, const double* c, const double* d, const double* e) const
 {
-  const double det = inSphereDeterminant(a, b, c, d, e);
+  return inSphereFiltered(inSphereDeterminant(a, b, c, d, e), a, b, c, d, e);
+}
+
+inline int Predicates::inSphereFiltered(double det, const double* a, const double* b,
+  const double* c, const double* d, const double* e) const
+{
   if (det > tuning_.inSphereStatic || -det > tuning_.inSphereStatic)
     return -filter::signOf(det);
   if (tuning_.floatExactInSphere)
@@ -267,6 +278,17 @@ inline int Predicates::inSphereSoS(const double* const p[4], const double* pe)
 {
   const int s = inSphere(p[0], p[1], p[2], p[3], pe);
   return s != 0 ? s : symbolicInSphere(p, pe);
+}
+
+inline bool Predicates::insideSoS(const double* const p[4], const double* pe)
+{
+  const double det = inSphereDeterminant(p[0], p[1], p[2], p[3], pe);
+  if (std::fabs(det) > tuning_.inSphereStatic)
+    return det < 0;
+  int s = inSphereFiltered(det, p[0], p[1], p[2], p[3], pe);
+  if (s == 0 && !tuning_.floatExactInSphere)
+    s = inSphereDoubleDouble(p[0], p[1], p[2], p[3], pe);
+  return (s != 0 ? s : symbolicInSphere(p, pe)) > 0;
 }
 
 } // namespace fd3
