@@ -16,7 +16,7 @@ namespace detail
 namespace
 {
 constexpr std::size_t kHugePage = std::size_t(1) << 21;
-// Below this, huge pages would waste more than they save.
+// Below this, alignment to huge pages would waste more than it saves.
 constexpr std::size_t kLarge = 4 * kHugePage;
 } // namespace
 
@@ -27,16 +27,7 @@ void* allocateBulk(std::size_t bytes)
   p = _aligned_malloc(bytes > 0 ? bytes : 1, 64);
 #else
   if (bytes >= kLarge)
-  {
     p = std::aligned_alloc(kHugePage, (bytes + kHugePage - 1) / kHugePage * kHugePage);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    // A hint, ignored where huge pages are off. Only the whole huge pages within the request: a
-    // huge page at the tail would make resident up to 2 MB that no element uses (1.5 MB of the
-    // 32 MB of vertex records at 1M points).
-    if (p)
-      madvise(p, bytes / kHugePage * kHugePage, MADV_HUGEPAGE);
-#endif
-  }
   else
     p = std::malloc(bytes > 0 ? bytes : 1);
 #endif

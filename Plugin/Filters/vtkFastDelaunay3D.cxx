@@ -203,9 +203,8 @@ void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
 
 /// Memory of the kernel's allocator becomes an output array without a copy: the kernel's
 /// tetrahedra its 32-bit connectivity (a copy would hold both at once, 16 bytes per tetrahedron,
-/// 108 per point on uniform points), and the offsets and types, written in huge pages (every first
-/// touch of a 4 KB page is a page fault: 80 MB of offsets and types at 1M points cost 0.2 s of
-/// them on a 2-core virtual machine). VTK frees an array's memory through a plain function of its
+/// 108 per point on uniform points), and the offsets and types, written in the kernel's allocator
+/// (which does not zero them first). VTK frees an array's memory through a plain function of its
 /// address, so each vector waits here, by that address, until VTK lets it go.
 class HandedOver
 {

@@ -91,9 +91,8 @@ vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkId
   return Subset(points->GetData(), source->GetPointData(), ids, points->GetDataType());
 }
 
-/// Doubles x, y, z of points, in huge pages where the system has them: every first touch of a
-/// 4 KB page is a page fault, and the 48 MB of 2M points took 0.15 s to fill in 4 KB pages on a
-/// 2-core virtual machine.
+/// Doubles x, y, z of points, in the kernel's allocator: resize() does not zero them, which would
+/// touch every page once more before they are filled.
 using Coordinates = std::vector<double, fd3::BulkAllocator<double>>;
 
 /// Calls visit(i, x) for every point i of a 3-component array, x its coordinates as doubles,

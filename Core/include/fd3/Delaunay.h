@@ -106,7 +106,7 @@ struct Statistics
   double meanCavity() const { return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0; }
 };
 
-/// The kernel's arrays of ids: a std::vector whose memory comes in huge pages when large.
+/// The kernel's arrays of ids: a std::vector whose resize() leaves elements uninitialized (fd3::BulkAllocator).
 using IdArray = std::vector<std::uint32_t, BulkAllocator<std::uint32_t>>;
 
 constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu; ///< a hull face in Triangulation::neighbors
