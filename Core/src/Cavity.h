@@ -5,6 +5,7 @@
 #define fd3_Cavity_h
 
 #include "TetMesh.h"
+#include "fd3/BulkAllocator.h"
 
 #include <cstdint>
 #include <utility>
@@ -20,11 +21,16 @@ struct BoundaryFacet
   int face;
 };
 
+/// A vector whose resize() leaves new elements uninitialized: digCavity grows its lists ahead and
+/// writes them through raw pointers.
+template <typename T>
+using ScratchVector = std::vector<T, BulkAllocator<T>>;
+
 struct Cavity
 {
-  std::vector<TetId> tets;     ///< in conflict with the new point: flagged kInCavity, to delete
-  std::vector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
-  std::vector<BoundaryFacet> boundary;
+  ScratchVector<TetId> tets;     ///< in conflict with the new point: flagged kInCavity, to delete
+  ScratchVector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
+  ScratchVector<BoundaryFacet> boundary;
   std::vector<TetId> created;  ///< created[i] is the new tetrahedron on boundary[i]
 
   // The edge table of FillCavity.cxx. The new tetrahedra's vertices get local numbers

@@ -66,7 +66,7 @@ void Inserter::giveBack(TetId t)
 
 void Inserter::collectBoundary()
 {
-  std::vector<TetId>& tets = cavity_.tets;
+  ScratchVector<TetId>& tets = cavity_.tets;
   tets.erase(std::remove_if(tets.begin(), tets.end(),
                [&](TetId t) { return tets_.flags(t) != kInCavity; }),
     tets.end());
