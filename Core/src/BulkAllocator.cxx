@@ -18,6 +18,10 @@ namespace
 constexpr std::size_t kHugePage = std::size_t(1) << 21;
 // Below this, alignment to huge pages would waste more than it saves.
 constexpr std::size_t kLarge = 4 * kHugePage;
+// From this size on, huge pages are asked for: the tetrahedra of large surface samples, whose
+// thin tetrahedra reach across the whole set, need their reach in the TLB more than the first
+// touch costs (BulkAllocator.h).
+constexpr std::size_t kHugePagesWorth = std::size_t(1) << 30;
 } // namespace
 
 void* allocateBulk(std::size_t bytes)
@@ -27,7 +31,15 @@ void* allocateBulk(std::size_t bytes)
   p = _aligned_malloc(bytes > 0 ? bytes : 1, 64);
 #else
   if (bytes >= kLarge)
+  {
     p = std::aligned_alloc(kHugePage, (bytes + kHugePage - 1) / kHugePage * kHugePage);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    // Only the whole huge pages within the request: a huge page at the tail would make resident up
+    // to 2 MB that no element uses.
+    if (p && bytes >= kHugePagesWorth)
+      madvise(p, bytes / kHugePage * kHugePage, MADV_HUGEPAGE);
+#endif
+  }
   else
     p = std::malloc(bytes > 0 ? bytes : 1);
 #endif
