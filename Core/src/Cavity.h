@@ -31,7 +31,7 @@ struct Cavity
   ScratchVector<TetId> tets;     ///< in conflict with the new point: flagged kInCavity, to delete
   ScratchVector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
   ScratchVector<BoundaryFacet> boundary;
-  std::vector<TetId> created;  ///< created[i] is the new tetrahedron on boundary[i]
+  std::vector<TetId> created;            ///< created[i] is the new tetrahedron on boundary[i]
 
   // The edge table of FillCavity.cxx. The new tetrahedra's vertices get local numbers
   // 0..count-1 (kept in their Vertex::tet during the fill); edgeFace[a * width + b] is the new

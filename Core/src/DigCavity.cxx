@@ -4,6 +4,8 @@
 // its tetrahedra finds all of it.
 #include "Inserter.h"
 
+#include <algorithm>
+
 namespace fd3
 {
 
@@ -89,8 +91,9 @@ bool Inserter::digCavity(TetId base, VertId v)
         inCavity += inside;
         rejected[kept] = n;
         kept += !inside;
-        // Those of a kept one too: a prefetch that waits for the outcome waits for the
-        // determinant (1M cube 2.09 -> 2.40 s; issued once t's four faces are done, 2.44 s).
+        // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
+        // outcome waits for the determinant (1M cube 2.09 -> 2.40 s; issued once t's four faces
+        // are done, 2.44 s).
         for (int g = 0; g < 4; ++g)
           tets_.prefetch(tetOf(tets_.neighbor(n, g)));
         if (restricted_)
