@@ -8,6 +8,16 @@
 
 namespace fd3
 {
+namespace
+{
+// Room in `list` for more than twice `count` elements, the first `count` kept.
+template <typename T>
+T* grow(ScratchVector<T>& list, std::size_t count)
+{
+  list.resize(std::max<std::size_t>(2 * count + 4, 64));
+  return list.data();
+}
+} // namespace
 
 bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
 {
@@ -28,13 +38,6 @@ bool Inserter::ghostInConflict(TetId ghost, VertId v)
     return side > 0;
   tets_.vertices(tetOf(tets_.neighbor(ghost, 3)), tv);
   return inSphereSoS(tv, v) > 0;
-}
-
-template <typename T>
-T* Inserter::grow(ScratchVector<T>& list, std::size_t count)
-{
-  list.resize(std::max<std::size_t>(2 * count + 4, 64));
-  return list.data();
 }
 
 void Inserter::undoCavity()

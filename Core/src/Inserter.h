@@ -147,9 +147,6 @@ private:
   bool ghostInConflict(TetId ghost, VertId v);
   void undoCavity();
   bool digCavity(TetId base, VertId v);
-  /// Room in `list` for more than twice `count` elements, the first `count` kept.
-  template <typename T>
-  static T* grow(ScratchVector<T>& list, std::size_t count);
   // CorrectCavity.cxx
   void correctCavity(VertId v);
   bool holdsPoint(TetId t, VertId v);
