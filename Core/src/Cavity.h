@@ -29,6 +29,7 @@ using ScratchVector = std::vector<T, BulkAllocator<T>>;
 struct Cavity
 {
   ScratchVector<TetId> tets;     ///< in conflict with the new point: flagged kInCavity, to delete
+  ScratchVector<std::uint8_t> entryFace; ///< digCavity's: the face each of tets was entered by
   ScratchVector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
   ScratchVector<BoundaryFacet> boundary;
   std::vector<TetId> created;            ///< created[i] is the new tetrahedron on boundary[i]

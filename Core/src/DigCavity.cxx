@@ -17,6 +17,11 @@ T* grow(ScratchVector<T>& list, std::size_t count)
   list.resize(std::max<std::size_t>(2 * count + 4, 64));
   return list.data();
 }
+
+// The faces of a tetrahedron other than the one it was entered through; the last row, for the
+// base, lists all four.
+constexpr std::uint8_t kNoEntryFace = 4;
+constexpr int kFacesBesides[5][4] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}, {0, 1, 2, 3}};
 } // namespace
 
 bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
@@ -61,27 +66,36 @@ bool Inserter::digCavity(TetId base, VertId v)
   cavity_.clear();
   std::size_t inCavity = 1, kept = 0, facets = 0;
   TetId* tets = grow(cavity_.tets, 0);
+  std::uint8_t* entry = grow(cavity_.entryFace, 0);
   TetId* rejected = grow(cavity_.rejected, 0);
   BoundaryFacet* boundary = grow(cavity_.boundary, 0);
   tets_.setFlags(base, kInCavity);
   tets[0] = base;
+  entry[0] = kNoEntryFace;
   for (int f = 0; f < 4; ++f)
     tets_.prefetch(tetOf(tets_.neighbor(base, f)));
   bool owned = true;
   for (std::size_t i = 0; i < inCavity; ++i)
   {
     if (cavity_.tets.size() < inCavity + 4)
+    {
       tets = grow(cavity_.tets, inCavity);
+      entry = grow(cavity_.entryFace, inCavity);
+    }
     if (cavity_.rejected.size() < kept + 4)
       rejected = grow(cavity_.rejected, kept);
     if (cavity_.boundary.size() < facets + 4)
       boundary = grow(cavity_.boundary, facets);
     const TetId t = tets[i];
-    // The neighbours' records were requested when t was tested. Their points are not: a
-    // neighbour shares three of them with t, which its test has just read.
-    for (int f = 0; f < 4; ++f)
+    // The face t was reached through leads back into the cavity: a fixed three faces are visited
+    // (four for the base), not four with a skip whose position is random.
+    const int* faces = kFacesBesides[entry[i]];
+    const int count = entry[i] == kNoEntryFace ? 4 : 3;
+    for (int k = 0; k < count; ++k)
     {
-      const TetId n = tetOf(tets_.neighbor(t, f));
+      const int f = faces[k];
+      const FaceCode across = tets_.neighbor(t, f);
+      const TetId n = tetOf(across);
       const std::uint32_t flag = tets_.flags(n);
       if (flag == kInCavity)
         continue;
@@ -91,6 +105,7 @@ bool Inserter::digCavity(TetId base, VertId v)
         inside = inConflict(n, v);
         tets_.setFlags(n, inside ? kInCavity : kNotInCavity);
         tets[inCavity] = n;
+        entry[inCavity] = static_cast<std::uint8_t>(faceOf(across));
         inCavity += inside;
         rejected[kept] = n;
         kept += !inside;
