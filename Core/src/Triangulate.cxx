@@ -85,11 +85,12 @@ bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, std::vec
   return true;
 }
 
-/// The live finite tetrahedra of `records` (a mesh's, `slots` of them, over `vertices`) with input
-/// point ids, compacted in place (tetrahedron k's vertices go to words 4k..4k+3 of record t >= k,
-/// never ahead of what is still to be read), and, when asked for, their neighbours renumbered.
-void extractOutput(IdArray records, std::size_t slots, const VertexArray& vertices, bool withNeighbors,
-  Triangulation& out)
+/// The live finite tetrahedra of `records` (a mesh's, `slots` of them) with input point ids
+/// (`pointOf`, by vertex rank), compacted in place (tetrahedron k's vertices go to words 4k..4k+3
+/// of record t >= k, never ahead of what is still to be read), and, when asked for, their
+/// neighbours renumbered.
+void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* pointOf,
+  bool withNeighbors, Triangulation& out)
 {
   constexpr std::uint32_t kDropped = 0xFFFFFFFFu; // dead or ghost: not in the output
   auto kept = [&](std::size_t t) {
@@ -120,7 +121,7 @@ void extractOutput(IdArray records, std::size_t slots, const VertexArray& vertic
     const std::uint32_t v[4] = {records[8 * t] & (kMaxVertices - 1), records[8 * t + 1],
       records[8 * t + 2], records[8 * t + 3]};
     for (int i = 0; i < 4; ++i)
-      records[4 * count + i] = vertices[v[i]].point;
+      records[4 * count + i] = pointOf[v[i]];
     ++count;
   }
   records.resize(4 * count);
@@ -374,19 +375,33 @@ Triangulation Tetrahedralization::Impl::output(bool release, double* xyz)
       return out;
     }
   }
-  const std::size_t slots = triangulator->slots();
-  IdArray records = release ? triangulator->releaseWorkspace().takeRecords() : triangulator->copyRecords();
-  const VertexArray& vertices = triangulator->vertices();
-  extractOutput(std::move(records), slots, vertices, options.computeNeighbors, out);
   if (xyz)
     writePoints(xyz);
+  const std::size_t slots = triangulator->slots();
+  const std::size_t vertexCount = triangulator->vertices().size();
+  IdArray records;
+  std::vector<std::uint32_t> copiedIds; // the mesh goes on: its vertices stay
+  const std::uint32_t* pointOf = nullptr;
+  if (release)
+  {
+    records = triangulator->releaseWorkspace().takeRecords();
+    pointOf = triangulator->packPointIds();
+  }
+  else
+  {
+    records = triangulator->copyRecords();
+    for (const Vertex& vertex : triangulator->vertices())
+      copiedIds.push_back(vertex.point);
+    pointOf = copiedIds.data();
+  }
+  extractOutput(std::move(records), slots, pointOf, options.computeNeighbors, out);
   out.representative.assign(points, kNoPoint);
-  for (const Vertex& vertex : vertices)
-    out.representative[vertex.point] = vertex.point;
+  for (std::size_t v = 0; v < vertexCount; ++v)
+    out.representative[pointOf[v]] = pointOf[v];
   for (const auto& [point, near] : skipped)
     out.representative[point] = near;
   for (const auto& [copy, original] : repeated)
-    out.representative[vertices[copy].point] = vertices[original].point;
+    out.representative[pointOf[copy]] = pointOf[original];
   for (const auto& [copy, original] : duplicates)
     out.representative[copy] = out.representative[original];
   if (release)

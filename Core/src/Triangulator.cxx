@@ -1,6 +1,7 @@
 #include "Triangulator.h"
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 #include <utility>
 
@@ -158,6 +159,19 @@ TetMesh& Triangulator::releaseWorkspace()
   pools_.clear();
   mesh_.grid = BackgroundGrid();
   return mesh_.tets;
+}
+
+const std::uint32_t* Triangulator::packPointIds()
+{
+  // Id i goes to bytes 4i..4i+3, which belong to vertex i/8 <= i: never to a record still to be
+  // read (vertex 0's id is read before its first coordinate is overwritten).
+  unsigned char* packed = reinterpret_cast<unsigned char*>(mesh_.vertices.data());
+  for (std::size_t i = 0; i < mesh_.vertices.size(); ++i)
+  {
+    const std::uint32_t point = mesh_.vertices[i].point;
+    std::memcpy(packed + sizeof(point) * i, &point, sizeof(point));
+  }
+  return reinterpret_cast<const std::uint32_t*>(packed);
 }
 
 } // namespace fd3

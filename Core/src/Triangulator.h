@@ -54,6 +54,11 @@ public:
   /// Frees the grid and the inserters' scratch: only the mesh and its vertices are left for the
   /// output.
   TetMesh& releaseWorkspace();
+  /// Ends the vertices: their input point ids, by insertion rank, are written over the start of
+  /// the vertex array, 4 bytes each where a record takes 32, so that the output's look-ups stay in
+  /// cache and no memory is added (1M uniform points: output 0.09 -> 0.04 s). The coordinates
+  /// and vertex records are gone afterwards.
+  const std::uint32_t* packPointIds();
 
   /// Exhaustive check of the invariants listed in TetMesh.h, of the vertices' records and, unless
   /// a volume threshold was used, of the local Delaunay property. Returns an empty string when all
