@@ -86,6 +86,9 @@ private:
   /// Inserts `vertices` in `regions`, one thread each; returns those that had to be put off.
   std::vector<VertId> runPass(const std::vector<VertId>& vertices, const std::vector<Region>& regions,
     const std::function<bool(double)>& progress);
+  /// Slots enough for vertices up to `end`, from the slots per vertex now and after an earlier
+  /// round (`earlierDone` vertices, `earlierSlots` slots; 0 when none), with a margin.
+  std::size_t predictedSlots(std::size_t earlierDone, std::size_t earlierSlots, std::size_t end) const;
   /// Room in the mesh for `count` more insertions, from the tetrahedra per vertex so far.
   void makeRoomFor(std::size_t count);
   bool reportProgress(const std::function<bool(double)>& progress);
