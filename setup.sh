@@ -4,7 +4,7 @@
 #
 #   ./setup.sh          set up and build
 #   ./setup.sh demo     ... then tetrahedralize Data/points.vtp under pvbatch into output/
-#   ./setup.sh benchmark [sizes]   ... then benchmark Core, the filter, vtkDelaunay3D and CGAL
+#   ./setup.sh benchmark [sizes]   ... then benchmark Core, the filter, vtkDelaunay3D, CGAL and TetGen
 #                       (sizes default 10000,100000,1000000) into output/benchmark.{md,csv,png}
 #                       and the paper's Table 1 into output/table1.md
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run), then the same
@@ -20,8 +20,9 @@ cd "$(dirname "$0")"
 packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
   cmake ninja-build g++ pkg-config clang libclang-rt-14-dev)
-# The benchmark alone compares against CGAL (never a dependency of Core or Plugin) and plots.
-[ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev python3-matplotlib)
+# The benchmark alone compares against CGAL and TetGen (never dependencies of Core or Plugin; both
+# are GPL-family licensed and only linked into the benchmark program) and plots.
+[ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -41,6 +41,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -287,7 +288,19 @@ Measurement runTetgen(const fd3test::Points& p, std::size_t validateLimit)
   m.peakMiB = peakSoFarMiB();
   if (p.size() / 3 <= validateLimit)
   {
+    // TetGen drops exact duplicates and renumbers the points it keeps: its tetrahedra index
+    // out.pointlist, not the input (terrain's 1% of copies made half of them look inverted).
+    // Each kept point is mapped back to its input id, so the validator still checks the input.
+    std::map<std::array<double, 3>, std::uint32_t> inputId;
+    for (std::uint32_t i = 0; i < p.size() / 3; ++i)
+      inputId.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i);
     std::vector<std::uint32_t> tets(out.tetrahedronlist, out.tetrahedronlist + 4 * out.numberoftetrahedra);
+    for (std::uint32_t& id : tets)
+    {
+      const REAL* q = out.pointlist + 3 * std::size_t(id);
+      const auto found = inputId.find({q[0], q[1], q[2]});
+      id = found == inputId.end() ? std::uint32_t(p.size()) : found->second; // out of range: invalid
+    }
     m.valid = validity(p, tets, validateLimit);
   }
   return m;

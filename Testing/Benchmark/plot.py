@@ -23,7 +23,10 @@ kinds = list(rows)
 columns = min(4, len(kinds))
 lines = (len(kinds) + columns - 1) // columns
 figure, axes = plt.subplots(lines, columns, figsize=(4 * columns, 3.4 * lines), squeeze=False)
-colours = {"Core": "C0", "vtkFastDelaunay3D": "C1", "vtkDelaunay3D": "C3", "CGAL": "C2"}
+# One colour per method, for its line and its markers alike (matplotlib's cycle would give each
+# call the next colour).
+colours = {"Core": "C0", "vtkFastDelaunay3D": "C1", "vtkDelaunay3D": "C3", "CGAL": "C2", "TetGen": "C4",
+           "Core-2": "C9", "CGAL-2": "C8"}
 for panel, kind in zip(axes.flat, kinds):
     for method, points in rows[kind].items():
         points.sort()
