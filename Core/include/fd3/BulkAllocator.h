@@ -22,7 +22,8 @@ namespace fd3
 namespace detail
 {
 void* allocateBulk(std::size_t bytes); ///< throws std::bad_alloc
-void freeBulk(void* p) noexcept;
+/// Frees a block of allocateBulk(bytes); the pages of a large one go back to the system first.
+void freeBulk(void* p, std::size_t bytes) noexcept;
 /// Gives the whole pages within [begin, begin + bytes) back to the system (Linux; elsewhere it does
 /// nothing); they read as zeros when touched again.
 void releasePages(void* begin, std::size_t bytes) noexcept;
@@ -40,7 +41,7 @@ struct BulkAllocator
   }
 
   T* allocate(std::size_t n) { return static_cast<T*>(detail::allocateBulk(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t) noexcept { detail::freeBulk(p); }
+  void deallocate(T* p, std::size_t n) noexcept { detail::freeBulk(p, n * sizeof(T)); }
 
   /// Default-initialization: no zero fill for resize().
   template <typename U>
