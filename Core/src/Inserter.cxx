@@ -150,6 +150,12 @@ Inserter::Outcome Inserter::insert(VertId v)
     return Outcome::Deferred;
   }
   clock.lap(stats_.secondsFill);
+  // Past about one test in nine that the static filter leaves to the lifts' filter (a cavity and
+  // its boundary hold about 2.2 tests per deleted tetrahedron), its mispredicted branch costs more
+  // than the lifts' filter on every test.
+  if (!predicates_.prefersLiftsFilter() &&
+    predicates_.liftsFilterRescues() > stats_.cavityTetrahedra / 4 + 4096)
+    predicates_.preferLiftsFilter();
   if (mesh_.grid.enabled())
     mesh_.grid.markInserted(point(v), v);
   lastInserted_ = v;
