@@ -79,11 +79,11 @@ public:
   int inSphere(const double* a, const double* b, const double* c, const double* d, const double* e);
   /// inSphere's float stage alone: its sign when the float filters prove it, else 0 (undecided).
   int inSphereFiltered(
-    const double* a, const double* b, const double* c, const double* d, const double* e) const;
+    const double* a, const double* b, const double* c, const double* d, const double* e);
   /// inSphereFiltered() for the determinant `det` and the lifts already computed from the same
   /// points (inSphereDeterminant()). The static filter goes first until preferLiftsFilter().
   int inSphereFiltered(double det, const double lifts[4], const double* a, const double* b,
-    const double* c, const double* d, const double* e) const;
+    const double* c, const double* d, const double* e);
   /// Exactly: is c on the line through a and b (or a == b)?
   bool collinear(const double* a, const double* b, const double* c);
 
@@ -152,7 +152,7 @@ private:
   ExpansionArena arena_;
   std::uint64_t perturbationSeed_;
   bool liftsFirst_ = false;
-  mutable std::size_t liftsFilterRescues_ = 0;
+  std::size_t liftsFilterRescues_ = 0;
   struct Tuning
   {
     // The points' grid: every |x| < 2^highest, every x a multiple of 2^lowest (kNoGrid when none).
@@ -274,7 +274,7 @@ inline double inSphereDeterminant(const double* a, const double* b, const double
 }
 
 inline int Predicates::inSphereFiltered(
-  const double* a, const double* b, const double* c, const double* d, const double* e) const
+  const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   double lifts[4];
   const double det = inSphereDeterminant(a, b, c, d, e, lifts);
@@ -292,7 +292,7 @@ inline bool Predicates::liftsFilterProves(double det, const double lifts[4]) con
 }
 
 inline int Predicates::inSphereFiltered(double det, const double lifts[4], const double* a,
-  const double* b, const double* c, const double* d, const double* e) const
+  const double* b, const double* c, const double* d, const double* e)
 {
   if (liftsFirst_ && liftsFilterProves(det, lifts))
     return -filter::signOf(det);
