@@ -10,12 +10,11 @@ namespace fd3
 {
 namespace
 {
-// Curve resolution of one sorting level, and the smallest run of equal keys worth sorting again
-// inside its own box (smaller runs are ordered by their coordinates).
-constexpr int kHilbertBits = 10;
+// The smallest run of equal curve keys worth sorting again inside its own box (smaller runs are
+// ordered by their coordinates).
 constexpr std::size_t kRunWorthRefining = 8;
 
-// The 10 low bits of x moved to every third bit (bit b to bit 3b).
+// The kHilbertBits (10) low bits of x moved to every third bit (bit b to bit 3b).
 std::uint32_t spreadBits(std::uint32_t x)
 {
   x = (x | (x << 16)) & 0x030000FFu;
@@ -25,56 +24,118 @@ std::uint32_t spreadBits(std::uint32_t x)
   return x;
 }
 
-// Skilling's transform ("Programming the Hilbert curve", 2004): coordinates of kHilbertBits bits
-// -> transposed Hilbert index, whose bits interleaved from the top give the position along the
-// curve. Written without branches on the data (its bits are coin tosses to the predictor).
-std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
+// Skilling's transform ("Programming the Hilbert curve", 2004) read as a machine that goes down
+// the levels from the top: its state is what the levels above did to the bits below (a permutation
+// of the axes and a flip of some) and the parity that its Gray decoding carries down. A state and
+// a level's three bits give that level's three bits of the curve index and the next state. Two
+// levels at a time, the index takes five lookups in a 12 KB table instead of 27 dependent steps on
+// the coordinates (planInsertion, 1M points: about a third less).
+class HilbertTable
 {
-  std::uint32_t X[3] = {x, y, z};
-  for (std::uint32_t q = 1u << (kHilbertBits - 1); q > 1; q >>= 1)
+  static_assert(kHilbertBits % 2 == 0, "the table goes two levels at a time");
+
+public:
+  HilbertTable()
   {
-    const std::uint32_t p = q - 1;
+    for (int state = 0; state < kStates; ++state)
+      for (std::uint32_t bits = 0; bits < 64; ++bits)
+      {
+        std::uint32_t high, low;
+        const int middle = step(state, bits >> 3, high);
+        const int next = step(middle, bits & 7u, low);
+        entry_[state][bits] = static_cast<std::uint16_t>(next << 6 | high << 3 | low);
+      }
+  }
+  // The curve index of interleaved coordinates (x at bit 3l, y at 3l+1, z at 3l+2 for level l).
+  std::uint32_t index(std::uint32_t interleaved) const
+  {
+    std::uint32_t state = 0, index = 0;
+    for (int level = kHilbertBits - 2; level >= 0; level -= 2)
+    {
+      const std::uint16_t e = entry_[state][(interleaved >> (3 * level)) & 63u];
+      index = index << 6 | (e & 63u);
+      state = e >> 6;
+    }
+    return index;
+  }
+
+private:
+  // state = (6 * flips + permutation) * 2 + parity; the transform maps a level's bits b to
+  // t[i] = b[axis[i]] ^ flip bit i.
+  static constexpr int kStates = 8 * 6 * 2;
+  static constexpr std::uint8_t kPermutations[6][3] = {
+    {0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+
+  // One level: the curve's bits (axis 0 in the high bit) for the level's bits b (axis 0 in the
+  // low bit, as interleaved), and the state below.
+  static int step(int state, std::uint32_t b, std::uint32_t& curve)
+  {
+    int parity = state & 1, permutation = (state >> 1) % 6, flips = (state >> 1) / 6;
+    std::uint8_t axis[3] = {kPermutations[permutation][0], kPermutations[permutation][1],
+      kPermutations[permutation][2]};
+    int t[3];
+    for (int i = 0; i < 3; ++i)
+      t[i] = static_cast<int>((b >> axis[i]) & 1u) ^ ((flips >> i) & 1);
+    // Skilling's inner loop, on the transform of the levels below: axis i's bit set inverts axis
+    // 0, clear exchanges axes 0 and i.
     for (int i = 0; i < 3; ++i)
     {
-      // X[i] has bit q: invert the low bits of X[0]; else exchange them between X[0] and X[i].
-      const std::uint32_t has = 0u - ((X[i] & q) != 0);
-      const std::uint32_t t = (X[0] ^ X[i]) & p & ~has;
-      X[0] ^= t | (p & has);
-      X[i] ^= t;
+      if (t[i])
+        flips ^= 1;
+      else
+      {
+        std::swap(axis[0], axis[i]);
+        const int differ = (flips ^ (flips >> i)) & 1;
+        flips ^= differ | (differ << i);
+      }
     }
+    // Gray decoding: X1 ^= X0, X2 ^= X1, then every bit flipped by the parity of X2 above it.
+    const int g0 = t[0], g1 = t[1] ^ g0, g2 = t[2] ^ g1;
+    curve = static_cast<std::uint32_t>((g0 ^ parity) << 2 | (g1 ^ parity) << 1 | (g2 ^ parity));
+    parity ^= g2;
+    for (permutation = 0; permutation < 6; ++permutation)
+      if (std::equal(axis, axis + 3, kPermutations[permutation]))
+        break;
+    return (6 * flips + permutation) * 2 + parity;
   }
-  X[1] ^= X[0];
-  X[2] ^= X[1];
-  std::uint32_t t = 0;
-  for (std::uint32_t q = 1u << (kHilbertBits - 1); q > 1; q >>= 1)
-    t ^= (q - 1) & (0u - ((X[2] & q) != 0));
-  return (spreadBits(X[0] ^ t) << 2) | (spreadBits(X[1] ^ t) << 1) | spreadBits(X[2] ^ t);
+
+  std::uint16_t entry_[kStates][64];
+};
+
+} // namespace
+
+std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
+{
+  static const HilbertTable table;
+  return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
 }
 
-// Least-significant-digit radix sort of `values` by `keys` (stable), over the low `bits` bits:
-// linear passes instead of std::sort's n log n comparisons.
-void radixSort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values, int bits)
+namespace
 {
-  constexpr int kDigit = 12;
-  std::vector<std::uint64_t> keyBuffer(keys.size());
-  std::vector<std::uint32_t> valueBuffer(values.size());
-  std::vector<std::size_t> count(std::size_t(1) << kDigit);
-  for (int shift = 0; shift < bits; shift += kDigit)
+// Least-significant-digit radix sort (stable) of words holding a key in their high half and an id
+// in their low half, by the key's low `bits` bits: linear passes instead of std::sort's n log n
+// comparisons. One word per entry, not a key array and an id array, so that each pass scatters
+// one stream; the histograms of every pass are counted in one read.
+void radixSortByHighHalf(std::vector<std::uint64_t>& words, int bits)
+{
+  constexpr int kDigit = 10;
+  constexpr std::uint64_t kBuckets = 1u << kDigit;
+  const int passes = (bits + kDigit - 1) / kDigit;
+  std::vector<std::uint32_t> count(passes * kBuckets, 0); // fewer than 2^32 points
+  for (const std::uint64_t w : words)
+    for (int pass = 0; pass < passes; ++pass)
+      ++count[pass * kBuckets + ((w >> (32 + kDigit * pass)) & (kBuckets - 1))];
+  std::vector<std::uint64_t> buffer(words.size());
+  for (int pass = 0; pass < passes; ++pass)
   {
-    std::fill(count.begin(), count.end(), 0);
-    for (std::uint64_t k : keys)
-      ++count[(k >> shift) & ((1u << kDigit) - 1)];
-    std::size_t offset = 0;
-    for (std::size_t& c : count)
-      offset += std::exchange(c, offset);
-    for (std::size_t i = 0; i < keys.size(); ++i)
-    {
-      const std::size_t to = count[(keys[i] >> shift) & ((1u << kDigit) - 1)]++;
-      keyBuffer[to] = keys[i];
-      valueBuffer[to] = values[i];
-    }
-    keys.swap(keyBuffer);
-    values.swap(valueBuffer);
+    std::uint32_t* next = &count[pass * kBuckets];
+    std::uint32_t offset = 0;
+    for (std::uint64_t b = 0; b < kBuckets; ++b)
+      offset += std::exchange(next[b], offset);
+    const int shift = 32 + kDigit * pass;
+    for (const std::uint64_t w : words)
+      buffer[next[(w >> shift) & (kBuckets - 1)]++] = w;
+    words.swap(buffer);
   }
 }
 
@@ -126,22 +187,22 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
     return;
   }
   const double toGrid = ((1u << kHilbertBits) - 1) / span;
-  std::vector<std::uint64_t> keys(count);
-  std::vector<std::uint32_t> values(ids, ids + count);
+  std::vector<std::uint64_t> entries(count); // curve key << 32 | id
   for (std::size_t i = 0; i < count; ++i)
   {
-    const double* p = xyz + 3 * std::size_t(values[i]);
-    std::uint32_t q[3];
+    const double* p = xyz + 3 * std::size_t(ids[i]);
+    std::uint32_t cell[3];
     for (int a = 0; a < 3; ++a)
-      q[a] = static_cast<std::uint32_t>((p[a] - box.lo[a]) * toGrid);
-    keys[i] = hilbertIndex(q[0], q[1], q[2]);
+      cell[a] = static_cast<std::uint32_t>((p[a] - box.lo[a]) * toGrid);
+    entries[i] = std::uint64_t(hilbertIndex(cell[0], cell[1], cell[2])) << 32 | ids[i];
   }
-  radixSort(keys, values, 3 * kHilbertBits);
-  std::copy(values.begin(), values.end(), ids);
+  radixSortByHighHalf(entries, 3 * kHilbertBits);
+  for (std::size_t i = 0; i < count; ++i)
+    ids[i] = static_cast<std::uint32_t>(entries[i]);
   for (std::size_t begin = 0; begin < count;)
   {
     std::size_t end = begin + 1;
-    while (end < count && keys[end] == keys[begin])
+    while (end < count && entries[end] >> 32 == entries[begin] >> 32)
       ++end;
     // The extreme points of the widest axis never share a cell, so a run is shorter than count.
     if (end - begin >= kRunWorthRefining)

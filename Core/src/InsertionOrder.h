@@ -15,6 +15,15 @@
 namespace fd3
 {
 
+/// Resolution of the curve: 2^kHilbertBits cells per axis (even: HilbertTable goes two levels at
+/// a time).
+constexpr int kHilbertBits = 10;
+
+/// The position of cell (x, y, z) of the 2^kHilbertBits grid (each coordinate below
+/// 2^kHilbertBits) along Skilling's Hilbert curve: consecutive positions are cells that share a
+/// face, and every aligned block of 2^k cells a side takes 8^k consecutive positions.
+std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z);
+
 struct InsertionPlan
 {
   /// Input ids of the distinct points, in the order of insertion.
