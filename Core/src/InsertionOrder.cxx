@@ -102,16 +102,6 @@ private:
   std::uint16_t entry_[kStates][64];
 };
 
-} // namespace
-
-std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
-{
-  static const HilbertTable table;
-  return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
-}
-
-namespace
-{
 // Least-significant-digit radix sort (stable) of words holding a key in their high half and an id
 // in their low half, by the key's low `bits` bits: linear passes instead of std::sort's n log n
 // comparisons. One word per entry, not a key array and an id array, so that each pass scatters
@@ -253,6 +243,12 @@ std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted,
   return order;
 }
 } // namespace
+
+std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
+{
+  static const HilbertTable table;
+  return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
+}
 
 InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, std::vector<std::uint32_t> ids,
   const Box& box, InsertionOrder order, std::uint64_t seed)
