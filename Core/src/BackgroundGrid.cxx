@@ -10,27 +10,30 @@ void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCe
 {
   cells_.reset();
   cellCount_ = 0;
-  if (pointsPerCell <= 0 || count == 0)
+  if (!(pointsPerCell > 0) || count == 0)
     return;
-  // Cells as close to cubes as the box allows, about count / pointsPerCell of them; flat axes get one.
-  const double cellsWanted = std::max(1.0, double(count) / pointsPerCell);
-  double extent[3], volume = 1.0;
+  // Cells as close to cubes as the box allows, about count / pointsPerCell of them (at most
+  // kMaxCellsPerPoint a point: more only cost memory); flat axes get one. In halves of the
+  // coordinates, and the cell size from logarithms, so that any finite box works.
+  const double cellsWanted =
+    std::clamp(double(count) / pointsPerCell, 1.0, kMaxCellsPerPoint * double(count));
+  double halfExtent[3], logVolume = 0;
   int flatAxes = 0;
   for (int a = 0; a < 3; ++a)
   {
-    extent[a] = box.extent(a);
-    if (extent[a] > 0)
-      volume *= extent[a];
+    halfExtent[a] = box.hi[a] / 2 - box.lo[a] / 2;
+    if (halfExtent[a] > 0)
+      logVolume += std::log(halfExtent[a]);
     else
       ++flatAxes;
   }
-  const double cellSize = std::pow(volume / cellsWanted, 1.0 / (3 - std::min(flatAxes, 2)));
+  const double cellSize = std::exp((logVolume - std::log(cellsWanted)) / (3 - std::min(flatAxes, 2)));
   for (int a = 0; a < 3; ++a)
   {
-    const double n = extent[a] > 0 && cellSize > 0 ? std::ceil(extent[a] / cellSize) : 1.0;
-    dims_[a] = static_cast<int>(std::clamp(n, 1.0, 2048.0));
-    origin_[a] = box.lo[a];
-    inverseSize_[a] = extent[a] > 0 ? dims_[a] / extent[a] : 0.0;
+    const double n = halfExtent[a] > 0 ? std::ceil(halfExtent[a] / cellSize) : 1.0;
+    dims_[a] = static_cast<int>(n > 1 ? std::min(n, 2048.0) : 1.0);
+    halfOrigin_[a] = box.lo[a] / 2;
+    inverseHalfSize_[a] = halfExtent[a] > 0 ? dims_[a] / halfExtent[a] : 0.0;
   }
   cellCount_ = std::size_t(dims_[0]) * dims_[1] * dims_[2];
   cells_.reset(new std::atomic<std::uint32_t>[cellCount_]);
@@ -42,9 +45,10 @@ void BackgroundGrid::cellCoordinates(const double* p, int ijk[3]) const
 {
   for (int a = 0; a < 3; ++a)
   {
-    // Clamped as a double: points added after the build may lie far outside the grid's box.
-    const double c = std::clamp((p[a] - origin_[a]) * inverseSize_[a], 0.0, double(dims_[a] - 1));
-    ijk[a] = static_cast<int>(c);
+    // Clamped as a double: points added after the build may lie far outside the grid's box, and a
+    // subnormal box's scale may be infinite (0 times it is NaN, which goes to cell 0).
+    const double c = (p[a] / 2 - halfOrigin_[a]) * inverseHalfSize_[a];
+    ijk[a] = c > 0 ? static_cast<int>(std::min(c, double(dims_[a] - 1))) : 0;
   }
 }
 

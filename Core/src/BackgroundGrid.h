@@ -59,8 +59,9 @@ private:
 
   std::unique_ptr<std::atomic<std::uint32_t>[]> cells_;
   std::size_t cellCount_ = 0;
-  double origin_[3] = {0, 0, 0};
-  double inverseSize_[3] = {0, 0, 0};
+  static constexpr double kMaxCellsPerPoint = 8;
+  double halfOrigin_[3] = {0, 0, 0};      // the box's lower corner, halved
+  double inverseHalfSize_[3] = {0, 0, 0}; // cells per half unit
   int dims_[3] = {0, 0, 0};
 };
 

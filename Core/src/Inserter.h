@@ -120,6 +120,7 @@ private:
   TetId startTet(VertId v) const;
   TetId regionStart(VertId v) const;
   TetId walk(TetId from, VertId v);
+  TetId scanForBase(VertId v, bool toFirstConflict);
   TetId locate(VertId v);
   /// The vertex of base (which contains v's point) that v repeats, or kNoVertex.
   VertId repeatedVertex(TetId base, VertId v) const;

@@ -165,26 +165,61 @@ void sortRunAndMarkDuplicates(const double* xyz, std::uint32_t* ids, std::size_t
 // adapts to the points, so tight clusters, even of spread 1e-12, are ordered as well as the rest),
 // else by coordinates. Every sort is stable, so equal points end up side by side, in input order;
 // all but the first of them are marked kDuplicate.
-void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box)
+// Levels of refinement after which a run is sorted lexicographically instead: far more than
+// doubles need (each level resolves 10 bits), a bound on the recursion whatever the input.
+constexpr int kMaxRefinements = 64;
+
+/// Maps coordinates within a box onto the curve's grid, for any finite box: halves keep the
+/// differences finite where the box spans more than DBL_MAX, and the scale is applied in two
+/// factors, each finite where the box is subnormal. Halving a subnormal box can make its span 0:
+/// every point then goes to cell 0, and the run to the lexicographic sort.
+class GridMap
 {
-  const double span = box.largestExtent();
+public:
+  explicit GridMap(const Box& box)
+  {
+    double halfSpan = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      halfLo_[a] = box.lo[a] / 2;
+      halfSpan = std::max(halfSpan, box.hi[a] / 2 - halfLo_[a]);
+      empty_ = empty_ && box.lo[a] == box.hi[a];
+    }
+    int exponent = 0;
+    const double mantissa = std::frexp(halfSpan, &exponent); // halfSpan = mantissa 2^exponent
+    first_ = std::ldexp(1.0, -exponent / 2);
+    second_ = std::ldexp(double(1u << kHilbertBits) / mantissa, exponent / 2 - exponent);
+  }
+  bool empty() const { return empty_; }
+  std::uint32_t cell(double x, int a) const
+  {
+    const double c = (x / 2 - halfLo_[a]) * first_ * second_; // 2^kHilbertBits at the far side
+    return c > 0 ? static_cast<std::uint32_t>(std::min(c, double((1u << kHilbertBits) - 1))) : 0;
+  }
+
+private:
+  double halfLo_[3];
+  double first_ = 0, second_ = 0;
+  bool empty_ = true;
+};
+
+void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box, int depth)
+{
   if (count < 2)
     return;
-  if (!(span > 0)) // copies of one point
+  const GridMap grid(box);
+  if (grid.empty()) // copies of one point
   {
     for (std::size_t i = 1; i < count; ++i)
       ids[i] |= kDuplicate;
     return;
   }
-  const double toGrid = ((1u << kHilbertBits) - 1) / span;
   std::vector<std::uint64_t> entries(count); // curve key << 32 | id
   for (std::size_t i = 0; i < count; ++i)
   {
     const double* p = xyz + 3 * std::size_t(ids[i]);
-    std::uint32_t cell[3];
-    for (int a = 0; a < 3; ++a)
-      cell[a] = static_cast<std::uint32_t>((p[a] - box.lo[a]) * toGrid);
-    entries[i] = std::uint64_t(hilbertIndex(cell[0], cell[1], cell[2])) << 32 | ids[i];
+    const std::uint32_t key = hilbertIndex(grid.cell(p[0], 0), grid.cell(p[1], 1), grid.cell(p[2], 2));
+    entries[i] = std::uint64_t(key) << 32 | ids[i];
   }
   radixSortByHighHalf(entries, 3 * kHilbertBits);
   for (std::size_t i = 0; i < count; ++i)
@@ -194,9 +229,11 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
     std::size_t end = begin + 1;
     while (end < count && entries[end] >> 32 == entries[begin] >> 32)
       ++end;
-    // The extreme points of the widest axis never share a cell, so a run is shorter than count.
-    if (end - begin >= kRunWorthRefining)
-      hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin));
+    // The extreme points of the widest axis share no cell, so a run is shorter than count, unless
+    // halving subnormal coordinates made distinct ones equal: such a run is sorted as it is.
+    const bool refines = end - begin < count && depth < kMaxRefinements;
+    if (end - begin >= kRunWorthRefining && refines)
+      hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin), depth + 1);
     else if (end - begin > 1)
       sortRunAndMarkDuplicates(xyz, ids + begin, end - begin);
     begin = end;
@@ -254,7 +291,7 @@ InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, std::ve
   const Box& box, InsertionOrder order, std::uint64_t seed)
 {
   InsertionPlan plan;
-  hilbertSort(xyz, ids.data(), ids.size(), box);
+  hilbertSort(xyz, ids.data(), ids.size(), box, 0);
   mergeDuplicates(ids, plan.duplicates);
   std::mt19937_64 rng(seed);
   switch (order)

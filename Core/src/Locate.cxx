@@ -23,6 +23,9 @@ constexpr int kMaxOnionLayers = 3;
 // Steps after which the walk draws its first face at random: a safety net against cycles, which
 // the distance order cannot have on a Delaunay mesh but might on one built with a volume threshold.
 constexpr std::size_t kOrderedSteps = 1000;
+// Steps after which the walk gives up and scans the mesh instead (scanForBase()): far beyond any
+// walk of a valid mesh, a bound on the walk whatever happens.
+constexpr std::size_t kMaxSteps = 100000;
 } // namespace
 
 // The start: a tetrahedron of the inserted vertex nearest to the point among two candidates, the
@@ -89,7 +92,12 @@ TetId Inserter::walk(TetId t, VertId v)
   std::size_t steps = 0;
   for (;;)
   {
-    ++steps;
+    if (++steps > kMaxSteps)
+    {
+      // In a region the mesh around may change: the point goes to a later, serial pass.
+      t = restricted_ ? kNoTet : scanForBase(v, toFirstConflict);
+      break;
+    }
     if (!isOwned(t))
     {
       t = kNoTet;
@@ -146,6 +154,20 @@ TetId Inserter::walk(TetId t, VertId v)
   stats_.walkSteps += steps;
   stats_.maxWalkSteps = std::max(stats_.maxWalkSteps, steps);
   return t;
+}
+
+// Every live tetrahedron in turn until one where the walk may end: one in conflict with the point
+// (the one that contains it is), or the one that contains it, or a ghost it lies beyond.
+TetId Inserter::scanForBase(VertId v, bool toFirstConflict)
+{
+  for (TetId t = 0; t < tets_.slots(); ++t)
+  {
+    if (tets_.isDead(t))
+      continue;
+    if (toFirstConflict ? inConflict(t, v) : tets_.isGhost(t) ? isBeyondHullFace(t, v) : holdsPoint(t, v))
+      return t;
+  }
+  return kNoTet;
 }
 
 TetId Inserter::locate(VertId v)

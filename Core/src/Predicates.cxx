@@ -3,7 +3,10 @@
 #include "DoubleDouble.h"
 #include "Platform.h"
 
+#include <gmp.h>
+
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 
@@ -34,6 +37,123 @@ constexpr double kUnitRoundoff = filter::kEpsilon;
 constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
 // Below this permanent the low parts could reach the subnormal range: left to the exact stage.
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
+
+// Filters for coordinates of any magnitude: every largest difference within [2^-k, 2^k]. Then no
+// operation overflows (orient3d's products stay below 2^600, insphere's below 2^607), and a
+// rounding error lost to underflow (at most 2^-1075, times the factors it is multiplied by
+// afterwards, below 2^362) stays below 2^-60 of the bound, which the bounds' 2% margin covers.
+constexpr double kOrientRange = 0x1p200;
+constexpr double kInSphereRange = 0x1p120;
+
+bool withinRange(double range, double x, double y, double z)
+{
+  return std::min({x, y, z}) >= 1 / range && std::max({x, y, z}) <= range;
+}
+
+/// GMP integers that free themselves.
+class Integer
+{
+public:
+  Integer() { mpz_init(value_); }
+  ~Integer() { mpz_clear(value_); }
+  Integer(const Integer&) = delete;
+  Integer& operator=(const Integer&) = delete;
+  mpz_ptr get() { return value_; }
+  mpz_srcptr get() const { return value_; }
+
+private:
+  mpz_t value_;
+};
+
+// An exact evaluation over integers: each finite double is m 2^k with an integer |m| < 2^53, so
+// the coordinates of one call, brought to their smallest k, are integers (of at most 2^2151): the
+// determinants are then polynomials in integers, which GMP computes without rounding, whatever
+// the magnitudes. The common factor 2^k is positive and leaves every sign alone.
+template <int N>
+class IntegerRows
+{
+public:
+  /// Rows x[i] - y, for N points x and the point y.
+  IntegerRows(const double* const x[N], const double* y)
+  {
+    int lowest = INT_MAX;
+    auto exponentOf = [](double v) {
+      int e;
+      std::frexp(v, &e);
+      return e - 53;
+    };
+    for (int k = 0; k < 3; ++k)
+    {
+      if (y[k] != 0)
+        lowest = std::min(lowest, exponentOf(y[k]));
+      for (int i = 0; i < N; ++i)
+        if (x[i][k] != 0)
+          lowest = std::min(lowest, exponentOf(x[i][k]));
+    }
+    Integer origin;
+    for (int k = 0; k < 3; ++k)
+    {
+      set(origin, y[k], lowest);
+      for (int i = 0; i < N; ++i)
+      {
+        set(row_[i][k], x[i][k], lowest);
+        mpz_sub(row_[i][k].get(), row_[i][k].get(), origin.get());
+      }
+    }
+  }
+
+  /// det[row i; row j; row k] = row i . (row j x row k).
+  void minor3(int i, int j, int k, Integer& out)
+  {
+    mpz_set_ui(out.get(), 0);
+    for (int c = 0; c < 3; ++c)
+    {
+      const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      mpz_mul(t_.get(), row_[j][c1].get(), row_[k][c2].get());
+      mpz_submul(t_.get(), row_[j][c2].get(), row_[k][c1].get());
+      mpz_addmul(out.get(), row_[i][c].get(), t_.get());
+    }
+  }
+
+  /// |row i|^2.
+  void lift(int i, Integer& out)
+  {
+    mpz_mul(out.get(), row_[i][0].get(), row_[i][0].get());
+    mpz_addmul(out.get(), row_[i][1].get(), row_[i][1].get());
+    mpz_addmul(out.get(), row_[i][2].get(), row_[i][2].get());
+  }
+
+  /// Whether row i and row j are parallel (or one is zero).
+  bool parallel(int i, int j)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      mpz_mul(t_.get(), row_[i][c1].get(), row_[j][c2].get());
+      mpz_submul(t_.get(), row_[i][c2].get(), row_[j][c1].get());
+      if (mpz_sgn(t_.get()) != 0)
+        return false;
+    }
+    return true;
+  }
+
+private:
+  static void set(Integer& out, double v, int lowest)
+  {
+    if (v == 0)
+    {
+      mpz_set_ui(out.get(), 0);
+      return;
+    }
+    int e;
+    const double m = std::frexp(v, &e);
+    mpz_set_d(out.get(), std::ldexp(m, 53)); // an integer below 2^53: exact
+    mpz_mul_2exp(out.get(), out.get(), static_cast<mp_bitcnt_t>(e - 53 - lowest));
+  }
+
+  Integer row_[N][3];
+  Integer t_;
+};
 } // namespace
 
 std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
@@ -94,9 +214,24 @@ void Predicates::include(const double* xyz, std::size_t count, std::size_t strid
   applyGrid();
 }
 
+void Predicates::allowAnyMagnitude()
+{
+  tuning_.anyMagnitude = true;
+  tuning_.boxOrient = tuning_.boxInSphere = HUGE_VAL;
+  liftsFirst_ = false;
+  applyGrid();
+}
+
 void Predicates::applyGrid()
 {
   Tuning& t = tuning_;
+  if (t.anyMagnitude)
+  {
+    t.inverseGridUnit = 0.0;
+    t.floatExactOrient = t.floatExactInSphere = false;
+    t.orientStatic = t.inSphereStatic = HUGE_VAL;
+    return;
+  }
   const bool onGrid = t.lowest != Tuning::kNoGrid && t.lowest <= t.highest;
   const int gridBits = onGrid ? t.highest - t.lowest : kIntegerGridBits + 1;
 #ifdef FD3_HAVE_INT128
@@ -128,20 +263,6 @@ void Predicates::gridDifferences(const double* const x[N], const double* y, std:
       out[i][k] = static_cast<std::int64_t>((x[i][k] - y[k]) * tuning_.inverseGridUnit);
 }
 
-void Predicates::checkUnderflow(const double* const rows[], int count, const double* origin)
-{
-  for (int r = 0; r < count; ++r)
-    for (int k = 0; k < 3; ++k)
-    {
-      const double d = std::fabs(rows[r][k] - origin[k]);
-      if (d != 0.0 && d < kSmallestSafeDifference)
-      {
-        ++underflowRisks;
-        return;
-      }
-    }
-}
-
 Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3])
 {
   ExpansionArena& x = arena_;
@@ -152,9 +273,51 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
   return x.add(x.add(x.multiply(u[0], cx), x.multiply(u[1], cy)), x.multiply(u[2], cz));
 }
 
+int Predicates::orient3dAnyMagnitude(const double* a, const double* b, const double* c, const double* d)
+{
+  // orient3d()'s semi-static filter, within the range where its bound holds.
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
+    cdz * (adx * bdy - bdx * ady);
+  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
+  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
+  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
+  const double bound = filter::kOrientSemiStatic * (mx * my * mz);
+  if (withinRange(kOrientRange, mx, my, mz) && (det > bound || -det > bound))
+    return -signOf(det);
+  return orient3dExact(a, b, c, d);
+}
+
+int Predicates::inSphereFilteredAnyMagnitude(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  // inSphereFiltered()'s semi-static filter, within the range where its bound holds.
+  double largest[3];
+  for (int k = 0; k < 3; ++k)
+    largest[k] = std::max({std::fabs(a[k] - e[k]), std::fabs(b[k] - e[k]), std::fabs(c[k] - e[k]),
+      std::fabs(d[k] - e[k])});
+  if (!withinRange(kInSphereRange, largest[0], largest[1], largest[2]))
+    return 0;
+  const double det = inSphereDeterminantPlain(a, b, c, d, e);
+  const double m = std::max({largest[0], largest[1], largest[2]});
+  const double bound = filter::kInSphereSemiStatic * (m * m * largest[0] * largest[1] * largest[2]);
+  return det > bound || -det > bound ? -signOf(det) : 0;
+}
+
 int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;
+  if (tuning_.anyMagnitude)
+  {
+    ++integerExactCalls;
+    const double* rows[3] = {b, c, d};
+    IntegerRows<3> q(rows, a);
+    Integer det;
+    q.minor3(0, 1, 2, det);
+    return mpz_sgn(det.get());
+  }
 #ifdef FD3_HAVE_INT128
   if (tuning_.inverseGridUnit > 0)
   {
@@ -164,8 +327,6 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
     return signOf(det3(q[0], q[1], q[2]));
   }
 #endif
-  const double* rows[3] = {b, c, d};
-  checkUnderflow(rows, 3, a);
   arena_.reset();
   Expansion u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k)
@@ -183,7 +344,7 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
 int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
-  if (tuning_.inverseGridUnit > 0)
+  if (tuning_.inverseGridUnit > 0 || tuning_.anyMagnitude)
     return inSphereExact(a, b, c, d, e);
   ++doubleDoubleInSphereCalls;
   const double* rows[4] = {a, b, c, d};
@@ -245,10 +406,28 @@ int Predicates::inSphereExact(
     return -signOf(det);
   }
 #endif
+  const double* rows[4] = {a, b, c, d};
+  if (tuning_.anyMagnitude)
+  {
+    ++integerExactCalls;
+    IntegerRows<4> q(rows, e);
+    // Laplace expansion along the lift column, as below.
+    Integer det, lift, minor;
+    const int others[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+    const int sign[4] = {-1, 1, -1, 1};
+    for (int r = 0; r < 4; ++r)
+    {
+      q.lift(r, lift);
+      q.minor3(others[r][0], others[r][1], others[r][2], minor);
+      if (sign[r] > 0)
+        mpz_addmul(det.get(), lift.get(), minor.get());
+      else
+        mpz_submul(det.get(), lift.get(), minor.get());
+    }
+    return -mpz_sgn(det.get());
+  }
   ExpansionArena& x = arena_;
   x.reset();
-  const double* rows[4] = {a, b, c, d};
-  checkUnderflow(rows, 4, e);
   Expansion diff[4][3], lift[4];
   for (int r = 0; r < 4; ++r)
   {
@@ -269,6 +448,11 @@ int Predicates::inSphereExact(
 
 bool Predicates::collinear(const double* a, const double* b, const double* c)
 {
+  if (tuning_.anyMagnitude)
+  {
+    const double* rows[2] = {b, c};
+    return IntegerRows<2>(rows, a).parallel(0, 1);
+  }
   arena_.reset();
   Expansion u[3], v[3];
   for (int k = 0; k < 3; ++k)

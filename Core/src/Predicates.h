@@ -6,8 +6,10 @@
 // Signs follow VTK's tetrahedron convention:
 //   orient3d(a,b,c,d) > 0  iff  (b-a) x (c-a) . (d-a) > 0,
 //   inSphere(a,b,c,d,e) > 0 iff e lies strictly inside the circumsphere of the positive tet abcd.
-// Coordinates must be scaled so that no product of five of them overflows or underflows
-// (Triangulator normalizes its copy of the points to [-1,1]).
+// The kernel computes in a frame that scales the points exactly into [-1, 1] where one exists, so
+// that no product of five coordinate differences overflows or underflows. Points no such frame
+// holds exactly stay as they are, and allowAnyMagnitude() then guards every filter against
+// overflow and underflow and moves the exact stage to integers of unbounded size.
 #ifndef fd3_Predicates_h
 #define fd3_Predicates_h
 
@@ -111,7 +113,17 @@ public:
   /// Widens the tuning to more points of the same box (the grid may get finer, or go).
   void include(const double* xyz, std::size_t count, std::size_t stride);
   /// Takes other's tuning, keeping this one's counters.
-  void tuneLike(const Predicates& other) { tuning_ = other.tuning_; }
+  void tuneLike(const Predicates& other)
+  {
+    tuning_ = other.tuning_;
+    liftsFirst_ = liftsFirst_ && !tuning_.anyMagnitude;
+  }
+  /// For coordinates of any finite magnitude, from the smallest subnormal to DBL_MAX (points that
+  /// no scaled frame holds exactly): the float filters check that no operation overflowed or lost
+  /// a rounding error to underflow, and the exact stage computes in GMP integers on the
+  /// coordinates' binary values, which neither overflow nor underflow. Ends the grid's shortcuts.
+  void allowAnyMagnitude();
+  bool allowsAnyMagnitude() const { return tuning_.anyMagnitude; }
   /// From now on the lifts' filter goes first. The static filter, one comparison, decides nearly
   /// every insphere test on volume points (cube: all but 0.03%), but on surface samples, whose
   /// local scale is far below the box's, it leaves 25-75% of them open (terrain, noisy shell,
@@ -119,7 +131,8 @@ public:
   /// lifts' filter decides all of those but a few percent of the torus's, at the price of a few
   /// products per test. It cannot help with exact ties (cospherical points, lattices), which
   /// neither filter decides. Which filter goes first never changes a sign.
-  void preferLiftsFilter() { liftsFirst_ = true; }
+  /// Not for any magnitude: its bound assumes that no rounding error is lost to underflow.
+  void preferLiftsFilter() { liftsFirst_ = !tuning_.anyMagnitude; }
   bool prefersLiftsFilter() const { return liftsFirst_; }
   /// Insphere tests that the static filter left open and the lifts' filter decided, while the
   /// static one went first.
@@ -132,10 +145,8 @@ public:
   std::size_t doubleDoubleInSphereCalls = 0; ///< insphere calls past the float filters
   std::size_t exactInSphereCalls = 0;        ///< of those, the ones double-double left open
   std::size_t symbolicTies = 0;
-  /// Exact evaluations where a non-zero coordinate difference was below kSmallestSafeDifference:
-  /// products of five such differences may underflow, and exactness is no longer guaranteed.
-  std::size_t underflowRisks = 0;
-  static constexpr double kSmallestSafeDifference = 0x1p-190; // (2^-190)^5 > 2^-969: no underflow
+  /// Exact evaluations in GMP integers (allowAnyMagnitude()).
+  std::size_t integerExactCalls = 0;
 
 private:
   template <int N>
@@ -144,8 +155,10 @@ private:
   int inSphereDoubleDouble(const double* a, const double* b, const double* c, const double* d, const double* e);
   int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
+  int orient3dAnyMagnitude(const double* a, const double* b, const double* c, const double* d);
+  int inSphereFilteredAnyMagnitude(
+    const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
-  void checkUnderflow(const double* const rows[], int count, const double* origin);
 
   bool liftsFilterProves(double det, const double lifts[4]) const;
 
@@ -166,6 +179,7 @@ private:
     double inSphereStatic = HUGE_VAL;
     bool floatExactOrient = false;
     bool floatExactInSphere = false;
+    bool anyMagnitude = false; // allowAnyMagnitude()
   } tuning_;
   void applyGrid();
 };
@@ -182,6 +196,8 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
     return -filter::signOf(det);
   if (tuning_.floatExactOrient)
     return 0;
+  if (tuning_.anyMagnitude)
+    return orient3dAnyMagnitude(a, b, c, d);
   // Semi-static filter: the permanent is at most 6 * mx * my * mz, mx being the largest |x|
   // difference (and so on), so Shewchuk's bound (7 + 56 eps) eps * permanent is below
   // filter::kOrientSemiStatic * mx * my * mz.
@@ -300,6 +316,8 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
     return -filter::signOf(det);
   if (tuning_.floatExactInSphere)
     return -filter::signOf(det);
+  if (tuning_.anyMagnitude)
+    return inSphereFilteredAnyMagnitude(a, b, c, d, e);
   if (!liftsFirst_ && liftsFilterProves(det, lifts))
   {
     ++liftsFilterRescues_;

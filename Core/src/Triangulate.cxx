@@ -56,6 +56,8 @@ Box toFrame(const Frame& frame, const Box& box)
 bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, std::vector<std::uint32_t>& order)
 {
   Predicates predicates;
+  if (frame.identity)
+    predicates.allowAnyMagnitude();
   double p[4][3];
   std::size_t found[4] = {0, 0, 0, 0};
   int have = 1;
@@ -136,7 +138,9 @@ int threadCount(const Options& options)
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (options.volumeThreshold > 0)
     return 1; // which slivers the guard avoids depends on the order of insertion
-  return options.threads > 0 ? options.threads : hardware;
+  // Each thread has its own scratch and slot pool: beyond a few per hardware thread they only
+  // cost memory.
+  return options.threads > 0 ? std::min(options.threads, kThreadsPerHardwareThread * hardware) : hardware;
 }
 } // namespace
 
@@ -162,14 +166,44 @@ Frame frameFor(const double lo[3], const double hi[3], const bool exact[3])
   double extent = 0;
   for (int a = 0; a < 3; ++a)
   {
-    frame.shift[a] = exact[a] ? lo[a] + (hi[a] - lo[a]) / 2 : 0.0;
+    // The centre that checkShifts() was given; not finite where hi - lo exceeds DBL_MAX.
+    const double centre = lo[a] + (hi[a] - lo[a]) / 2;
+    frame.shift[a] = exact[a] && std::isfinite(centre) ? centre : 0.0;
     frame.lo[a] = lo[a];
     frame.hi[a] = hi[a];
     extent = std::max({extent, std::fabs(lo[a] - frame.shift[a]), std::fabs(hi[a] - frame.shift[a])});
   }
   int exponent = 0;
   std::frexp(extent, &exponent);
-  frame.scale = extent > 0 ? std::ldexp(1.0, -exponent) : 1.0;
+  // Up to 2^1022: a larger power of two is not a double (the extent of subnormal points).
+  frame.scale = extent > 0 && std::isfinite(extent) ? std::ldexp(1.0, -std::max(exponent, -1022)) : 1.0;
+  return frame;
+}
+
+bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
+{
+  if (frame.identity)
+    return true;
+  // Below 2^-137 a double's last bit can lie below 2^-190 (53 bits of significand).
+  auto fits = [&frame](double x, int a) {
+    const double y = toFrame(frame, x, a);
+    if (fromFrame(frame, y, a) != x)
+      return false;
+    const double units = std::ldexp(y, 190);
+    return std::fabs(y) >= 0x1p-137 || units == std::trunc(units);
+  };
+  for (std::size_t i = 0; i < count; ++i)
+    if (isFinite(xyz + 3 * i) && !(fits(xyz[3 * i], 0) && fits(xyz[3 * i + 1], 1) && fits(xyz[3 * i + 2], 2)))
+      return false;
+  return true;
+}
+
+Frame identityFrame(const double lo[3], const double hi[3])
+{
+  Frame frame;
+  std::copy(lo, lo + 3, frame.lo);
+  std::copy(hi, hi + 3, frame.hi);
+  frame.identity = true;
   return frame;
 }
 
@@ -300,7 +334,7 @@ void Tetrahedralization::Impl::insertFirst(
   std::copy(frame.lo, frame.lo + 3, bounds.lo);
   std::copy(frame.hi, frame.hi + 3, bounds.hi);
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
-    toFrame(frame, bounds), options, threadCount(options));
+    toFrame(frame, bounds), options, threadCount(options), frame.identity);
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }
@@ -572,7 +606,10 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
     box.lo[2] + box.extent(2) / 2};
   bool exact[3] = {true, true, true};
   checkShifts(xyz, count, centre, exact);
-  Tetrahedralization mesh(xyz, count, options, frameFor(box.lo, box.hi, exact));
+  Frame frame = frameFor(box.lo, box.hi, exact);
+  if (!fitsFrame(frame, xyz, count))
+    frame = identityFrame(box.lo, box.hi);
+  Tetrahedralization mesh(xyz, count, options, frame);
   Triangulation out = mesh.release();
   out.stats.secondsTotal = secondsSince(start);
   return out;

@@ -8,8 +8,8 @@
 
 namespace fd3
 {
-Triangulator::Triangulator(
-  VertexArray vertices, const Box& box, const Box& bounds, const Options& options, int threads)
+Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& bounds,
+  const Options& options, int threads, bool anyMagnitude)
   : tuning_(options.randomSeed)
 {
   mesh_.vertices = std::move(vertices);
@@ -18,6 +18,8 @@ Triangulator::Triangulator(
   mesh_.tets.reserve(7 * n + 64); // uniform points make 6.7 per vertex; insertAll() corrects it
   mesh_.grid.build(n, box, options.pointsPerCell);
   tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), bounds);
+  if (anyMagnitude)
+    tuning_.allowAnyMagnitude();
   for (int t = 0; t < threads; ++t)
   {
     pools_.push_back(std::make_unique<SlotPool>());
@@ -168,7 +170,7 @@ void Triangulator::addPredicateCounts(Statistics& stats) const
     stats.exactOrient += p.exactOrientCalls;
     stats.exactInSphere += p.exactInSphereCalls;
     stats.symbolicTies += p.symbolicTies;
-    stats.underflowRisks += p.underflowRisks;
+    stats.integerExact += p.integerExactCalls;
   }
 }
 

@@ -23,7 +23,9 @@ public:
   /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
   /// `box`, which the grid covers; `bounds` holds every point the mesh will ever have (added ones
   /// too) and sets the predicates' static bounds. `threads` inserters are made ready.
-  Triangulator(VertexArray vertices, const Box& box, const Box& bounds, const Options& options, int threads);
+  /// `anyMagnitude`: the points are not scaled into [-1, 1] (Predicates::allowAnyMagnitude()).
+  Triangulator(VertexArray vertices, const Box& box, const Box& bounds, const Options& options,
+    int threads, bool anyMagnitude);
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false

@@ -524,12 +524,6 @@ bool vtkFastDelaunay3D::ReportOnInput(
                        "output, unused): "
                     << leftOut);
   }
-  if (stats.underflowRisks > 0)
-  {
-    vtkWarningMacro("Some points are closer together than 2^-190 of the extent of the point set: "
-                    "exactness is not guaranteed for "
-                    << stats.underflowRisks << " decisions");
-  }
   return true;
 }
 

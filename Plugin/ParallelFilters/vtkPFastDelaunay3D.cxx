@@ -482,7 +482,10 @@ public:
     }
     this->Diagonal = std::sqrt(
       std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
-    return fd3::frameFor(lo, hi, exact);
+    const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
+    int fits = fd3::fitsFrame(frame, this->Xyz.data(), this->OwnCount), allFit = 0;
+    this->Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
+    return allFit ? frame : fd3::identityFrame(lo, hi);
   }
 
   /// Step 3: this rank's points tetrahedralized, and the halo of every other rank sent to it.
@@ -680,7 +683,7 @@ public:
     }
     std::array<double, 10> sums = { double(s.nonFinitePoints), double(inserted), double(skipped),
       double(ownedTetrahedra), double(s.walkSteps), double(s.cavityTetrahedra),
-      double(s.underflowRisks), double(s.insertedPoints), double(this->Xyz.size() / 3 - this->OwnCount),
+      double(s.integerExact), double(s.insertedPoints), double(this->Xyz.size() / 3 - this->OwnCount),
       double(merged) },
                             total;
     std::array<double, 7> maxima = { double(s.maxWalkSteps), s.secondsSort, s.secondsLocate,
@@ -698,7 +701,7 @@ public:
     // Walks and cavities of ghost insertions count too: that is the work done.
     global.walkSteps = static_cast<std::size_t>(total[4] * total[1] / std::max(total[7], 1.0));
     global.cavityTetrahedra = static_cast<std::size_t>(total[5] * total[1] / std::max(total[7], 1.0));
-    global.underflowRisks = static_cast<std::size_t>(total[6]);
+    global.integerExact = static_cast<std::size_t>(total[6]);
     this->GhostPoints = static_cast<vtkIdType>(total[8]);
     global.maxWalkSteps = static_cast<std::size_t>(slowest[0]);
     global.secondsSort = slowest[1];

@@ -25,7 +25,8 @@ inline fd3::Frame frameOf(const Points& p)
   const double centre[3] = {lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2};
   bool exact[3] = {true, true, true};
   fd3::checkShifts(p.data(), p.size() / 3, centre, exact);
-  return fd3::frameFor(lo, hi, exact);
+  const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
+  return fd3::fitsFrame(frame, p.data(), p.size() / 3) ? frame : fd3::identityFrame(lo, hi);
 }
 } // namespace fd3test
 

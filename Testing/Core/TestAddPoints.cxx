@@ -172,14 +172,21 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
       EXPECT_TRUE(std::equal(back.begin() + 3 * i, back.begin() + 3 * i + 3, p.begin() + 3 * i)) << i;
   }
 
-  // Not recoverable: a -0 (its duplicate at +0 would come back as +0), a coordinate the frame's
-  // scale takes below the smallest double.
+  // Not recoverable: a -0 (its duplicate at +0 would come back as +0).
   fd3test::Points q = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
   EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
   q[0] = -0.0;
   EXPECT_FALSE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+  // A coordinate that the scaled frame takes below the smallest double: that frame does not hold
+  // the points, and the identity frame they get instead gives them back.
   q = {-1e300, 0, 0, 1e300, 0, 0, 0, 1, 0, 1e-300, 0, 1};
-  EXPECT_FALSE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+  const double lo[3] = {-1e300, 0, 0}, hi[3] = {1e300, 1, 1};
+  const bool exact[3] = {true, true, true};
+  const fd3::Frame scaled = fd3::frameFor(lo, hi, exact);
+  EXPECT_FALSE(fd3::fitsFrame(scaled, q.data(), 4));
+  EXPECT_FALSE(fd3::recoverable(scaled, q.data(), 4));
+  EXPECT_TRUE(fd3test::frameOf(q).identity);
+  EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
 
   // A mesh that cannot start yet has not read the points into its records.
   fd3::Tetrahedralization few(p.data(), 3, fd3::Options(), frame, 0, [&reads] { ++reads; });

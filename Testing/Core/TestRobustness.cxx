@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <cmath>
 #include <random>
 
@@ -12,10 +13,13 @@ namespace
 {
 using fd3test::Points;
 
-void expectExactDelaunay(const Points& p, const std::string& what)
+void expectExactDelaunay(const Points& p, const std::string& what, int threads = 1)
 {
   const std::size_t n = p.size() / 3;
-  const fd3::Triangulation r = fd3::triangulate(p.data(), n);
+  fd3::Options options;
+  options.threads = threads;
+  options.pointsPerThread = 64; // parallel rounds even on these small sets
+  const fd3::Triangulation r = fd3::triangulate(p.data(), n, options);
   ASSERT_EQ(r.status, fd3::Status::Ok) << what << ": " << fd3::toString(r.status);
   const auto report = fd3test::checkTriangulation(p.data(), n, r.tetrahedra);
   EXPECT_TRUE(report.valid()) << what << ": " << report.summary();
@@ -186,6 +190,66 @@ TEST(Robustness, HugeTinyAndFarFromTheOrigin)
   for (double& x : far)
     x += 1e9;
   expectExactDelaunay(far, "offset 1e9");
+}
+
+// Magnitudes that no scaled frame holds exactly, each once on one thread and once on two.
+void expectExactAtAnyThreads(const Points& p, const std::string& what)
+{
+  for (int threads : {1, 2})
+    expectExactDelaunay(p, what + ", " + std::to_string(threads) + " threads", threads);
+}
+
+Points scaled(Points p, double factor, double offset = 0)
+{
+  for (double& x : p)
+    x = x * factor + offset;
+  return p;
+}
+
+Points joined(Points a, const Points& b)
+{
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(Robustness, SpansBeyondDoubleMax)
+{
+  const double big = DBL_MAX;
+  Points corners;
+  for (int k = 0; k < 8; ++k)
+    corners.insert(corners.end(), {k & 1 ? big : -big, k & 2 ? big : -big, k & 4 ? big : -big});
+  expectExactAtAnyThreads(joined(corners, fd3test::uniformCube(300, 21)), "corners at DBL_MAX");
+  expectExactAtAnyThreads(scaled(fd3test::uniformCube(2000, 22), 1.78e308, -8.9e307), "within 9e307");
+}
+
+TEST(Robustness, TinyAndSubnormalSets)
+{
+  expectExactAtAnyThreads(scaled(fd3test::uniformCube(1000, 23), 1e-306), "within 1e-306");
+  expectExactAtAnyThreads(scaled(fd3test::uniformCube(500, 24), 1e-310), "subnormal");
+  // Multiples of the smallest subnormal: exact ties, all of them on the integer grid.
+  expectExactAtAnyThreads(scaled(fd3test::lattice(6), 0x1p-1074), "lattice of 2^-1074");
+}
+
+TEST(Robustness, OneOutlierBesideUnitData)
+{
+  for (double far : {1e100, 1e200, DBL_MAX})
+  {
+    const Points outlier = {far, 0, 0};
+    expectExactAtAnyThreads(joined(fd3test::uniformCube(1000, 25), outlier), "outlier " + std::to_string(far));
+    expectExactAtAnyThreads(joined(fd3test::uniformCube(100, 25), outlier), "100 and outlier");
+    expectExactAtAnyThreads(joined(fd3test::uniformCube(1000, 26), {-far, -far, far}), "corner outlier");
+  }
+}
+
+TEST(Robustness, TinyClustersBesideUnitData)
+{
+  for (double spread : {1e-70, 1e-150, 1e-250})
+  {
+    const Points cluster = scaled(fd3test::uniformCube(300, 27), spread, 0.5);
+    expectExactAtAnyThreads(joined(fd3test::uniformCube(300, 28), cluster), "cluster " + std::to_string(spread));
+    const Points atOrigin = scaled(fd3test::uniformCube(100, 29), spread);
+    expectExactAtAnyThreads(joined(fd3test::uniformCube(300, 30), atOrigin), "cluster at 0");
+  }
 }
 
 } // namespace

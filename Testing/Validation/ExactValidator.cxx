@@ -39,6 +39,19 @@ T perm3(const T u[3], const T v[3], const T w[3])
     fabs(u[2]) * (fabs(v[0] * w[1]) + fabs(v[1] * w[0]));
 }
 
+/// Whether every difference is 0 or within [2^-100, 2^100]: then no product of five leaves the
+/// normal range, and no rounding error is lost to underflow or overflow.
+bool inRange(const double* differences, int count)
+{
+  for (int i = 0; i < count; ++i)
+  {
+    const double x = std::fabs(differences[i]);
+    if (x != 0 && !(x >= 0x1p-100 && x <= 0x1p100))
+      return false;
+  }
+  return true;
+}
+
 bool trusted(double value, double permanent)
 {
   return std::isfinite(value) && std::isfinite(permanent) && permanent > 1e-200 &&
@@ -52,7 +65,7 @@ int exactOrient3d(const double* a, const double* b, const double* c, const doubl
   const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
   const double value = det3(u, v, w);
-  if (trusted(value, perm3(u, v, w)))
+  if (inRange(u, 3) && inRange(v, 3) && inRange(w, 3) && trusted(value, perm3(u, v, w)))
     return value > 0 ? 1 : -1;
   mpq_class U[3], V[3], W[3];
   for (int k = 0; k < 3; ++k)
@@ -76,6 +89,9 @@ int exactInSphere(const double* a, const double* b, const double* c, const doubl
     r[i][3] = r[i][0] * r[i][0] + r[i][1] * r[i][1] + r[i][2] * r[i][2];
   }
   double value = 0, permanent = 0;
+  bool differencesInRange = true;
+  for (int i = 0; i < 4; ++i)
+    differencesInRange = differencesInRange && inRange(r[i], 3);
   for (int i = 0; i < 4; ++i)
   {
     const double* m[3];
@@ -87,7 +103,7 @@ int exactInSphere(const double* a, const double* b, const double* c, const doubl
     value += s * r[i][3] * det3(m[0], m[1], m[2]);
     permanent += r[i][3] * perm3(m[0], m[1], m[2]);
   }
-  if (trusted(value, permanent))
+  if (differencesInRange && trusted(value, permanent))
     return value < 0 ? 1 : -1;
   mpq_class R[4][4];
   for (int i = 0; i < 4; ++i)
@@ -303,7 +319,7 @@ private:
     const std::uint32_t* v = tet(0);
     double c[3];
     for (int k = 0; k < 3; ++k)
-      c[k] = (p(v[0])[k] + p(v[1])[k] + p(v[2])[k] + p(v[3])[k]) / 4;
+      c[k] = p(v[0])[k] / 4 + p(v[1])[k] / 4 + p(v[2])[k] / 4 + p(v[3])[k] / 4; // no overflow
     if (exactOrient3d(p(v[0]), p(v[1]), p(v[2]), c) <= 0 || exactOrient3d(p(v[1]), p(v[0]), p(v[3]), c) <= 0 ||
       exactOrient3d(p(v[2]), p(v[3]), p(v[0]), c) <= 0 || exactOrient3d(p(v[3]), p(v[2]), p(v[1]), c) <= 0)
       return; // the rounded centroid is not strictly inside (a tiny sliver): nothing to learn

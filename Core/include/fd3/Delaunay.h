@@ -36,6 +36,9 @@ enum class Status
   CheckFailed     ///< Options::checkMesh found a broken invariant (a bug): see checkReport
 };
 
+/// The most threads per hardware thread that Options::threads starts.
+constexpr int kThreadsPerHardwareThread = 4;
+
 struct Options
 {
   /// Target number of points per cell of the background grid (the paper's "onion" search).
@@ -63,7 +66,8 @@ struct Options
   bool checkMesh = false;
   /// Threads that insert points; 0: all hardware threads. The output does not depend on it (ties
   /// are broken by a key fixed before insertion). A volume threshold makes the run serial: which
-  /// slivers it avoids depends on the order of insertion.
+  /// slivers it avoids depends on the order of insertion. At most kThreadsPerHardwareThread per
+  /// hardware thread are started; larger values run as that many.
   int threads = 1;
   /// A BRIO round goes in parallel when it has at least this many points per thread (smaller
   /// ones do not repay the threads' start and the regions' borders).
@@ -95,10 +99,10 @@ struct Statistics
   std::size_t exactOrient = 0;         ///< orient3d calls the float filter could not decide
   std::size_t exactInSphere = 0;       ///< insphere calls the float filter could not decide
   std::size_t symbolicTies = 0;        ///< insphere ties broken by symbolic perturbation
-  /// Exact evaluations on points so close together relative to the extent of the set (below
-  /// 2^-190 of it) that double-based exact arithmetic may underflow. When 0, the output is
-  /// guaranteed exact; otherwise it is valid in all likelihood but not guaranteed.
-  std::size_t underflowRisks = 0;
+  /// Exact evaluations in integers of unbounded size: on points whose magnitudes lie too far apart
+  /// for one exact scaled frame (Frame::identity), where double expansions would underflow or
+  /// overflow. Exact either way; these only cost more.
+  std::size_t integerExact = 0;
   double secondsSort = 0, secondsLocate = 0, secondsCavity = 0, secondsFill = 0, secondsOutput = 0;
   double secondsTotal = 0;
 
@@ -169,6 +173,9 @@ struct Frame
   double scale = 1.0;
   double lo[3] = {0, 0, 0};
   double hi[3] = {0, 0, 0};
+  /// No shift and no scale (identityFrame()): the points keep magnitudes that no scaled frame
+  /// holds exactly, and the predicates work on any finite magnitude (at a higher cost).
+  bool identity = false;
 };
 
 /// Which coordinates of `count` points can have `centre` subtracted exactly: exact[a] is cleared
@@ -177,6 +184,14 @@ void checkShifts(const double* xyz, std::size_t count, const double centre[3], b
 /// The frame for points within [lo, hi], shifted by the box's centre on the axes where exact (as
 /// checkShifts() found for every point) and scaled into [-1, 1].
 Frame frameFor(const double lo[3], const double hi[3], const bool exact[3]);
+/// Whether `frame` holds each finite one of `count` points exactly, with room for the exact
+/// arithmetic of doubles: the image of every coordinate is exact and a multiple of 2^-190, so that
+/// no product of five differences underflows. Where it is false for any point (magnitudes far
+/// apart: an outlier at 1e100 beside unit data, a cluster 1e-150 wide, a span above DBL_MAX),
+/// every piece must use identityFrame() instead.
+bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count);
+/// The frame that leaves points within [lo, hi] as they are (Frame::identity).
+Frame identityFrame(const double lo[3], const double hi[3]);
 /// Whether the kernel's records of `count` points in `frame` give each finite one back bit for bit
 /// (Tetrahedralization::points(), release(xyz)): every coordinate maps into the frame and back
 /// exactly (no underflow), and none is -0, which an exact duplicate at +0 would come back as.
