@@ -14,20 +14,27 @@ void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCe
     return;
   // Cells as close to cubes as the box allows, about count / pointsPerCell of them (at most
   // kMaxCellsPerPoint a point: more only cost memory); flat axes get one. In halves of the
-  // coordinates, and the cell size from logarithms, so that any finite box works.
+  // coordinates, exact above the subnormals, so that boxes wider than DBL_MAX work too; the cell
+  // size from logarithms where the volume is not a double.
   const double cellsWanted =
     std::clamp(double(count) / pointsPerCell, 1.0, kMaxCellsPerPoint * double(count));
-  double halfExtent[3], logVolume = 0;
+  double halfExtent[3], halfVolume = 1.0, logVolume = 0;
   int flatAxes = 0;
   for (int a = 0; a < 3; ++a)
   {
     halfExtent[a] = box.hi[a] / 2 - box.lo[a] / 2;
     if (halfExtent[a] > 0)
+    {
+      halfVolume *= halfExtent[a];
       logVolume += std::log(halfExtent[a]);
+    }
     else
       ++flatAxes;
   }
-  const double cellSize = std::exp((logVolume - std::log(cellsWanted)) / (3 - std::min(flatAxes, 2)));
+  const double dimensions = 3 - std::min(flatAxes, 2);
+  double cellSize = std::pow(halfVolume / cellsWanted, 1.0 / dimensions);
+  if (!(cellSize > 0 && std::isfinite(cellSize) && halfVolume < HUGE_VAL))
+    cellSize = std::exp((logVolume - std::log(cellsWanted)) / dimensions);
   for (int a = 0; a < 3; ++a)
   {
     const double n = halfExtent[a] > 0 ? std::ceil(halfExtent[a] / cellSize) : 1.0;

@@ -170,9 +170,11 @@ void sortRunAndMarkDuplicates(const double* xyz, std::uint32_t* ids, std::size_t
 constexpr int kMaxRefinements = 64;
 
 /// Maps coordinates within a box onto the curve's grid, for any finite box: halves keep the
-/// differences finite where the box spans more than DBL_MAX, and the scale is applied in two
-/// factors, each finite where the box is subnormal. Halving a subnormal box can make its span 0:
-/// every point then goes to cell 0, and the run to the lexicographic sort.
+/// differences finite where the box spans more than DBL_MAX (halving is exact above the
+/// subnormals, so the cells are those of (x - lo) * (2^kHilbertBits - 1) / span), and where the
+/// box is so small that its scale is not a double, the scale is applied in two finite factors.
+/// Halving a subnormal box can make its span 0: every point then goes to cell 0, and the run to
+/// the lexicographic sort.
 class GridMap
 {
 public:
@@ -185,21 +187,26 @@ public:
       halfSpan = std::max(halfSpan, box.hi[a] / 2 - halfLo_[a]);
       empty_ = empty_ && box.lo[a] == box.hi[a];
     }
-    int exponent = 0;
-    const double mantissa = std::frexp(halfSpan, &exponent); // halfSpan = mantissa 2^exponent
-    first_ = std::ldexp(1.0, -exponent / 2);
-    second_ = std::ldexp(double(1u << kHilbertBits) / mantissa, exponent / 2 - exponent);
+    constexpr double kLastCell = (1u << kHilbertBits) - 1;
+    scale_ = kLastCell / halfSpan;
+    if (!std::isfinite(scale_))
+    {
+      int exponent = 0;
+      const double mantissa = std::frexp(halfSpan, &exponent); // halfSpan = mantissa 2^exponent
+      scale_ = std::ldexp(1.0, -exponent / 2);
+      second_ = std::ldexp(kLastCell / mantissa, exponent / 2 - exponent);
+    }
   }
   bool empty() const { return empty_; }
   std::uint32_t cell(double x, int a) const
   {
-    const double c = (x / 2 - halfLo_[a]) * first_ * second_; // 2^kHilbertBits at the far side
+    const double c = (x / 2 - halfLo_[a]) * scale_ * second_;
     return c > 0 ? static_cast<std::uint32_t>(std::min(c, double((1u << kHilbertBits) - 1))) : 0;
   }
 
 private:
   double halfLo_[3];
-  double first_ = 0, second_ = 0;
+  double scale_ = 0, second_ = 1; // second_: the second factor, where one does not do
   bool empty_ = true;
 };
 

@@ -184,13 +184,15 @@ bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
 {
   if (frame.identity)
     return true;
-  // Below 2^-137 a double's last bit can lie below 2^-190 (53 bits of significand).
-  auto fits = [&frame](double x, int a) {
+  // A power of two's inverse, where it is a double, undoes the scale as a division would.
+  const double inverse = 1 / frame.scale;
+  const bool multiply = std::isfinite(inverse);
+  auto fits = [&](double x, int a) {
     const double y = toFrame(frame, x, a);
-    if (fromFrame(frame, y, a) != x)
+    if ((multiply ? y * inverse : y / frame.scale) + frame.shift[a] != x)
       return false;
-    const double units = std::ldexp(y, 190);
-    return std::fabs(y) >= 0x1p-137 || units == std::trunc(units);
+    // Below 2^-137 a double's last bit can lie below 2^-190 (53 bits of significand).
+    return std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190));
   };
   for (std::size_t i = 0; i < count; ++i)
     if (isFinite(xyz + 3 * i) && !(fits(xyz[3 * i], 0) && fits(xyz[3 * i + 1], 1) && fits(xyz[3 * i + 2], 2)))

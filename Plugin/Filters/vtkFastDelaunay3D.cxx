@@ -45,15 +45,10 @@ vtkStandardNewMacro(vtkFastDelaunay3D);
 
 namespace
 {
-double Diagonal(const double bounds[6])
+/// `value` clamped to [lo, hi]; NaN, which no comparison clamps, gives `nan`.
+double Clamped(double value, double lo, double hi, double nan)
 {
-  double d2 = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const double extent = bounds[2 * a + 1] - bounds[2 * a];
-    d2 += extent > 0 ? extent * extent : 0;
-  }
-  return std::sqrt(d2);
+  return std::isnan(value) ? nan : std::min(std::max(value, lo), hi);
 }
 
 /// The input's points in the requested precision, with room for `extra` more after them: the
@@ -99,9 +94,15 @@ vtkSmartPointer<vtkPoints> MakeOutputPoints(
   if (bounding) // vtkDelaunay3D's octahedron: centre +- offset * diagonal along each axis
   {
     const vtkIdType n = input->GetNumberOfPoints();
-    const double centre[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
-      (bounds[4] + bounds[5]) / 2 };
-    const double length = offset * (Diagonal(bounds) > 0 ? Diagonal(bounds) : 1.0);
+    double centre[3], farthest = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      centre[a] = bounds[2 * a] / 2 + bounds[2 * a + 1] / 2;
+      farthest = std::max(farthest, std::fabs(centre[a]));
+    }
+    // No further than VTK_DOUBLE_MAX - |centre| (halved against the rounding of the sum).
+    const double length = std::min(offset * (fd3::diagonal(bounds) > 0 ? fd3::diagonal(bounds) : 1.0),
+      (VTK_DOUBLE_MAX - farthest) / 2);
     for (int k = 0; k < 6; ++k)
     {
       double x[3] = { centre[0], centre[1], centre[2] };
@@ -387,6 +388,54 @@ void AddFieldValue(vtkFieldData* fields, const char* name, double value)
 
 vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
 
+
+void vtkFastDelaunay3D::SetClamped(double& property, double value, double lo, double hi, double nan)
+{
+  value = Clamped(value, lo, hi, nan);
+  if (property != value)
+  {
+    property = value;
+    this->Modified();
+  }
+}
+
+void vtkFastDelaunay3D::SetAlpha(double alpha)
+{
+  this->SetClamped(this->Alpha, alpha, 0.0, VTK_DOUBLE_MAX, 0.0);
+}
+
+void vtkFastDelaunay3D::SetTolerance(double tolerance)
+{
+  this->SetClamped(this->Tolerance, tolerance, 0.0, 1.0, 0.0);
+}
+
+void vtkFastDelaunay3D::SetOffset(double offset)
+{
+  this->SetClamped(this->Offset, offset, 2.5, VTK_DOUBLE_MAX, 2.5);
+}
+
+void vtkFastDelaunay3D::SetGridResolution(double pointsPerCell)
+{
+  this->SetClamped(this->GridResolution, pointsPerCell, 0.0, 1000.0, 4.0);
+}
+
+void vtkFastDelaunay3D::SetVolumeThreshold(double threshold)
+{
+  this->SetClamped(this->VolumeThreshold, threshold, 0.0, 1.0, 0.0);
+}
+
+void vtkFastDelaunay3D::SetPointsWithoutCells(
+  vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData)
+{
+  output->Initialize();
+  output->SetPoints(points ? points : vtkSmartPointer<vtkPoints>::New().Get());
+  if (pointData)
+  {
+    output->GetPointData()->PassData(pointData);
+  }
+  SetCells(output, {});
+}
+
 int vtkFastDelaunay3D::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
@@ -408,6 +457,7 @@ int vtkFastDelaunay3D::RequestData(
     {
       vtkWarningMacro("Cannot triangulate; no input points");
     }
+    SetPointsWithoutCells(output, nullptr, input ? input->GetPointData() : nullptr);
     return 1;
   }
 
@@ -420,15 +470,16 @@ int vtkFastDelaunay3D::RequestData(
   std::vector<double> converted;
   const double* xyz = CoordinatesAsDoubles(points, converted);
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
+  vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
   fd3::Triangulation result;
   try
   {
-    result = fd3::triangulate(xyz, count, this->KernelOptions(Diagonal(bounds)));
+    result = fd3::triangulate(xyz, count, this->KernelOptions(fd3::diagonal(bounds)));
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
-    vtkErrorMacro("Triangulation failed: " << failure.what() << "; the output is empty");
-    output->Initialize();
+    vtkErrorMacro("Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
+    SetPointsWithoutCells(output, points, pointData);
     return 0;
   }
   if (result.status == fd3::Status::Aborted)
@@ -439,15 +490,15 @@ int vtkFastDelaunay3D::RequestData(
   this->RecordFigures(result.stats);
   if (!this->ReportOnInput(result.status, result.stats, numberOfPoints))
   {
-    output->Initialize();
+    SetPointsWithoutCells(output, points, pointData);
     return 1;
   }
 
   const auto conversionStart = std::chrono::steady_clock::now();
   output->SetPoints(points);
-  if (!this->BoundingTriangulation)
+  if (pointData)
   {
-    output->GetPointData()->PassData(input->GetPointData());
+    output->GetPointData()->PassData(pointData);
   }
   this->SetOutputCells(output, xyz, count, result);
   this->AddCellArrays(output, xyz);
@@ -511,14 +562,14 @@ bool vtkFastDelaunay3D::ReportOnInput(
   if (status != fd3::Status::Ok)
   {
     vtkWarningMacro("Cannot triangulate: " << fd3::toString(status)
-                                           << "; the output is empty"
+                                           << "; the output holds the points and no cells"
                                            << (leftOut.empty() ? "" : " (left out: ") << leftOut
                                            << (leftOut.empty() ? "" : ")"));
     return false;
   }
   if (!leftOut.empty())
   {
-    const std::size_t unused = numberOfPoints - stats.insertedPoints;
+    const std::size_t unused = stats.duplicatesMerged + stats.closePointsSkipped + stats.nonFinitePoints;
     vtkWarningMacro(<< unused << " of " << numberOfPoints
                     << " points are not vertices of the tetrahedralization (they remain in the "
                        "output, unused): "

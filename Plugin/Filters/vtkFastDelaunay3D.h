@@ -48,6 +48,7 @@
 #include <vector>  // for std::vector
 
 class vtkFieldData;
+class vtkPointData;
 class vtkPoints;
 namespace fd3
 {
@@ -77,9 +78,9 @@ public:
    * value, only tetrahedra, triangles, edges and vertices whose circumsphere radius (half-length
    * for edges) is at most alpha are output, and lower-dimensional simplices only where no output
    * simplex already covers them. In other words, an alpha shape is computed. Default 0: the whole
-   * tetrahedralization.
+   * tetrahedralization. Clamped to [0, VTK_DOUBLE_MAX]; NaN sets the default.
    */
-  vtkSetClampMacro(Alpha, double, 0.0, VTK_DOUBLE_MAX);
+  virtual void SetAlpha(double alpha);
   vtkGetMacro(Alpha, double);
   ///@}
 
@@ -109,18 +110,20 @@ public:
    * Default 0: only exact duplicates are merged and every distinct point is a vertex. This default
    * differs from vtkDelaunay3D's 0.001 on purpose: vtkDelaunay3D (VTK 9.2) documents that value but
    * never applies it, so it keeps every point, while applying it here would drop a large part of
-   * dense clouds (48% of a 657k-point LiDAR tile).
+   * dense clouds (48% of a 657k-point LiDAR tile). Clamped to [0, 1]; NaN sets the default.
    */
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  virtual void SetTolerance(double tolerance);
   vtkGetMacro(Tolerance, double);
   ///@}
 
   ///@{
   /**
    * Size of the bounding octahedron of BoundingTriangulation, as a multiple of the diagonal of the
-   * bounding box of the points. Default 2.5.
+   * bounding box of the points. Default 2.5. Clamped to [2.5, VTK_DOUBLE_MAX]; NaN sets the
+   * default. The octahedron's points always stay finite: where Offset times the diagonal would
+   * take them beyond the largest double, the octahedron is as large as the doubles allow.
    */
-  vtkSetClampMacro(Offset, double, 2.5, VTK_DOUBLE_MAX);
+  virtual void SetOffset(double offset);
   vtkGetMacro(Offset, double);
   ///@}
 
@@ -148,9 +151,10 @@ public:
   /**
    * Resolution of the background grid used to find a starting point for each insertion, as the
    * target number of points per grid cell. 0 turns the grid off (each walk then starts from the
-   * last created tetrahedron). Default is 4, chosen by measurement (README).
+   * last created tetrahedron). Default is 4, chosen by measurement (README). Clamped to
+   * [0, 1000]; NaN sets the default. Below 1/8, the grid has its most cells: 8 per point.
    */
-  vtkSetClampMacro(GridResolution, double, 0.0, 1000.0);
+  virtual void SetGridResolution(double pointsPerCell);
   vtkGetMacro(GridResolution, double);
   ///@}
 
@@ -160,9 +164,9 @@ public:
    * whose volume is below this fraction of the volume of the regular tetrahedron on its longest
    * edge, except around the inserted point itself, where no other choice exists. The output is then
    * a valid triangulation of the convex hull but no longer exactly Delaunay. Default 0: exact
-   * Delaunay.
+   * Delaunay. Clamped to [0, 1]; NaN sets the default.
    */
-  vtkSetClampMacro(VolumeThreshold, double, 0.0, 1.0);
+  virtual void SetVolumeThreshold(double threshold);
   vtkGetMacro(VolumeThreshold, double);
   ///@}
 
@@ -192,6 +196,8 @@ public:
    * vtkSMPTools::GetEstimatedNumberOfThreads() reports, so that ParaView's thread setting (or the
    * VTK_SMP_BACKEND_IN_USE and VTK_SMP_MAX_THREADS environment variables) governs it. The output
    * is the same whatever the number of threads. A VolumeThreshold above 0 runs on one thread.
+   * At most 4 threads per hardware thread are started (more cannot help, and each costs memory):
+   * larger values run as that many.
    */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
@@ -316,8 +322,15 @@ protected:
   static vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input, int precision);
   /// The bounds of the finite points; xmin > xmax when there are none.
   static void BoundsOfFinitePoints(vtkDataSet* input, double bounds[6]);
+  /// The points and point data with an empty cell array: the output where no tetrahedron exists
+  /// (fewer than 4 distinct points, all coplanar, a failure), as vtkDelaunay3D's; the cell array
+  /// keeps it a dataset that every writer writes and reads back.
+  static void SetPointsWithoutCells(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData);
 
 private:
+  /// Sets `property` to `value` clamped to [lo, hi], or to `nan` for NaN.
+  void SetClamped(double& property, double value, double lo, double hi, double nan);
+
   /// The figures above by name, for the field data and PrintSelf.
   struct Figure
   {

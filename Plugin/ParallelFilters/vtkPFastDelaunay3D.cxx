@@ -23,6 +23,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Delaunay.h"
+#include "fd3/Measures.h"
 
 // clang-format off
 #include "vtk_diy2.h"
@@ -480,8 +481,8 @@ public:
     {
       exact[a] = global[a] != 0;
     }
-    this->Diagonal = std::sqrt(
-      std::pow(hi[0] - lo[0], 2) + std::pow(hi[1] - lo[1], 2) + std::pow(hi[2] - lo[2], 2));
+    const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
+    this->Diagonal = fd3::diagonal(bounds);
     const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
     int fits = fd3::fitsFrame(frame, this->Xyz.data(), this->OwnCount), allFit = 0;
     this->Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
@@ -839,6 +840,7 @@ int vtkPFastDelaunay3D::RequestData(
     {
       vtkWarningMacro("Cannot triangulate; no input points");
     }
+    SetPointsWithoutCells(output, nullptr, nullptr);
     return 1;
   }
   const fd3::Frame frame = run.Frame();
@@ -878,7 +880,8 @@ int vtkPFastDelaunay3D::RequestData(
   }
   if (status != fd3::Status::Ok)
   {
-    output->Initialize();
+    SetPointsWithoutCells(
+      output, InputPoints(input, this->OutputPointsPrecision), input ? input->GetPointData() : nullptr);
     return 1;
   }
   this->AddFigures(output->GetFieldData());

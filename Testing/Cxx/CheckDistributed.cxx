@@ -103,7 +103,7 @@ int main(int argc, char* argv[])
   if (!label)
     return fail("the input's point data is lost");
   for (vtkIdType i = 0; i < n; ++i)
-    if (label->GetComponent(i, 0) != xyz[3 * i] + 2 * xyz[3 * i + 1] + 4 * xyz[3 * i + 2])
+    if (label->GetComponent(i, 0) != xyz[3 * i] / 4 + xyz[3 * i + 1] / 2 + xyz[3 * i + 2])
       return fail("point " + std::to_string(i) + " has another point's data");
 
   vtkNew<vtkFastDelaunay3D> serial;

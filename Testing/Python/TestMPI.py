@@ -4,8 +4,9 @@ usage: mpiexec -np N pvbatch --mpi TestMPI.py <plugin .so> <output .pvtu> <kind>
 port: connect as the client of a pvserver under MPI on this machine ("-" for none); alpha: the
 filter's Alpha (default 0).
 
-kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points);
-each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
+kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points),
+outlier (the cube and one point at 1e100), speck (the cube and a cluster 1e-150 wide at its
+centre): magnitudes that no scaled frame holds; each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
 a random rank), empty (rank 0 holds none), pvtp (written as a partitioned .pvtp, read back in
 pieces, with single-precision points as files often have). Every point carries a "Label" made from
 its coordinates. Writes the pieces to the .pvtu (CheckDistributed then compares them with the
@@ -44,6 +45,10 @@ if kind == "cube":
 elif kind == "lattice":
     g = np.arange(12.0)
     p = np.array(np.meshgrid(g, g, g)).reshape(3, -1).T
+elif kind == "outlier":
+    p = np.concatenate([rng.random((4000, 3)), [[1e100, 0.5, 0.5]]])
+elif kind == "speck":
+    p = np.concatenate([rng.random((4000, 3)), 0.5 + 1e-150 * rng.random((300, 3))])
 elif kind == "clusters":
     centres = rng.random((6, 3))
     p = np.concatenate([c + 0.02 * rng.standard_normal((700, 3)) for c in centres])
@@ -60,7 +65,7 @@ points = vtkPoints()
 points.SetData(dsa.numpyTovtkDataArray(mine, "Points"))
 self.GetOutput().SetPoints(points)
 m = mine.astype(float)
-out.PointData.append(m[:, 0] + 2 * m[:, 1] + 4 * m[:, 2], "Label")  # CheckDistributed recomputes it
+out.PointData.append(m[:, 0] / 4 + m[:, 1] / 2 + m[:, 2], "Label")  # CheckDistributed recomputes it
 """ % (kind, "scattered" if distribution == "pvtp" else distribution, distribution == "pvtp")
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 if distribution == "pvtp":
