@@ -241,14 +241,16 @@ TEST(Robustness, OneOutlierBesideUnitData)
   }
 }
 
+// A cluster away from 0 would collapse onto one double: 0.5 + 1e-70 is 0.5. At 0, in the middle of
+// unit data and at its corner.
 TEST(Robustness, TinyClustersBesideUnitData)
 {
   for (double spread : {1e-70, 1e-150, 1e-250})
   {
-    const Points cluster = scaled(fd3test::uniformCube(300, 27), spread, 0.5);
-    expectExactAtAnyThreads(joined(fd3test::uniformCube(300, 28), cluster), "cluster " + std::to_string(spread));
-    const Points atOrigin = scaled(fd3test::uniformCube(100, 29), spread);
-    expectExactAtAnyThreads(joined(fd3test::uniformCube(300, 30), atOrigin), "cluster at 0");
+    const Points cluster = scaled(fd3test::uniformCube(300, 27), spread);
+    const Points centred = scaled(fd3test::uniformCube(300, 28), 1, -0.5);
+    expectExactAtAnyThreads(joined(centred, cluster), "cluster " + std::to_string(spread) + " inside");
+    expectExactAtAnyThreads(joined(fd3test::uniformCube(300, 30), cluster), "cluster at a corner");
   }
 }
 

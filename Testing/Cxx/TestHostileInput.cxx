@@ -59,9 +59,9 @@ std::vector<std::pair<std::string, Points>> hostileSets()
   for (double far : {1e100, 1e200, DBL_MAX})
     sets.emplace_back("outlier at " + std::to_string(far), joined(fd3test::uniformCube(1000, 6), {far, 0, 0}));
   sets.emplace_back("100 points and an outlier", joined(fd3test::uniformCube(100, 6), {1e100, 0, 0}));
-  for (double spread : {1e-70, 1e-150, 1e-250})
+  for (double spread : {1e-70, 1e-150, 1e-250}) // at 0, in the middle of unit data
     sets.emplace_back("cluster of spread " + std::to_string(spread),
-      joined(fd3test::uniformCube(300, 7), scaled(fd3test::uniformCube(300, 8), spread, 0.5)));
+      joined(scaled(fd3test::uniformCube(300, 7), 1, -0.5), scaled(fd3test::uniformCube(300, 8), spread)));
   return sets;
 }
 

@@ -5,8 +5,8 @@ port: connect as the client of a pvserver under MPI on this machine ("-" for non
 filter's Alpha (default 0).
 
 kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points),
-outlier (the cube and one point at 1e100), speck (the cube and a cluster 1e-150 wide at its
-centre): magnitudes that no scaled frame holds; each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
+outlier (the cube and one point at 1e100), speck (the cube centred on 0 and a cluster 1e-150
+wide at 0): magnitudes that no scaled frame holds; each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
 a random rank), empty (rank 0 holds none), pvtp (written as a partitioned .pvtp, read back in
 pieces, with single-precision points as files often have). Every point carries a "Label" made from
 its coordinates. Writes the pieces to the .pvtu (CheckDistributed then compares them with the
@@ -48,7 +48,7 @@ elif kind == "lattice":
 elif kind == "outlier":
     p = np.concatenate([rng.random((4000, 3)), [[1e100, 0.5, 0.5]]])
 elif kind == "speck":
-    p = np.concatenate([rng.random((4000, 3)), 0.5 + 1e-150 * rng.random((300, 3))])
+    p = np.concatenate([rng.random((4000, 3)) - 0.5, 1e-150 * rng.random((300, 3))])
 elif kind == "clusters":
     centres = rng.random((6, 3))
     p = np.concatenate([c + 0.02 * rng.standard_normal((700, 3)) for c in centres])
