@@ -7,11 +7,12 @@
 #   ./setup.sh benchmark [sizes]   ... then benchmark Core, the filter, vtkDelaunay3D, CGAL and TetGen
 #                       (sizes default 10000,100000,1000000) into output/benchmark.{md,csv,png}
 #                       and the paper's Table 1 into output/table1.md
-#   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run), then the same
-#                       suite built with AddressSanitizer + UndefinedBehaviorSanitizer (Debug:
-#                       the kernel's own mesh check on; the portable fallbacks of the compiler
-#                       intrinsics instead of the intrinsics) in build-asan, then the kernel's
-#                       thread tests built with ThreadSanitizer in build-tsan
+#   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
+#   ./setup.sh sanitizers  ... then the same suite built with AddressSanitizer +
+#                       UndefinedBehaviorSanitizer (Debug: the kernel's own mesh check on; the
+#                       portable fallbacks of the compiler intrinsics instead of the intrinsics) in
+#                       build-asan, then the kernel's thread tests built with ThreadSanitizer in
+#                       build-tsan (CI runs it after test)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -59,8 +60,8 @@ case "${1:-build}" in
     build/bin/Benchmark --table1 --markdown output/table1.md
     /usr/bin/python3 Testing/Benchmark/plot.py output/benchmark.csv output/benchmark.png \
       "$(sed -n 's/^Machine: \([^.]*\)\..*/\1/p' output/benchmark.md)" ;;
-  test)
-    (cd build && "${xvfb[@]}" ctest -j2 --output-on-failure)
+  test) (cd build && "${xvfb[@]}" ctest -j2 --output-on-failure) ;;
+  sanitizers)
     cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
       -DFD3_SANITIZE=ON -DFD3_PORTABLE=ON -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
     cmake --build build-asan -j2
@@ -69,5 +70,5 @@ case "${1:-build}" in
       -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
     cmake --build build-tsan --target TestCore -j2
     TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/TestCore --gtest_filter='Threads.*:AddPoints.SameTetrahedra*' ;;
-  *) echo "usage: $0 [build|demo|test|benchmark [sizes]]" >&2; exit 2 ;;
+  *) echo "usage: $0 [build|demo|test|sanitizers|benchmark [sizes]]" >&2; exit 2 ;;
 esac

@@ -151,7 +151,7 @@ public:
   /**
    * Resolution of the background grid used to find a starting point for each insertion, as the
    * target number of points per grid cell. 0 turns the grid off (each walk then starts from the
-   * last created tetrahedron). Default is 4, chosen by measurement (README). Clamped to
+   * last created tetrahedron). Default is 4, chosen by measurement (docs/performance.md). Clamped to
    * [0, 1000]; NaN sets the default. Below 1/8, the grid has its most cells: 8 per point.
    */
   virtual void SetGridResolution(double pointsPerCell);
