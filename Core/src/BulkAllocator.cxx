@@ -71,9 +71,8 @@ void freeBulk(void* p, std::size_t bytes) noexcept
 #else
   // A large block is not always a mapping of its own that free() unmaps: glibc serves it from a
   // free region of its heap when one is large enough (a process that freed many small blocks
-  // before, as a long ParaView session has), and then keeps its pages resident after free(). The
-  // first reserve of the tetrahedra, replaced at n/32 points, then stayed on top of the mesh: 1M
-  // points after 1M others were freed, peak 250 -> 256 B/point (clusters), 727 -> 761 (torus).
+  // before, as a long ParaView session has), and then keeps its pages resident after free(): the
+  // first reserve of the tetrahedra, replaced at n/32 points, would stay on top of the mesh.
   if (p && bytes >= kLarge)
     releasePages(p, bytes);
   std::free(p);

@@ -4,9 +4,8 @@
 // boundary's directed edges (the paper's one-to-one correspondence of section 3.3 between new
 // tetrahedra and boundary facets), or, for cavities with more boundary vertices than the table
 // takes, by rotating about uw through the deleted tetrahedra as the paper does. The table grows
-// with the cavity: surface samples make cavities of hundreds of tetrahedra (cylinder, 1M points:
-// 74 deleted per insertion on average), and rotating about their long edges cost more than the
-// rest of the insertion.
+// with the cavity: surface samples make cavities of hundreds of tetrahedra, and rotating about
+// their long edges cost more than the rest of the insertion.
 #include "Inserter.h"
 
 namespace fd3

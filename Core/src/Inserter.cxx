@@ -134,9 +134,8 @@ Inserter::Outcome Inserter::insert(VertId v)
     }
   if (base == kNoTet || !digCavity(base, v))
   {
-    // The base is unchanged and near the next point: walking again from the last tetrahedron
-    // created, perhaps many put-off points back, took 69 steps per point instead of 15 (2 threads,
-    // 300k points on a cylinder, where most insertions reach outside their region).
+    // The base is unchanged and near the next point: the last tetrahedron created may lie many
+    // put-off points back, where most insertions reach outside their region.
     if (base != kNoTet)
       regionStart_ = base;
     ++stats_.deferredInsertions;

@@ -26,7 +26,7 @@ namespace fd3
 /// One vertex of the kernel, by insertion rank: its normalized coordinates, a live tetrahedron
 /// incident to it, and the id of the input point it is. 32 bytes on a 32-byte boundary: the
 /// coordinates that an insphere test loads bring the rest into cache, which the fill that follows
-/// needs (fill phase 4% faster on 400k uniform points than with separate arrays). While a cavity is
+/// needs (faster than separate arrays). While a cavity is
 /// filled, `tet` of each of its boundary's vertices holds the vertex's local number instead,
 /// tagged (FillCavity.cxx): a mark per vertex that needs no room of its own.
 struct alignas(32) Vertex
@@ -132,9 +132,8 @@ private:
     return predicates_.inSphereSoS(p, v[e].xyz);
   }
   bool isBeyondHullFace(TetId ghost, VertId v);
-  /// Whether v lies in t's circumsphere. Inline: it runs tens of times per insertion, and as a
-  /// call it cost 3-4% of the time on 1M uniform points (best of 5, twice: 3.30 -> 3.16 s and
-  /// 3.21 -> 3.11 s), 2-3% on the torus and the noisy shell.
+  /// Whether v lies in t's circumsphere. Inline: it runs tens of times per insertion, and a call
+  /// costs a few percent of the run.
   bool inConflict(TetId t, VertId v)
   {
     VertId tv[4];

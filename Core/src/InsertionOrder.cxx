@@ -29,7 +29,7 @@ std::uint32_t spreadBits(std::uint32_t x)
 // of the axes and a flip of some) and the parity that its Gray decoding carries down. A state and
 // a level's three bits give that level's three bits of the curve index and the next state. Two
 // levels at a time, the index takes five lookups in a 12 KB table instead of 27 dependent steps on
-// the coordinates (planInsertion, 1M points: about a third less).
+// the coordinates.
 class HilbertTable
 {
   static_assert(kHilbertBits % 2 == 0, "the table goes two levels at a time");

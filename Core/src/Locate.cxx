@@ -4,8 +4,8 @@
 // on a Delaunay mesh the conflict zone is connected and contains the base: the walk stops at the
 // first tetrahedron that it meets in conflict, as far as the float filter of insphere can tell
 // (near-ties are left to the walk: the base is in conflict anyway). On surface samples, where thin
-// tetrahedra fan out around every vertex, that is most often the start itself (cylinder, 100k
-// points: 5.8 steps instead of 17). A volume threshold leaves the mesh short of Delaunay, so the
+// tetrahedra fan out around every vertex, that is most often the start itself, which shortens
+// the walks there several times. A volume threshold leaves the mesh short of Delaunay, so the
 // walk then goes on to the base, which the core correction needs.
 #include "Inserter.h"
 
@@ -54,8 +54,8 @@ TetId Inserter::startTet(VertId v) const
 // region has three vertices in no other, so no other inserter writes it (nor its vertex 0, which
 // shares a word with the flags). A region's points follow the whole set's curve out of its box and
 // back in elsewhere, and on surface samples the curve also jumps across empty space: without the
-// grid, walks on 2 threads crossed the region (torus, 100k points: up to 2,583 steps, 70 on one
-// thread; now 172). Sorting each region's points along a curve of its own did not shorten them.
+// grid, walks on several threads crossed the region. Sorting each region's points along a curve
+// of its own did not shorten them.
 TetId Inserter::regionStart(VertId v) const
 {
   if (!mesh_.grid.enabled())
@@ -81,9 +81,8 @@ TetId Inserter::regionStart(VertId v) const
 // while looking for duplicates, contains the point or is a ghost whose hull face the point lies beyond), cross one of its faces
 // that separates it from the point. In a region, a tetrahedron that is not the inserter's ends the
 // walk with kNoTet (it was read safely: it shares a face with one that is). The faces are tried in order of decreasing distance from the
-// point to the vertex they leave behind, so the tetrahedra close in on the point. Measured on 100k
-// points (mean steps to the base, before the walk stopped at the first conflict): torus 31 -> 7.7,
-// cylinder 405 -> 17 (max 11,306 -> 93) against a random first face, uniform cube 6.0 -> 5.4.
+// point to the vertex they leave behind, so the tetrahedra close in on the point: on surface
+// samples, whose thin tetrahedra fan out, a random first face made walks many times longer.
 TetId Inserter::walk(TetId t, VertId v)
 {
   const double* p = point(v);

@@ -476,8 +476,7 @@ int Predicates::symbolicInSphere(const double* const p[4], const double* pe)
 {
   ++symbolicTies;
   // The keys are computed here, not stored with the vertices, which have no room left for them:
-  // most inputs tie rarely; on points exactly on a sphere, where every insphere test ties, this
-  // costs about 10% of the run (1M points).
+  // most inputs tie rarely.
   std::uint16_t key[4];
   for (int i = 0; i < 4; ++i)
     key[i] = perturbationKey(p[i], perturbationSeed_);

@@ -125,11 +125,10 @@ public:
   void allowAnyMagnitude();
   bool allowsAnyMagnitude() const { return tuning_.anyMagnitude; }
   /// From now on the lifts' filter goes first. The static filter, one comparison, decides nearly
-  /// every insphere test on volume points (cube: all but 0.03%), but on surface samples, whose
-  /// local scale is far below the box's, it leaves 25-75% of them open (terrain, noisy shell,
-  /// overlapping scans, torus), and a branch on it is then a coin toss to the predictor. The
-  /// lifts' filter decides all of those but a few percent of the torus's, at the price of a few
-  /// products per test. It cannot help with exact ties (cospherical points, lattices), which
+  /// every insphere test on volume points, but on surface samples, whose local scale is far below
+  /// the box's, it leaves many of them open, and a branch on it is then a coin toss to the
+  /// predictor. The lifts' filter decides nearly all of those, at the price of a few products per
+  /// test. It cannot help with exact ties (cospherical points, lattices), which
   /// neither filter decides. Which filter goes first never changes a sign.
   /// Not for any magnitude: its bound assumes that no rounding error is lost to underflow.
   void preferLiftsFilter() { liftsFirst_ = !tuning_.anyMagnitude; }
@@ -242,8 +241,7 @@ inline double inSphereDeterminantPlain(const double* a, const double* b, const d
 }
 
 /// inSphereDeterminantPlain(), with SSE2 (every x86-64) two lanes at once: each lane does the very
-/// operations of the plain form, so both give the same double (TestPredicates checks it). 4% of
-/// the time on 1M uniform points (best of 5: 3.20 -> 3.08 s).
+/// operations of the plain form, so both give the same double (TestPredicates checks it).
 inline double inSphereDeterminant(const double* a, const double* b, const double* c,
   const double* d, const double* e, double* lifts = nullptr)
 {

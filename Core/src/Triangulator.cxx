@@ -102,11 +102,10 @@ std::size_t Triangulator::predictedSlots(
   std::size_t earlierDone, std::size_t earlierSlots, std::size_t end) const
 {
   const double perVertex = double(mesh_.tets.slots()) / double(done_);
-  // Smooth surface samples gain tetrahedra per vertex at a steady rate per doubling of the points
-  // (1M torus: 1.12-1.14 from 1k points on, 17.2 at 62k, 21.7 at the end): a reserve at the
-  // ratio of the moment ran out in the last round, and growing the records then copied them,
-  // which held both copies at once (peak 1393 bytes a point against 693 for the records and
-  // vertices). Volume data gains none, or fewer ghosts per vertex, which only the margin takes.
+  // Smooth surface samples gain tetrahedra per vertex at a steady rate per doubling of the points:
+  // a reserve at the ratio of the moment runs out in the last round, and growing the records then
+  // holds two copies at once. Volume data gains none, or fewer ghosts per vertex, which only the
+  // margin takes.
   double growth = 0.0;
   if (earlierDone > 0 && done_ > earlierDone)
     growth = std::max(0.0,

@@ -58,8 +58,7 @@ public:
   TetMesh& releaseWorkspace();
   /// Ends the vertices: their input point ids, by insertion rank, are written over the start of
   /// the vertex array, 4 bytes each where a record takes 32, so that the output's look-ups stay in
-  /// cache and no memory is added (1M uniform points: output 0.09 -> 0.04 s). The coordinates
-  /// and vertex records are gone afterwards.
+  /// cache and no memory is added. The coordinates and vertex records are gone afterwards.
   const std::uint32_t* packPointIds();
 
   /// Exhaustive check of the invariants listed in TetMesh.h, of the vertices' records and, unless

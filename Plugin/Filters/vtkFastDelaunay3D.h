@@ -110,7 +110,7 @@ public:
    * Default 0: only exact duplicates are merged and every distinct point is a vertex. This default
    * differs from vtkDelaunay3D's 0.001 on purpose: vtkDelaunay3D (VTK 9.2) documents that value but
    * never applies it, so it keeps every point, while applying it here would drop a large part of
-   * dense clouds (48% of a 657k-point LiDAR tile). Clamped to [0, 1]; NaN sets the default.
+   * dense clouds (half of an airborne LiDAR tile). Clamped to [0, 1]; NaN sets the default.
    */
   virtual void SetTolerance(double tolerance);
   vtkGetMacro(Tolerance, double);

@@ -341,10 +341,9 @@ public:
   /// of every rank's `finite` points (kSample in all, each rank's share in proportion to its
   /// count), each time across the sample's longest side, at the quantile that gives each side
   /// its share of ranks. Every rank computes it from the same gathered sample, so all agree.
-  /// (vtkDistributedPointCloudFilter, which did this before, gives single-precision points under
-  /// MPI, whatever the input's, and took 6 s where this and Send() take 1.2 s at 4M points on 2
-  /// ranks; vtkDIYKdTreeUtilities, whose cuts vtkRedistributeDataSetFilter uses, is not in
-  /// ParaView's SDK.)
+  /// (vtkDistributedPointCloudFilter gives single-precision points under MPI, whatever the
+  /// input's, and is several times slower; vtkDIYKdTreeUtilities, whose cuts
+  /// vtkRedistributeDataSetFilter uses, is not in ParaView's SDK.)
   SpaceCuts BalancedCuts(vtkDataArray* coordinates, const std::vector<vtkIdType>& finite)
   {
     constexpr double kSample = 1 << 18; // 6 MB gathered; parts within about 1% of the mean
@@ -371,8 +370,7 @@ public:
   /// Sends every other rank r the points part(r), made when sent, where lists[r] is not empty;
   /// what this rank receives, one set per sender, in rank order, with its sender.
   /// With DIY, as vtkDIYDataExchanger, but as raw arrays: vtkDIYDataExchanger writes each data
-  /// set as a compressed XML file, and that took 1.8 s of the 2.8 s the redistribution took at
-  /// 4M points on 2 ranks.
+  /// set as a compressed XML file, which took most of the redistribution's time.
   template <typename List, typename Part>
   void Send(const std::vector<List>& lists, Part&& part, std::vector<vtkSmartPointer<vtkPointSet>>& received,
     std::vector<int>& senders)
@@ -438,9 +436,8 @@ public:
 
   /// The ghost points that room is made for up front, in Xyz and in the kernel's vertex records: a
   /// rank receives a few percent of its own count at 1M points a rank, more on small ones. Growing
-  /// either later would copy it, and under MPI the copy's source stays resident (measured with
-  /// Open MPI at 4M points on 2 ranks: the 48 MB of Xyz freed after growing kept the rank's
-  /// resident size 46 MB up to its peak).
+  /// either later would copy it, and under MPI the copy's source stays resident (Open MPI keeps
+  /// the freed pages).
   std::size_t GhostRoom() const
   {
     return this->OwnCount / 4 + 1024;
@@ -541,8 +538,8 @@ public:
   }
 
   /// Frees Xyz once the mesh has read the points into its records, which give them back exactly
-  /// (fd3::recoverable()), so that it is not in the peak, the mesh's: rank 0's peak at 4M points
-  /// on 2 ranks 929 -> 887 MB. The non-finite points, which the mesh does not hold, are kept aside.
+  /// (fd3::recoverable()), so that it is not in the peak, the mesh's. The non-finite points, which
+  /// the mesh does not hold, are kept aside.
   void DropPoints()
   {
     this->NonFinite.assign(this->Xyz.begin() + 3 * this->FiniteCount, this->Xyz.begin() + 3 * this->OwnCount);

@@ -1,14 +1,10 @@
 // The allocator of the kernel's large arrays (tetrahedra, vertices, output ids): elements are left
 // uninitialized (they are written right after), and large blocks are aligned to 2 MB, so that a
 // system whose transparent huge pages are always on can back them with huge pages. Below 1 GiB they
-// are not asked for (madvise): the first touch of each page dominates what pages cost, and on the
-// project's 2-vCPU virtual machine, whose host takes freed memory back, a huge page's first touch
-// cost 1.6-2.9 ms per MB against 0.45 ms per MB in 4 KB pages (0.03 and 3.5 ms on an earlier host
-// of the same VM). Without the advice, 1M points interleaved with CGAL, best of 3: cube 2.68 ->
-// 2.33 s, noisy shell 2.73 -> 2.49 s, and the 4M cube (0.9 GB of tetrahedra) 12.3 -> 9.4 s. From
+// are not asked for (madvise): the first touch of each page dominates what pages cost, and where
+// the host takes freed memory back a huge page's first touch costs more than its 4 KB pages. From
 // 1 GiB on, the tetrahedra of large surface samples, whose thin tetrahedra reach across the whole
-// set, need the reach of huge pages in the TLB more: the 4M cylinder (7 GB) took 96.6 s without
-// them, 81.0 s with; the 1M torus (1.4 GB) 10.7 s without, 10.3 s with.
+// set, need the reach of huge pages in the TLB more (docs/performance.md has the figures).
 #ifndef fd3_BulkAllocator_h
 #define fd3_BulkAllocator_h
 
