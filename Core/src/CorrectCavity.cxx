@@ -14,6 +14,7 @@
 #include "fd3/Measures.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace fd3
@@ -60,6 +61,7 @@ double Inserter::newTetShape(const BoundaryFacet& facet, VertId v)
 
 void Inserter::giveBack(TetId t)
 {
+  assert(mayTouch(t));
   tets_.setFlags(t, kNotInCavity);
   cavity_.rejected.push_back(t);
 }

@@ -5,6 +5,7 @@
 #include "Inserter.h"
 
 #include <algorithm>
+#include <cassert>
 
 namespace fd3
 {
@@ -69,6 +70,7 @@ bool Inserter::digCavity(TetId base, VertId v)
   std::uint8_t* entry = grow(cavity_.entryFace, 0);
   TetId* rejected = grow(cavity_.rejected, 0);
   BoundaryFacet* boundary = grow(cavity_.boundary, 0);
+  assert(mayTouch(base));
   tets_.setFlags(base, kInCavity);
   tets[0] = base;
   entry[0] = kNoEntryFace;
@@ -103,6 +105,7 @@ bool Inserter::digCavity(TetId base, VertId v)
       if (flag == 0)
       {
         inside = inConflict(n, v);
+        assert(mayTouch(n));
         tets_.setFlags(n, inside ? kInCavity : kNotInCavity);
         tets[inCavity] = n;
         entry[inCavity] = static_cast<std::uint8_t>(faceOf(across));

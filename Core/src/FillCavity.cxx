@@ -8,6 +8,8 @@
 // their long edges cost more than the rest of the insertion.
 #include "Inserter.h"
 
+#include <cassert>
+
 namespace fd3
 {
 namespace
@@ -52,9 +54,15 @@ bool Inserter::fillCavity(VertId v)
     }
   }
   for (TetId t : cavity_.tets)
+  {
+    assert(isOwned(t));
     pool_.give(tets_, t);
+  }
   for (TetId t : cavity_.rejected)
+  {
+    assert(mayTouch(t));
     tets_.setFlags(t, 0);
+  }
   regionStart_ = created.back();
   return true;
 }
@@ -104,6 +112,7 @@ bool Inserter::createAndLink(VertId v)
     for (int k = 0; k < 4; ++k)
       nv[k] = (nv[k] & kKeep[b.face][k]) | (v & ~kKeep[b.face][k]);
     tets_.create(n, nv);
+    assert(mayTouch(n) && mayTouch(tetOf(tets_.neighbor(b.inner, b.face))));
     tets_.link(faceCode(n, b.face), tets_.neighbor(b.inner, b.face));
     tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
     if (!linked)
@@ -112,6 +121,7 @@ bool Inserter::createAndLink(VertId v)
     std::uint32_t local[3];
     for (int j = 0; j < 3; ++j)
     {
+      assert(inRegion(nv[q[j]]));
       TetId& entry = localNumberSlot(nv[q[j]]);
       const bool isNew = (entry & kHighHalf) != kLocalTag;
       local[j] = isNew ? count : (entry & 0xFFFFu);

@@ -84,6 +84,15 @@ void Inserter::unrestricted()
   restricted_ = false;
 }
 
+bool Inserter::mayTouch(TetId t) const
+{
+  if (!restricted_)
+    return true;
+  VertId tv[4];
+  tets_.vertices(t, tv);
+  return inRegion(tv[0]) + inRegion(tv[1]) + inRegion(tv[2]) + inRegion(tv[3]) >= 3;
+}
+
 bool Inserter::allVerticesInRegion(TetId t) const
 {
   VertId tv[4];

@@ -102,6 +102,9 @@ public:
   /// A tetrahedron in conflict with vertex v, reading only (for the start of a parallel pass).
   TetId locateForStart(VertId v) { return locate(v); }
   bool isOwned(TetId t) const { return !restricted_ || allVerticesInRegion(t); }
+  /// Whether the threading contract (TetMesh.h) lets this inserter read and write t now: always
+  /// when unrestricted, else when three of t's vertices or more are in its region.
+  bool mayTouch(TetId t) const;
 
   const Statistics& stats() const { return stats_; }
   const Predicates& predicates() const { return predicates_; }

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <exception>
 #include <numeric>
+#include <system_error>
 #include <thread>
 
 namespace fd3
@@ -82,6 +83,40 @@ double worthwhileYield(int threads)
 {
   return 0.5 / (threads - 1 + 0.5);
 }
+
+/// Threads that are joined however the scope is left: a std::thread destroyed while joinable
+/// terminates the process, which a failed start or an exception would otherwise cause.
+class JoinedThreads
+{
+public:
+  JoinedThreads() = default;
+  JoinedThreads(const JoinedThreads&) = delete;
+  JoinedThreads& operator=(const JoinedThreads&) = delete;
+  ~JoinedThreads() { joinAll(); }
+  /// Starts f(k) on a thread of its own; false when the system could not start one.
+  template <typename F>
+  bool start(F& f, std::size_t k)
+  {
+    try
+    {
+      threads_.emplace_back(f, k);
+      return true;
+    }
+    catch (const std::system_error&)
+    {
+      return false;
+    }
+  }
+  void joinAll()
+  {
+    for (std::thread& thread : threads_)
+      if (thread.joinable())
+        thread.join();
+  }
+
+private:
+  std::vector<std::thread> threads_;
+};
 } // namespace
 
 bool Triangulator::insertInParallel(
@@ -106,25 +141,27 @@ bool Triangulator::insertInParallel(
     insertSerially(vertices.size(), [&vertices](std::size_t i) { return vertices[i]; }, progress);
 }
 
-std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
-  const std::vector<Region>& regions, const std::function<bool(double)>& progress)
+std::vector<std::vector<VertId>> Triangulator::shareOut(
+  const std::vector<VertId>& vertices, const std::vector<Region>& regions) const
 {
-  const std::size_t threads = regions.size();
-  makeRoomFor(vertices.size());
-  // Each region's points, in the round's (curve) order.
-  std::vector<std::vector<VertId>> share(threads);
+  std::vector<std::vector<VertId>> share(regions.size());
   for (VertId v : vertices)
-    for (std::size_t k = 0; k < threads; ++k)
+    for (std::size_t k = 0; k < regions.size(); ++k)
       if (regions[k].contains(point(v)))
       {
         share[k].push_back(v);
         break;
       }
-  // Each inserter starts from a tetrahedron of its region, found before any thread runs: one in
-  // conflict with the first of its points that has one in the region (it may read the whole mesh
-  // then).
-  std::vector<std::vector<VertId>> putOff(threads);
-  for (std::size_t k = 0; k < threads; ++k)
+  return share;
+}
+
+// Before any thread runs, so that the search may read the whole mesh: the start is a tetrahedron
+// in conflict with the first point of the share that has one in the region; the points before it
+// are put off.
+void Triangulator::startInRegions(const std::vector<Region>& regions,
+  std::vector<std::vector<VertId>>& share, std::vector<std::vector<VertId>>& putOff)
+{
+  for (std::size_t k = 0; k < regions.size(); ++k)
   {
     Inserter& inserter = *inserters_[k];
     std::size_t first = 0;
@@ -139,6 +176,16 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
     putOff[k].assign(share[k].begin(), share[k].begin() + static_cast<std::ptrdiff_t>(first));
     share[k].erase(share[k].begin(), share[k].begin() + static_cast<std::ptrdiff_t>(first));
   }
+}
+
+std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
+  const std::vector<Region>& regions, const std::function<bool(double)>& progress)
+{
+  const std::size_t threads = regions.size();
+  makeRoomFor(vertices.size());
+  std::vector<std::vector<VertId>> share = shareOut(vertices, regions);
+  std::vector<std::vector<VertId>> putOff(threads);
+  startInRegions(regions, share, putOff);
 
   passDone_ = 0;
   std::vector<std::exception_ptr> failures(threads);
@@ -168,10 +215,14 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
     }
     finished.fetch_add(1);
   };
-  std::vector<std::thread> helpers;
+  JoinedThreads helpers;
+  std::vector<std::size_t> unstarted; // regions no thread could be started for: this one takes them
   for (std::size_t k = 1; k < threads; ++k)
-    helpers.emplace_back(work, k);
+    if (!helpers.start(work, k))
+      unstarted.push_back(k);
   work(0);
+  for (const std::size_t k : unstarted)
+    work(k);
   // This thread alone reports progress, also while the others finish; a callback that throws
   // stops them, and the threads are joined before anything unwinds.
   while (finished < threads)
@@ -188,8 +239,7 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
       stop_ = true;
     }
   }
-  for (std::thread& helper : helpers)
-    helper.join();
+  helpers.joinAll();
   done_ += passDone_;
   passDone_ = 0;
   for (const std::exception_ptr& failure : failures)

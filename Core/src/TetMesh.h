@@ -14,6 +14,21 @@
 //     carry the same three vertices;
 //   * below slots(), freed slots are flagged kDead and listed once in one pool's free list; every
 //     other slot is live; flags are 0 between insertions.
+// Threads (the whole kernel's contract; debug builds assert it at every write, Inserter::mayTouch):
+//   * outside a parallel pass one thread, the caller's, reads and writes everything;
+//   * in a pass, inserter k runs on its own thread in region R_k (Region, Inserter.h), and reads
+//     and writes only the records of tetrahedra with three vertices or more in R_k (the ghost
+//     vertex is in every region). No tetrahedron has three vertices in each of two regions, so no
+//     record is touched by two threads; a cavity that would reach a tetrahedron with a vertex
+//     outside R_k is given up (the point is put off) before anything is written;
+//   * Vertex::tet (and the fill's local numbers in it) of a vertex in R_k: written by inserter k
+//     only; the new point's own record likewise;
+//   * new slots come from the inserter's own SlotPool; the mesh hands out blocks through an atomic
+//     counter (claim()); makeRoom() and reserve() move the records and run between passes only;
+//   * the background grid's cells are relaxed atomics holding hints: any thread reads and writes
+//     them, and a stale hint only lengthens a walk (BackgroundGrid.h);
+//   * predicates, statistics, scratch and the cavity are per inserter; progress is reported and
+//     abort checked by the caller's thread alone (Triangulator).
 #ifndef fd3_TetMesh_h
 #define fd3_TetMesh_h
 

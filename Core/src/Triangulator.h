@@ -84,6 +84,13 @@ private:
   /// then serially what the regions could not take; a pass whose kind last yielded too little to
   /// pay for itself is left out. ParallelInsertion.cxx.
   bool insertInParallel(std::vector<VertId> vertices, const std::function<bool(double)>& progress);
+  /// Each region's points, in the order of `vertices` (the round's curve order).
+  std::vector<std::vector<VertId>> shareOut(
+    const std::vector<VertId>& vertices, const std::vector<Region>& regions) const;
+  /// Restricts each inserter to its region, from a start in it; the points of a share before the
+  /// first one that has a start go to putOff.
+  void startInRegions(const std::vector<Region>& regions, std::vector<std::vector<VertId>>& share,
+    std::vector<std::vector<VertId>>& putOff);
   /// Inserts `vertices` in `regions`, one thread each; returns those that had to be put off.
   std::vector<VertId> runPass(const std::vector<VertId>& vertices, const std::vector<Region>& regions,
     const std::function<bool(double)>& progress);
