@@ -1,9 +1,9 @@
 // The halo of a piece of a distributed point set (see Halo.cxx), gathered from the tetrahedra and
-// hull faces of any mesh: an output Triangulation or a live Tetrahedralization.
+// hull faces of any mesh: an output Triangulation or a live IncrementalDelaunay.
 #ifndef fd3_Halo_h
 #define fd3_Halo_h
 
-#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 
 namespace fd3
 {

@@ -1,9 +1,10 @@
 // The kernel's entry points: clean and normalize the points, order them, insert them, and hand
-// back the finite tetrahedra with input point ids. triangulate() is a Tetrahedralization used once.
+// back the finite tetrahedra with input point ids. triangulate() is an IncrementalDelaunay used once.
+#include "Frame.h"
 #include "Halo.h"
 #include "InsertionOrder.h"
 #include "Triangulator.h"
-#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 
 #include <algorithm>
 #include <chrono>
@@ -24,31 +25,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double toFrame(const Frame& frame, double x, int axis)
-{
-  return (x - frame.shift[axis]) * frame.scale;
-}
-
-// Exact where toFrame() was: the scale is a power of two, and x - shift was exact.
-double fromFrame(const Frame& frame, double y, int axis)
-{
-  return y / frame.scale + frame.shift[axis];
-}
-
-void toFrame(const Frame& frame, const double* p, double* out)
-{
-  for (int a = 0; a < 3; ++a)
-    out[a] = toFrame(frame, p[a], a);
-}
-
-Box toFrame(const Frame& frame, const Box& box)
-{
-  Box out;
-  toFrame(frame, box.lo, out.lo);
-  toFrame(frame, box.hi, out.hi);
-  return out;
 }
 
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
@@ -144,72 +120,7 @@ int threadCount(const Options& options)
 }
 } // namespace
 
-void checkShifts(const double* xyz, std::size_t count, const double centre[3], bool exact[3])
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    exact[a] = exact[a] && std::isfinite(centre[a]);
-    for (std::size_t i = 0; i < count && exact[a]; ++i)
-    {
-      double difference, error;
-      twoDiff(xyz[3 * i + a], centre[a], difference, error);
-      exact[a] = error == 0.0 || !std::isfinite(xyz[3 * i + a]); // non-finite points are left out
-    }
-  }
-}
-
-// The scale brings the points into [-1, 1], so that no predicate overflows (1e300) or underflows
-// (1e-300); the shift, where exact, also keeps far-from-origin clouds away from both.
-Frame frameFor(const double lo[3], const double hi[3], const bool exact[3])
-{
-  Frame frame;
-  double extent = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    // The centre that checkShifts() was given; not finite where hi - lo exceeds DBL_MAX.
-    const double centre = lo[a] + (hi[a] - lo[a]) / 2;
-    frame.shift[a] = exact[a] && std::isfinite(centre) ? centre : 0.0;
-    frame.lo[a] = lo[a];
-    frame.hi[a] = hi[a];
-    extent = std::max({extent, std::fabs(lo[a] - frame.shift[a]), std::fabs(hi[a] - frame.shift[a])});
-  }
-  int exponent = 0;
-  std::frexp(extent, &exponent);
-  // Up to 2^1022: a larger power of two is not a double (the extent of subnormal points).
-  frame.scale = extent > 0 && std::isfinite(extent) ? std::ldexp(1.0, -std::max(exponent, -1022)) : 1.0;
-  return frame;
-}
-
-bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
-{
-  if (frame.identity)
-    return true;
-  // A power of two's inverse, where it is a double, undoes the scale as a division would.
-  const double inverse = 1 / frame.scale;
-  const bool multiply = std::isfinite(inverse);
-  auto fits = [&](double x, int a) {
-    const double y = toFrame(frame, x, a);
-    if ((multiply ? y * inverse : y / frame.scale) + frame.shift[a] != x)
-      return false;
-    // Below 2^-137 a double's last bit can lie below 2^-190 (53 bits of significand).
-    return std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190));
-  };
-  for (std::size_t i = 0; i < count; ++i)
-    if (isFinite(xyz + 3 * i) && !(fits(xyz[3 * i], 0) && fits(xyz[3 * i + 1], 1) && fits(xyz[3 * i + 2], 2)))
-      return false;
-  return true;
-}
-
-Frame identityFrame(const double lo[3], const double hi[3])
-{
-  Frame frame;
-  std::copy(lo, lo + 3, frame.lo);
-  std::copy(hi, hi + 3, frame.hi);
-  frame.identity = true;
-  return frame;
-}
-
-struct Tetrahedralization::Impl
+struct IncrementalDelaunay::Impl
 {
   Options options;
   Frame frame;
@@ -226,7 +137,7 @@ struct Tetrahedralization::Impl
   void insertFirst(const double* xyz, std::size_t count, const std::function<void()>& pointsRead);
   void insertMore(const double* xyz, std::size_t count);
   /// The output; with `release`, the mesh's records go into it, which ends the mesh, and with
-  /// `xyz` too, the points are written back there (Tetrahedralization::release(xyz)).
+  /// `xyz` too, the points are written back there (IncrementalDelaunay::release(xyz)).
   Triangulation output(bool release, double* xyz = nullptr);
   void writePoints(double* xyz) const;
 
@@ -241,7 +152,7 @@ private:
     const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra);
 };
 
-std::vector<std::uint32_t> Tetrahedralization::Impl::finitePoints(
+std::vector<std::uint32_t> IncrementalDelaunay::Impl::finitePoints(
   const double* xyz, std::size_t count, Box& box)
 {
   std::vector<std::uint32_t> ids;
@@ -262,7 +173,7 @@ std::vector<std::uint32_t> Tetrahedralization::Impl::finitePoints(
   return ids;
 }
 
-std::vector<std::uint16_t> Tetrahedralization::Impl::keys(
+std::vector<std::uint16_t> IncrementalDelaunay::Impl::keys(
   const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const
 {
   // From the coordinates in the frame, as the predicates compute them on a tie.
@@ -276,7 +187,7 @@ std::vector<std::uint16_t> Tetrahedralization::Impl::keys(
   return key;
 }
 
-VertexArray Tetrahedralization::Impl::vertices(
+VertexArray IncrementalDelaunay::Impl::vertices(
   const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra)
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
@@ -296,7 +207,7 @@ VertexArray Tetrahedralization::Impl::vertices(
   return out;
 }
 
-void Tetrahedralization::Impl::insertFirst(
+void IncrementalDelaunay::Impl::insertFirst(
   const double* xyz, std::size_t count, const std::function<void()>& pointsRead)
 {
   const auto start = Clock::now();
@@ -341,12 +252,12 @@ void Tetrahedralization::Impl::insertFirst(
     status = Status::Aborted;
 }
 
-void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
+void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
 {
   for (std::size_t i = 0; i < count; ++i)
     for (int a = 0; a < 3 && isFinite(xyz + 3 * i); ++a)
       if (!(frame.lo[a] <= xyz[3 * i + a] && xyz[3 * i + a] <= frame.hi[a]))
-        throw std::invalid_argument("fd3::Tetrahedralization::add: a point outside the frame");
+        throw std::invalid_argument("fd3::IncrementalDelaunay::add: a point outside the frame");
   if (!triangulator)
   {
     // Not started yet: start again from every point so far, these included.
@@ -377,7 +288,7 @@ void Tetrahedralization::Impl::insertMore(const double* xyz, std::size_t count)
   points += count;
 }
 
-Triangulation Tetrahedralization::Impl::output(bool release, double* xyz)
+Triangulation IncrementalDelaunay::Impl::output(bool release, double* xyz)
 {
   const auto start = Clock::now();
   Triangulation out;
@@ -450,7 +361,7 @@ Triangulation Tetrahedralization::Impl::output(bool release, double* xyz)
   return out;
 }
 
-void Tetrahedralization::Impl::writePoints(double* xyz) const
+void IncrementalDelaunay::Impl::writePoints(double* xyz) const
 {
   const VertexArray& vertices = triangulator->vertices();
   std::vector<bool> written(points, false);
@@ -465,23 +376,7 @@ void Tetrahedralization::Impl::writePoints(double* xyz) const
       std::copy_n(xyz + 3 * std::size_t(original), 3, xyz + 3 * std::size_t(copy));
 }
 
-bool recoverable(const Frame& frame, const double* xyz, std::size_t count)
-{
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    if (!isFinite(xyz + 3 * i))
-      continue;
-    for (int a = 0; a < 3; ++a)
-    {
-      const double x = xyz[3 * i + a];
-      if (fromFrame(frame, toFrame(frame, x, a), a) != x || (x == 0 && std::signbit(x)))
-        return false;
-    }
-  }
-  return true;
-}
-
-Tetrahedralization::Tetrahedralization(const double* xyz, std::size_t count, const Options& options,
+IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options,
   const Frame& frame, std::size_t room, const std::function<void()>& pointsRead)
   : impl_(std::make_unique<Impl>())
 {
@@ -493,43 +388,43 @@ Tetrahedralization::Tetrahedralization(const double* xyz, std::size_t count, con
     impl_->held.assign(xyz, xyz + 3 * count);
 }
 
-Tetrahedralization::~Tetrahedralization() = default;
+IncrementalDelaunay::~IncrementalDelaunay() = default;
 
-Status Tetrahedralization::status() const
+Status IncrementalDelaunay::status() const
 {
   return impl_->status;
 }
 
-void Tetrahedralization::add(const double* xyz, std::size_t count)
+void IncrementalDelaunay::add(const double* xyz, std::size_t count)
 {
   if (impl_->status == Status::Aborted || impl_->status == Status::CheckFailed)
-    throw std::logic_error("fd3::Tetrahedralization::add: the tetrahedralization ended");
+    throw std::logic_error("fd3::IncrementalDelaunay::add: the tetrahedralization ended");
   impl_->insertMore(xyz, count);
 }
 
-Triangulation Tetrahedralization::snapshot() const
+Triangulation IncrementalDelaunay::snapshot() const
 {
   return impl_->output(false);
 }
 
-Triangulation Tetrahedralization::release()
+Triangulation IncrementalDelaunay::release()
 {
   return impl_->output(true);
 }
 
-Triangulation Tetrahedralization::release(double* xyz)
+Triangulation IncrementalDelaunay::release(double* xyz)
 {
   return impl_->output(true, xyz);
 }
 
-std::vector<std::vector<double>> Tetrahedralization::points(
+std::vector<std::vector<double>> IncrementalDelaunay::points(
   const std::vector<std::vector<std::uint32_t>>& lists) const
 {
   std::vector<std::vector<double>> out(lists.size());
   if (!impl_->triangulator)
   {
     if (std::any_of(lists.begin(), lists.end(), [](const auto& ids) { return !ids.empty(); }))
-      throw std::invalid_argument("fd3::Tetrahedralization::points: no vertex yet");
+      throw std::invalid_argument("fd3::IncrementalDelaunay::points: no vertex yet");
     return out;
   }
   const VertexArray& vertices = impl_->triangulator->vertices();
@@ -543,7 +438,7 @@ std::vector<std::vector<double>> Tetrahedralization::points(
     {
       const std::uint32_t id = lists[l][k];
       if (id >= vertexOf.size() || vertexOf[id] == kNoVertex)
-        throw std::invalid_argument("fd3::Tetrahedralization::points: not a vertex");
+        throw std::invalid_argument("fd3::IncrementalDelaunay::points: not a vertex");
       for (int a = 0; a < 3; ++a)
         out[l][3 * k + a] = fromFrame(impl_->frame, vertices[vertexOf[id]].xyz[a], a);
     }
@@ -551,7 +446,7 @@ std::vector<std::vector<double>> Tetrahedralization::points(
   return out;
 }
 
-std::vector<std::vector<std::uint32_t>> Tetrahedralization::haloVertices(const std::vector<Bounds>& boxes) const
+std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(const std::vector<Bounds>& boxes) const
 {
   // In the frame, from the vertex records: they lie in insertion order, as the tetrahedra that
   // use them were made, where the input's coordinates lie in input order and a pass over the
@@ -611,7 +506,7 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
   Frame frame = frameFor(box.lo, box.hi, exact);
   if (!fitsFrame(frame, xyz, count))
     frame = identityFrame(box.lo, box.hi);
-  Tetrahedralization mesh(xyz, count, options, frame);
+  IncrementalDelaunay mesh(xyz, count, options, frame);
   Triangulation out = mesh.release();
   out.stats.secondsTotal = secondsSince(start);
   return out;

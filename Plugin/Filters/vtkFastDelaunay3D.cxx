@@ -488,6 +488,13 @@ int vtkFastDelaunay3D::RequestData(
     return 1;
   }
   this->RecordFigures(result.stats);
+  if (result.status == fd3::Status::CheckFailed)
+  {
+    vtkErrorMacro("The kernel's mesh check failed (a bug; please report it with the input): "
+      << result.checkReport);
+    SetPointsWithoutCells(output, points, pointData);
+    return 0;
+  }
   if (!this->ReportOnInput(result.status, result.stats, numberOfPoints))
   {
     SetPointsWithoutCells(output, points, pointData);

@@ -22,7 +22,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
-#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 #include "fd3/Measures.h"
 
 // clang-format off
@@ -487,7 +487,7 @@ public:
   }
 
   /// Step 3: this rank's points tetrahedralized, and the halo of every other rank sent to it.
-  void Exchange(fd3::Tetrahedralization& mesh)
+  void Exchange(fd3::IncrementalDelaunay& mesh)
   {
     std::vector<fd3::Bounds> others = this->Boxes;
     others[this->Rank] = { 1, -1, 1, -1, 1, -1 };
@@ -548,7 +548,7 @@ public:
   }
 
   /// Step 4: the received points added to this rank's mesh; the owner of every vertex.
-  fd3::Triangulation AddGhosts(fd3::Tetrahedralization& mesh)
+  fd3::Triangulation AddGhosts(fd3::IncrementalDelaunay& mesh)
   {
     Coordinates ghostXyz;
     for (const auto& ghosts : this->Ghosts)
@@ -718,14 +718,14 @@ public:
     std::string& failure)
   {
     using Clock = std::chrono::steady_clock;
-    std::unique_ptr<fd3::Tetrahedralization> mesh;
+    std::unique_ptr<fd3::IncrementalDelaunay> mesh;
     auto start = Clock::now();
     double seconds = 0; // meshing only: the exchange is left out
     const bool recoverable =
       options.tolerance == 0 && fd3::recoverable(frame, this->Xyz.data(), this->FiniteCount);
     try
     {
-      mesh = std::make_unique<fd3::Tetrahedralization>(this->Xyz.data(), this->OwnCount, options, frame,
+      mesh = std::make_unique<fd3::IncrementalDelaunay>(this->Xyz.data(), this->OwnCount, options, frame,
         this->GhostRoom(), recoverable ? std::function<void()>([this] { this->DropPoints(); }) : nullptr);
     }
     catch (const std::exception& error) // out of memory, too many points

@@ -3,7 +3,7 @@
 #define fd3_CoreTestUtilities_h
 
 #include "PointSets.h"
-#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 
 #include <algorithm>
 

@@ -1,10 +1,10 @@
-// fd3::Tetrahedralization, the mesh that points can be added to (the distributed filter adds the
+// fd3::IncrementalDelaunay, the mesh that points can be added to (the distributed filter adds the
 // ghost points of other ranks to it): whatever the batches, the tetrahedra are those of all the
 // points at once, exactly valid; a mesh that cannot start yet keeps its points.
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
 #include "PointSets.h"
-#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +22,7 @@ namespace
 fd3::Triangulation inBatches(const fd3test::Points& p, std::size_t first,
   const std::vector<std::size_t>& batches, const fd3::Options& options, std::size_t room = 0)
 {
-  fd3::Tetrahedralization mesh(p.data(), first, options, fd3test::frameOf(p), room);
+  fd3::IncrementalDelaunay mesh(p.data(), first, options, fd3test::frameOf(p), room);
   std::size_t done = first;
   for (std::size_t b = 0; b <= batches.size() && done < p.size() / 3; ++b)
   {
@@ -74,7 +74,7 @@ TEST(AddPoints, PointsOffTheLatticeRetuneThePredicates)
     p.insert(p.end(), {q[0] + offset * 0.5, q[1] + offset * 0.25, q[2] + offset * 0.125});
   }
   fd3::Options options;
-  fd3::Tetrahedralization mesh(p.data(), latticePoints, options, fd3test::frameOf(p));
+  fd3::IncrementalDelaunay mesh(p.data(), latticePoints, options, fd3test::frameOf(p));
   mesh.add(p.data() + 3 * latticePoints, p.size() / 3 - latticePoints);
   const fd3::Triangulation added = mesh.snapshot();
   ASSERT_EQ(added.status, fd3::Status::Ok);
@@ -93,7 +93,7 @@ TEST(AddPoints, TooFewOrCoplanarPointsWaitForMore)
   fd3::Options options;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const fd3test::Points firstTwo = {flat[0], flat[1], flat[2], nan, 0, 0};
-  fd3::Tetrahedralization mesh(firstTwo.data(), 2, options, fd3test::frameOf(all));
+  fd3::IncrementalDelaunay mesh(firstTwo.data(), 2, options, fd3test::frameOf(all));
   EXPECT_EQ(mesh.status(), fd3::Status::TooFewPoints);
   EXPECT_EQ(mesh.snapshot().status, fd3::Status::TooFewPoints);
   mesh.add(flat.data() + 3, 3);
@@ -118,7 +118,7 @@ TEST(AddPoints, SnapshotsLeaveTheMeshToGrowAndReleaseEndsIt)
   const fd3test::Points p = fd3test::uniformBall(3000, 9);
   fd3::Options options;
   options.computeNeighbors = true;
-  fd3::Tetrahedralization mesh(p.data(), 1000, options, fd3test::frameOf(p));
+  fd3::IncrementalDelaunay mesh(p.data(), 1000, options, fd3test::frameOf(p));
   const fd3::Triangulation early = mesh.snapshot();
   ASSERT_EQ(early.status, fd3::Status::Ok);
   EXPECT_EQ(early.neighbors.size(), early.tetrahedra.size());
@@ -146,7 +146,7 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
   ASSERT_TRUE(fd3::recoverable(frame, p.data(), p.size() / 3));
 
   int reads = 0;
-  fd3::Tetrahedralization mesh(p.data(), 2000, fd3::Options(), frame, 0, [&reads] { ++reads; });
+  fd3::IncrementalDelaunay mesh(p.data(), 2000, fd3::Options(), frame, 0, [&reads] { ++reads; });
   EXPECT_EQ(reads, 1);
   const std::vector<std::vector<std::uint32_t>> vertices = {{0, 1, 999}, {}, {1999, 0}};
   const std::vector<std::vector<double>> some = mesh.points(vertices);
@@ -189,7 +189,7 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
   EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
 
   // A mesh that cannot start yet has not read the points into its records.
-  fd3::Tetrahedralization few(p.data(), 3, fd3::Options(), frame, 0, [&reads] { ++reads; });
+  fd3::IncrementalDelaunay few(p.data(), 3, fd3::Options(), frame, 0, [&reads] { ++reads; });
   EXPECT_EQ(few.status(), fd3::Status::TooFewPoints);
   EXPECT_EQ(reads, 1);
 }
@@ -197,7 +197,7 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
 TEST(AddPoints, PointsOutsideTheFrameAreRefused)
 {
   const fd3test::Points p = fd3test::uniformCube(500, 3);
-  fd3::Tetrahedralization mesh(p.data(), p.size() / 3, fd3::Options(), fd3test::frameOf(p));
+  fd3::IncrementalDelaunay mesh(p.data(), p.size() / 3, fd3::Options(), fd3test::frameOf(p));
   const double outside[3] = {2.0, 0.5, 0.5};
   EXPECT_THROW(mesh.add(outside, 1), std::invalid_argument);
   EXPECT_EQ(mesh.status(), fd3::Status::Ok);

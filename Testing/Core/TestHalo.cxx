@@ -5,7 +5,7 @@
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
 #include "PointSets.h"
-#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +42,7 @@ struct Piece
   std::vector<std::uint32_t> ids; ///< input ids: its own points, then the halo received
   std::size_t own = 0;
   std::vector<double> xyz;
-  std::unique_ptr<fd3::Tetrahedralization> mesh;
+  std::unique_ptr<fd3::IncrementalDelaunay> mesh;
 
   void append(const fd3test::Points& p, const std::vector<std::uint32_t>& more)
   {
@@ -71,7 +71,7 @@ std::vector<std::uint32_t> distributedTetrahedra(
     std::vector<std::uint32_t> own;
     own.swap(piece.ids);
     piece.append(p, own);
-    piece.mesh = std::make_unique<fd3::Tetrahedralization>(piece.xyz.data(), piece.own, fd3::Options(), frame);
+    piece.mesh = std::make_unique<fd3::IncrementalDelaunay>(piece.xyz.data(), piece.own, fd3::Options(), frame);
     boxes.push_back(boxOf(p, piece.ids));
   }
   std::vector<std::vector<std::uint32_t>> received(pieceCount);

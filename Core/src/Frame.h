@@ -1,0 +1,39 @@
+// The exact change of coordinates the kernel computes in (fd3::Frame, fd3/Distributed.h), applied
+// to points and boxes.
+#ifndef fd3_Frame_h
+#define fd3_Frame_h
+
+#include "Geometry.h"
+#include "fd3/Distributed.h"
+
+namespace fd3
+{
+
+inline double toFrame(const Frame& frame, double x, int axis)
+{
+  return (x - frame.shift[axis]) * frame.scale;
+}
+
+// Exact where toFrame() was: the scale is a power of two, and x - shift was exact.
+inline double fromFrame(const Frame& frame, double y, int axis)
+{
+  return y / frame.scale + frame.shift[axis];
+}
+
+inline void toFrame(const Frame& frame, const double* p, double* out)
+{
+  for (int a = 0; a < 3; ++a)
+    out[a] = toFrame(frame, p[a], a);
+}
+
+inline Box toFrame(const Frame& frame, const Box& box)
+{
+  Box out;
+  toFrame(frame, box.lo, out.lo);
+  toFrame(frame, box.hi, out.hi);
+  return out;
+}
+
+} // namespace fd3
+
+#endif
