@@ -296,15 +296,7 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, double* xyz)
   out.stats = stats;
   if (status != Status::Ok)
     return out;
-  const Statistics inserted = triangulator->statistics();
-  out.stats.insertedPoints = inserted.insertedPoints;
-  out.stats.walkSteps = inserted.walkSteps;
-  out.stats.maxWalkSteps = inserted.maxWalkSteps;
-  out.stats.cavityTetrahedra = inserted.cavityTetrahedra;
-  out.stats.deferredInsertions = inserted.deferredInsertions;
-  out.stats.secondsLocate = inserted.secondsLocate;
-  out.stats.secondsCavity = inserted.secondsCavity;
-  out.stats.secondsFill = inserted.secondsFill;
+  out.stats.add(triangulator->statistics()); // the inserters' figures: none of them are in stats
   triangulator->addPredicateCounts(out.stats);
   const auto repeated = triangulator->duplicates();
   out.stats.duplicatesMerged += repeated.size();

@@ -139,17 +139,7 @@ Statistics Triangulator::statistics() const
 {
   Statistics sum;
   for (const auto& inserter : inserters_)
-  {
-    const Statistics& s = inserter->stats();
-    sum.insertedPoints += s.insertedPoints;
-    sum.walkSteps += s.walkSteps;
-    sum.maxWalkSteps = std::max(sum.maxWalkSteps, s.maxWalkSteps);
-    sum.cavityTetrahedra += s.cavityTetrahedra;
-    sum.deferredInsertions += s.deferredInsertions;
-    sum.secondsLocate += s.secondsLocate;
-    sum.secondsCavity += s.secondsCavity;
-    sum.secondsFill += s.secondsFill;
-  }
+    sum.add(inserter->stats());
   return sum;
 }
 

@@ -9,6 +9,7 @@
 
 #include "fd3/BulkAllocator.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -110,6 +111,22 @@ struct Statistics
   std::size_t integerExact = 0;
   double secondsSort = 0, secondsLocate = 0, secondsCavity = 0, secondsFill = 0, secondsOutput = 0;
   double secondsTotal = 0;
+
+  /// Adds the figures of another part of the same work (a thread's, a batch's): counts and times
+  /// are summed, maxWalkSteps is the larger.
+  void add(const Statistics& other)
+  {
+    for (auto field : {&Statistics::inputPoints, &Statistics::nonFinitePoints,
+           &Statistics::duplicatesMerged, &Statistics::closePointsSkipped, &Statistics::insertedPoints,
+           &Statistics::tetrahedra, &Statistics::walkSteps, &Statistics::cavityTetrahedra,
+           &Statistics::deferredInsertions, &Statistics::exactOrient, &Statistics::exactInSphere,
+           &Statistics::symbolicTies, &Statistics::integerExact})
+      this->*field += other.*field;
+    maxWalkSteps = std::max(maxWalkSteps, other.maxWalkSteps);
+    for (auto field : {&Statistics::secondsSort, &Statistics::secondsLocate, &Statistics::secondsCavity,
+           &Statistics::secondsFill, &Statistics::secondsOutput, &Statistics::secondsTotal})
+      this->*field += other.*field;
+  }
 
   double meanWalk() const { return insertedPoints ? double(walkSteps) / insertedPoints : 0.0; }
   double meanCavity() const { return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0; }
