@@ -60,8 +60,8 @@ AlphaComplex alphaComplex(
       const std::uint32_t across = triangulation.neighbors[4 * t + f];
       if (across != kNoNeighbor && (kept[across >> 2] || (across >> 2) < t))
         continue;
-      const std::uint32_t face[3] = {tv[4 * t + kFaceVertices[f][0]], tv[4 * t + kFaceVertices[f][1]],
-        tv[4 * t + kFaceVertices[f][2]]};
+      const std::uint32_t face[3] = {tv[4 * t + kFaceVertices[f][0]],
+        tv[4 * t + kFaceVertices[f][1]], tv[4 * t + kFaceVertices[f][2]]};
       if (triangleCircumradius2(p(face[0]), p(face[1]), p(face[2])) <= alpha2)
       {
         complex.triangles.insert(complex.triangles.end(), face, face + 3);

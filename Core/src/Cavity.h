@@ -28,11 +28,11 @@ using ScratchVector = std::vector<T, BulkAllocator<T>>;
 
 struct Cavity
 {
-  ScratchVector<TetId> tets;     ///< in conflict with the new point: flagged kInCavity, to delete
+  ScratchVector<TetId> tets; ///< in conflict with the new point: flagged kInCavity, to delete
   ScratchVector<std::uint8_t> entryFace; ///< digCavity's: the face each of tets was entered by
   ScratchVector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
   ScratchVector<BoundaryFacet> boundary;
-  std::vector<TetId> created;            ///< created[i] is the new tetrahedron on boundary[i]
+  std::vector<TetId> created; ///< created[i] is the new tetrahedron on boundary[i]
 
   // The edge table of FillCavity.cxx. The new tetrahedra's vertices get local numbers
   // 0..count-1 (kept in their Vertex::tet during the fill); edgeFace[a * width + b] is the new
@@ -40,10 +40,11 @@ struct Cavity
   // number of facets. Every entry read was written in the same insertion, so the table is never
   // cleared.
   static constexpr std::uint32_t kMaxLocalVertices = 512;
-  std::vector<VertId> localVertex;           ///< the vertex of each local number
-  std::vector<TetId> localTet;               ///< a new tetrahedron of each local number
-  std::vector<FaceCode> edgeFace;            ///< grown on demand, up to kMaxLocalVertices^2
-  std::vector<std::pair<FaceCode, std::uint32_t>> interiorFaces; ///< face, entry of its reversed edge
+  std::vector<VertId> localVertex; ///< the vertex of each local number
+  std::vector<TetId> localTet;     ///< a new tetrahedron of each local number
+  std::vector<FaceCode> edgeFace;  ///< grown on demand, up to kMaxLocalVertices^2
+  std::vector<std::pair<FaceCode, std::uint32_t>>
+    interiorFaces; ///< face, entry of its reversed edge
 
   void clear()
   {

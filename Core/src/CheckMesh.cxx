@@ -95,7 +95,8 @@ std::string Triangulator::checkMesh() const
         for (int m = 0; m < 4; ++m)
           shared |= m != faceOf(back) && nv[m] == tv[k];
         if (!shared)
-          report.add("adjacency") << "tet " << t << " face " << f << " differs from its neighbour's\n";
+          report.add("adjacency") << "tet " << t << " face " << f
+                                  << " differs from its neighbour's\n";
       }
     }
     if (tets.isGhost(t))
@@ -117,8 +118,8 @@ std::string Triangulator::checkMesh() const
       const FaceCode back = tets.neighbor(t, f);
       const VertId opposite = tets.vertex(tetOf(back), faceOf(back));
       if (opposite != kInfinite &&
-        predicates.inSphere(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]),
-          point(opposite)) > 0)
+        predicates.inSphere(
+          point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]), point(opposite)) > 0)
         report.add("Delaunay") << "tet " << t << " face " << f << " is not locally Delaunay\n";
     }
   }
@@ -133,7 +134,8 @@ std::string Triangulator::checkMesh() const
     if (t < slots && !tets.isDead(t))
       tets.vertices(t, tv);
     if (t >= slots || tets.isDead(t) || std::count(tv, tv + 4, u) != 1)
-      report.add("vertex tet") << "vertex " << u << " points to tet " << t << ", not one of its own\n";
+      report.add("vertex tet") << "vertex " << u << " points to tet " << t
+                               << ", not one of its own\n";
   }
   if (vertices != statistics().insertedPoints)
     report.add("vertices") << vertices << " vertices in the mesh, " << statistics().insertedPoints

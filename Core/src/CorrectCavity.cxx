@@ -69,8 +69,8 @@ void Inserter::giveBack(TetId t)
 void Inserter::collectBoundary()
 {
   ScratchVector<TetId>& tets = cavity_.tets;
-  tets.erase(std::remove_if(tets.begin(), tets.end(),
-               [&](TetId t) { return tets_.flags(t) != kInCavity; }),
+  tets.erase(
+    std::remove_if(tets.begin(), tets.end(), [&](TetId t) { return tets_.flags(t) != kInCavity; }),
     tets.end());
   cavity_.boundary.clear();
   for (TetId t : tets)

@@ -23,8 +23,8 @@ constexpr TetId kHighHalf = 0xFFFF0000u;
 // kKeep[f][k]: all ones where a new tetrahedron built on face f keeps vertex k of the deleted one,
 // zero at k == f, where the new point goes: the replacement as masks, neither a store into the
 // vertices then a wide reload of them (which stalls store forwarding) nor a branch on f.
-constexpr std::uint32_t kKeep[4][4] = {{0, ~0u, ~0u, ~0u}, {~0u, 0, ~0u, ~0u}, {~0u, ~0u, 0, ~0u},
-  {~0u, ~0u, ~0u, 0}};
+constexpr std::uint32_t kKeep[4][4] = {
+  {0, ~0u, ~0u, ~0u}, {~0u, 0, ~0u, ~0u}, {~0u, ~0u, 0, ~0u}, {~0u, ~0u, ~0u, 0}};
 } // namespace
 
 // Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.

@@ -37,12 +37,14 @@ Frame frameFor(const double lo[3], const double hi[3], const bool exact[3])
     frame.shift[a] = exact[a] && std::isfinite(centre) ? centre : 0.0;
     frame.lo[a] = lo[a];
     frame.hi[a] = hi[a];
-    extent = std::max({extent, std::fabs(lo[a] - frame.shift[a]), std::fabs(hi[a] - frame.shift[a])});
+    extent =
+      std::max({extent, std::fabs(lo[a] - frame.shift[a]), std::fabs(hi[a] - frame.shift[a])});
   }
   int exponent = 0;
   std::frexp(extent, &exponent);
   // Up to 2^1022: a larger power of two is not a double (the extent of subnormal points).
-  frame.scale = extent > 0 && std::isfinite(extent) ? std::ldexp(1.0, -std::max(exponent, -1022)) : 1.0;
+  frame.scale =
+    extent > 0 && std::isfinite(extent) ? std::ldexp(1.0, -std::max(exponent, -1022)) : 1.0;
   return frame;
 }
 
@@ -61,7 +63,8 @@ bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
     return std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190));
   };
   for (std::size_t i = 0; i < count; ++i)
-    if (isFinite(xyz + 3 * i) && !(fits(xyz[3 * i], 0) && fits(xyz[3 * i + 1], 1) && fits(xyz[3 * i + 2], 2)))
+    if (isFinite(xyz + 3 * i) &&
+      !(fits(xyz[3 * i], 0) && fits(xyz[3 * i + 1], 1) && fits(xyz[3 * i + 2], 2)))
       return false;
   return true;
 }

@@ -36,7 +36,8 @@ Ball circumball(const double* a, const double* b, const double* c, const double*
 {
   const Circumcentre centre = circumcentre(a, b, c, d);
   Ball ball{{0, 0, 0}, 0, true};
-  if (!(centre.sixVolume * centre.sixVolume * (kIllConditioned * kIllConditioned) > centre.edgeProduct2))
+  if (!(centre.sixVolume * centre.sixVolume * (kIllConditioned * kIllConditioned) >
+        centre.edgeProduct2))
   {
     return ball;
   }
@@ -60,14 +61,16 @@ bool meets(const Ball& ball, const Bounds& box)
   double d2 = 0;
   for (int k = 0; k < 3; ++k)
   {
-    const double gap = std::max({box[2 * k] - ball.centre[k], ball.centre[k] - box[2 * k + 1], 0.0});
+    const double gap =
+      std::max({box[2 * k] - ball.centre[k], ball.centre[k] - box[2 * k + 1], 0.0});
     d2 += gap * gap;
   }
   return d2 <= ball.radius2;
 }
 
 /// Whether the closed half-space beyond face abc, away from the inner vertex d, meets the box.
-bool beyondFaceMeets(const double* a, const double* b, const double* c, const double* d, const Bounds& box)
+bool beyondFaceMeets(
+  const double* a, const double* b, const double* c, const double* d, const Bounds& box)
 {
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
@@ -93,11 +96,7 @@ bool isEmpty(const Bounds& box)
 }
 } // namespace
 
-HaloBuilder::HaloBuilder(const std::vector<Bounds>& boxes)
-  : boxes_(boxes)
-  , halo_(boxes.size())
-{
-}
+HaloBuilder::HaloBuilder(const std::vector<Bounds>& boxes) : boxes_(boxes), halo_(boxes.size()) {}
 
 void HaloBuilder::tetrahedron(const double* const p[4], const std::uint32_t ids[4])
 {
@@ -109,7 +108,8 @@ void HaloBuilder::tetrahedron(const double* const p[4], const std::uint32_t ids[
   }
 }
 
-void HaloBuilder::hullFace(const double* const p[3], const double* inner, const std::uint32_t ids[3])
+void HaloBuilder::hullFace(
+  const double* const p[3], const double* inner, const std::uint32_t ids[3])
 {
   for (std::size_t b = 0; b < boxes_.size(); ++b)
   {

@@ -7,13 +7,9 @@ namespace fd3
 {
 
 Inserter::Inserter(Mesh& mesh, SlotPool& pool, const Predicates& predicates, std::uint64_t seed)
-  : mesh_(mesh)
-  , tets_(mesh.tets)
-  , pool_(pool)
-  , predicates_(predicates)
-  , rng_(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
-{
-}
+  : mesh_(mesh), tets_(mesh.tets), pool_(pool), predicates_(predicates),
+    rng_(seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull)
+{}
 
 std::uint32_t Inserter::nextRandom()
 {
@@ -109,8 +105,7 @@ constexpr VertId kSampling = 16;
 class PhaseClock
 {
 public:
-  explicit PhaseClock(bool on)
-    : on_(on)
+  explicit PhaseClock(bool on) : on_(on)
   {
     if (on_)
       last_ = std::chrono::steady_clock::now();

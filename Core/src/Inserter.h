@@ -114,7 +114,10 @@ public:
 private:
   const double* point(VertId v) const { return mesh_.point(v); }
   bool allVerticesInRegion(TetId t) const;
-  bool inRegion(VertId u) const { return !restricted_ || u == kInfinite || region_.contains(point(u)); }
+  bool inRegion(VertId u) const
+  {
+    return !restricted_ || u == kInfinite || region_.contains(point(u));
+  }
   /// The field of u that holds its local number during a fill (its tet); kInfinite's is this
   /// inserter's own.
   TetId& localNumberSlot(VertId u) { return u == kInfinite ? ghostTet_ : mesh_.vertices[u].tet; }

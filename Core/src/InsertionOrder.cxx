@@ -71,8 +71,8 @@ private:
   static int step(int state, std::uint32_t b, std::uint32_t& curve)
   {
     int parity = state & 1, permutation = (state >> 1) % 6, flips = (state >> 1) / 6;
-    std::uint8_t axis[3] = {kPermutations[permutation][0], kPermutations[permutation][1],
-      kPermutations[permutation][2]};
+    std::uint8_t axis[3] = {
+      kPermutations[permutation][0], kPermutations[permutation][1], kPermutations[permutation][2]};
     int t[3];
     for (int i = 0; i < 3; ++i)
       t[i] = static_cast<int>((b >> axis[i]) & 1u) ^ ((flips >> i) & 1);
@@ -210,7 +210,8 @@ private:
   bool empty_ = true;
 };
 
-void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box, int depth)
+void hilbertSort(
+  const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box, int depth)
 {
   if (count < 2)
     return;
@@ -225,7 +226,8 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
   for (std::size_t i = 0; i < count; ++i)
   {
     const double* p = xyz + 3 * std::size_t(ids[i]);
-    const std::uint32_t key = hilbertIndex(grid.cell(p[0], 0), grid.cell(p[1], 1), grid.cell(p[2], 2));
+    const std::uint32_t key =
+      hilbertIndex(grid.cell(p[0], 0), grid.cell(p[1], 1), grid.cell(p[2], 2));
     entries[i] = std::uint64_t(key) << 32 | ids[i];
   }
   radixSortByHighHalf(entries, 3 * kHilbertBits);
@@ -294,8 +296,8 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
   return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
 }
 
-InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, std::vector<std::uint32_t> ids,
-  const Box& box, InsertionOrder order, std::uint64_t seed)
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key,
+  std::vector<std::uint32_t> ids, const Box& box, InsertionOrder order, std::uint64_t seed)
 {
   InsertionPlan plan;
   hilbertSort(xyz, ids.data(), ids.size(), box, 0);
@@ -351,7 +353,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
     std::uint32_t near = id;
     for (int d = 0; d < 27 && near == id; ++d)
     {
-      const auto range = kept.equal_range(key(c[0] + d % 3 - 1, c[1] + d / 3 % 3 - 1, c[2] + d / 9 - 1));
+      const auto range =
+        kept.equal_range(key(c[0] + d % 3 - 1, c[1] + d / 3 % 3 - 1, c[2] + d / 9 - 1));
       for (auto it = range.first; it != range.second && near == id; ++it)
       {
         const double* q = xyz + 3 * std::size_t(it->second);

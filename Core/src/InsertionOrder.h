@@ -37,8 +37,8 @@ struct InsertionPlan
 
 /// Plans the insertion of the points `ids` (indices into xyz, all finite, within `box`); key[i] is
 /// point i's perturbationKey() (Predicates.h).
-InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, std::vector<std::uint32_t> ids,
-  const Box& box, InsertionOrder order, std::uint64_t seed);
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key,
+  std::vector<std::uint32_t> ids, const Box& box, InsertionOrder order, std::uint64_t seed);
 
 /// Removes from the plan's order every point closer than `tolerance` to a point kept before it, and
 /// returns (removed, kept) input id pairs: what inserting them one by one and skipping those within

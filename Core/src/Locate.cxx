@@ -163,7 +163,9 @@ TetId Inserter::scanForBase(VertId v, bool toFirstConflict)
   {
     if (tets_.isDead(t))
       continue;
-    if (toFirstConflict ? inConflict(t, v) : tets_.isGhost(t) ? isBeyondHullFace(t, v) : holdsPoint(t, v))
+    if (toFirstConflict    ? inConflict(t, v)
+        : tets_.isGhost(t) ? isBeyondHullFace(t, v)
+                           : holdsPoint(t, v))
       return t;
   }
   return kNoTet;

@@ -28,8 +28,7 @@ class Partition
 {
 public:
   Partition(const Mesh& mesh, std::vector<VertId> vertices, int parts)
-    : mesh_(mesh)
-    , ids_(std::move(vertices))
+    : mesh_(mesh), ids_(std::move(vertices))
   {
     Box box = Box::around(mesh.point(ids_[0]));
     for (VertId v : ids_)
@@ -59,9 +58,10 @@ private:
         [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
       at = coordinate(ids_[cut]);
     }
-    const std::size_t middle = static_cast<std::size_t>(
-      std::partition(ids_.begin() + begin, ids_.begin() + end,
-        [&](VertId v) { return coordinate(v) < at; }) - ids_.begin());
+    const std::size_t middle =
+      static_cast<std::size_t>(std::partition(ids_.begin() + begin, ids_.begin() + end,
+                                 [&](VertId v) { return coordinate(v) < at; }) -
+        ids_.begin());
     Region below = region, above = region;
     below.hi[axis] = at;
     above.lo[axis] = at;
@@ -138,7 +138,8 @@ bool Triangulator::insertInParallel(
   }
   std::sort(vertices.begin(), vertices.end()); // back to curve order
   return !stop_ &&
-    insertSerially(vertices.size(), [&vertices](std::size_t i) { return vertices[i]; }, progress);
+    insertSerially(
+      vertices.size(), [&vertices](std::size_t i) { return vertices[i]; }, progress);
 }
 
 std::vector<std::vector<VertId>> Triangulator::shareOut(
@@ -197,9 +198,11 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
       const std::vector<VertId>& mine = share[k];
       for (std::size_t i = 0; i < mine.size(); ++i)
       {
-        if (i % 256 == 0 && (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress))))
+        if (i % 256 == 0 &&
+          (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress))))
         {
-          putOff[k].insert(putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
+          putOff[k].insert(
+            putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
           break;
         }
         if (inserter.insert(mine[i]) == Inserter::Outcome::Deferred)

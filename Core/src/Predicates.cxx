@@ -186,10 +186,12 @@ void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t strid
   const double ex = box.extent(0), ey = box.extent(1), ez = box.extent(2);
   const double m = std::max({ex, ey, ez});
   const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
-  const bool staticSafe = orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
+  const bool staticSafe =
+    orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
   tuning_ = Tuning();
   tuning_.boxOrient = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
-  tuning_.boxInSphere = staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
+  tuning_.boxInSphere =
+    staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
   include(xyz, count, stride);
 }
 
@@ -256,7 +258,8 @@ void Predicates::applyGrid()
 // below 3 * 2^48, and the insphere determinant, four products of a lift and a 3x3 minor, below
 // 36 * 2^123 < 2^127 -- all exact in 128-bit integers.
 template <int N>
-void Predicates::gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const
+void Predicates::gridDifferences(
+  const double* const x[N], const double* y, std::int64_t out[N][3]) const
 {
   for (int i = 0; i < N; ++i)
     for (int k = 0; k < 3; ++k)
@@ -273,14 +276,15 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
   return x.add(x.add(x.multiply(u[0], cx), x.multiply(u[1], cy)), x.multiply(u[2], cz));
 }
 
-int Predicates::orient3dAnyMagnitude(const double* a, const double* b, const double* c, const double* d)
+int Predicates::orient3dAnyMagnitude(
+  const double* a, const double* b, const double* c, const double* d)
 {
   // orient3d()'s semi-static filter, within the range where its bound holds.
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
-    cdz * (adx * bdy - bdx * ady);
+  const double det =
+    adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
   const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
   const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
   const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
@@ -361,8 +365,9 @@ int Predicates::inSphereDoubleDouble(
   auto minor2Permanent = [&](int i, int j) { return m[i][0] * m[j][1] + m[j][0] * m[i][1]; };
   const DoubleDouble ab = minor2(0, 1), bc = minor2(1, 2), cd = minor2(2, 3), da = minor2(3, 0),
                      ac = minor2(0, 2), bd = minor2(1, 3);
-  const double abP = minor2Permanent(0, 1), bcP = minor2Permanent(1, 2), cdP = minor2Permanent(2, 3),
-               daP = minor2Permanent(3, 0), acP = minor2Permanent(0, 2), bdP = minor2Permanent(1, 3);
+  const double abP = minor2Permanent(0, 1), bcP = minor2Permanent(1, 2),
+               cdP = minor2Permanent(2, 3), daP = minor2Permanent(3, 0),
+               acP = minor2Permanent(0, 2), bdP = minor2Permanent(1, 3);
   // 3x3 minors with the z column, as in the float evaluation (Predicates.h).
   const DoubleDouble abc = x[0][2] * bc - x[1][2] * ac + x[2][2] * ab;
   const DoubleDouble bcd = x[1][2] * cd - x[2][2] * bd + x[3][2] * bc;
@@ -380,7 +385,8 @@ int Predicates::inSphereDoubleDouble(
     liftP[r] = m[r][0] * m[r][0] + m[r][1] * m[r][1] + m[r][2] * m[r][2];
   }
   const DoubleDouble det = (lift[3] * abc - lift[2] * dab) + (lift[1] * cda - lift[0] * bcd);
-  const double permanent = (liftP[3] * abcP + liftP[2] * dabP) + (liftP[1] * cdaP + liftP[0] * bcdP);
+  const double permanent =
+    (liftP[3] * abcP + liftP[2] * dabP) + (liftP[1] * cdaP + liftP[0] * bcdP);
   const double value = det.value();
   const double bound = kInSphereDoubleDouble * permanent;
   if ((value > bound || -value > bound) && permanent > kDoubleDoubleSmallest)

@@ -151,9 +151,11 @@ private:
   template <int N>
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
-  int inSphereDoubleDouble(const double* a, const double* b, const double* c, const double* d, const double* e);
+  int inSphereDoubleDouble(
+    const double* a, const double* b, const double* c, const double* d, const double* e);
   int symbolicInSphere(const double* const p[4], const double* pe);
-  int inSphereExact(const double* a, const double* b, const double* c, const double* d, const double* e);
+  int inSphereExact(
+    const double* a, const double* b, const double* c, const double* d, const double* e);
   int orient3dAnyMagnitude(const double* a, const double* b, const double* c, const double* d);
   int inSphereFilteredAnyMagnitude(
     const double* a, const double* b, const double* c, const double* d, const double* e);
@@ -171,7 +173,7 @@ private:
     static constexpr int kNoGrid = -4096;
     int lowest = 4096, highest = kNoGrid;
     double boxOrient = HUGE_VAL, boxInSphere = HUGE_VAL; // static bounds from the box alone
-    double inverseGridUnit = 0.0;                          // 1/u on an integer grid, else 0
+    double inverseGridUnit = 0.0;                        // 1/u on an integer grid, else 0
     // A float determinant beyond these bounds has the exact sign; +inf until adaptTo(), 0 where the
     // float evaluation is exact. floatExact* tells that a determinant within them is exactly 0.
     double orientStatic = HUGE_VAL;
@@ -189,8 +191,8 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
   // det[a-d; b-d; c-d] is the negative of VTK's orientation.
-  const double det = adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) +
-    cdz * (adx * bdy - bdx * ady);
+  const double det =
+    adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
   if (det > tuning_.orientStatic || -det > tuning_.orientStatic)
     return -filter::signOf(det);
   if (tuning_.floatExactOrient)
@@ -262,12 +264,12 @@ inline double inSphereDeterminant(const double* a, const double* b, const double
   const __m128d bcda = _mm_sub_pd(_mm_mul_pd(xbd, yca), _mm_mul_pd(xca, ybd));
   const __m128d acbd = _mm_sub_pd(_mm_mul_pd(xab, ycd), _mm_mul_pd(xcd, yab));
   // (abc, bcd) and (cda, dab).
-  const __m128d t1 = _mm_add_pd(
-    _mm_sub_pd(_mm_mul_pd(zab, _mm_move_sd(abcd, bcda)), _mm_mul_pd(zbc, acbd)),
-    _mm_mul_pd(zcd, _mm_unpacklo_pd(abcd, bcda)));
-  const __m128d t2 = _mm_add_pd(
-    _mm_add_pd(_mm_mul_pd(zcd, _mm_shuffle_pd(bcda, abcd, 1)), _mm_mul_pd(zda, acbd)),
-    _mm_mul_pd(zab, _mm_unpackhi_pd(abcd, bcda)));
+  const __m128d t1 =
+    _mm_add_pd(_mm_sub_pd(_mm_mul_pd(zab, _mm_move_sd(abcd, bcda)), _mm_mul_pd(zbc, acbd)),
+      _mm_mul_pd(zcd, _mm_unpacklo_pd(abcd, bcda)));
+  const __m128d t2 =
+    _mm_add_pd(_mm_add_pd(_mm_mul_pd(zcd, _mm_shuffle_pd(bcda, abcd, 1)), _mm_mul_pd(zda, acbd)),
+      _mm_mul_pd(zab, _mm_unpackhi_pd(abcd, bcda)));
   // (alift, blift) and (clift, dlift).
   const __m128d lab =
     _mm_add_pd(_mm_add_pd(_mm_mul_pd(xab, xab), _mm_mul_pd(yab, yab)), _mm_mul_pd(zab, zab));

@@ -162,7 +162,8 @@ public:
     IdArray grown;
     grown.reserve(8 * count);
     grown.resize(8 * count);
-    std::copy(records_.begin(), records_.begin() + 8 * static_cast<std::ptrdiff_t>(slots()), grown.begin());
+    std::copy(
+      records_.begin(), records_.begin() + 8 * static_cast<std::ptrdiff_t>(slots()), grown.begin());
     records_.swap(grown);
   }
   std::size_t capacity() const { return records_.size() / 8; }

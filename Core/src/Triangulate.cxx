@@ -29,7 +29,8 @@ double secondsSince(Clock::time_point start)
 
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
 /// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
-bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, std::vector<std::uint32_t>& order)
+bool moveFirstTetrahedronToFront(
+  const double* xyz, const Frame& frame, std::vector<std::uint32_t>& order)
 {
   Predicates predicates;
   if (frame.identity)
@@ -88,7 +89,8 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
         {
           const FaceCode code = records[8 * t + 4 + f];
           const std::uint32_t n = newId[tetOf(code)];
-          out.neighbors[4 * std::size_t(k) + f] = n == kDropped ? kNoNeighbor : faceCode(n, faceOf(code));
+          out.neighbors[4 * std::size_t(k) + f] =
+            n == kDropped ? kNoNeighbor : faceCode(n, faceOf(code));
         }
   }
   std::size_t count = 0;
@@ -116,7 +118,8 @@ int threadCount(const Options& options)
     return 1; // which slivers the guard avoids depends on the order of insertion
   // Each thread has its own scratch and slot pool: beyond a few per hardware thread they only
   // cost memory.
-  return options.threads > 0 ? std::min(options.threads, kThreadsPerHardwareThread * hardware) : hardware;
+  return options.threads > 0 ? std::min(options.threads, kThreadsPerHardwareThread * hardware)
+                             : hardware;
 }
 } // namespace
 
@@ -125,7 +128,7 @@ struct IncrementalDelaunay::Impl
   Options options;
   Frame frame;
   Status status = Status::Ok;
-  Statistics stats; // the figures of every batch; the inserters' are added on output
+  Statistics stats;       // the figures of every batch; the inserters' are added on output
   std::size_t points = 0; // point ids handed out
   std::size_t room = 0;   // vertex records reserved beyond the first batch's
   // (point, point it was skipped for), then (duplicate, original): the order representatives
@@ -145,11 +148,12 @@ private:
   /// The finite ones of `count` points, as point ids, and their bounding box.
   std::vector<std::uint32_t> finitePoints(const double* xyz, std::size_t count, Box& box);
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
-  std::vector<std::uint16_t> keys(const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const;
+  std::vector<std::uint16_t> keys(
+    const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
-  VertexArray vertices(
-    const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra);
+  VertexArray vertices(const double* xyz, const std::vector<std::uint32_t>& order,
+    std::size_t firstPoint, std::size_t extra);
 };
 
 std::vector<std::uint32_t> IncrementalDelaunay::Impl::finitePoints(
@@ -187,8 +191,8 @@ std::vector<std::uint16_t> IncrementalDelaunay::Impl::keys(
   return key;
 }
 
-VertexArray IncrementalDelaunay::Impl::vertices(
-  const double* xyz, const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra)
+VertexArray IncrementalDelaunay::Impl::vertices(const double* xyz,
+  const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra)
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
@@ -368,8 +372,9 @@ void IncrementalDelaunay::Impl::writePoints(double* xyz) const
       std::copy_n(xyz + 3 * std::size_t(original), 3, xyz + 3 * std::size_t(copy));
 }
 
-IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options,
-  const Frame& frame, std::size_t room, const std::function<void()>& pointsRead)
+IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count,
+  const Options& options, const Frame& frame, std::size_t room,
+  const std::function<void()>& pointsRead)
   : impl_(std::make_unique<Impl>())
 {
   impl_->options = options;
@@ -438,7 +443,8 @@ std::vector<std::vector<double>> IncrementalDelaunay::points(
   return out;
 }
 
-std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(const std::vector<Bounds>& boxes) const
+std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
+  const std::vector<Bounds>& boxes) const
 {
   // In the frame, from the vertex records: they lie in insertion order, as the tetrahedra that
   // use them were made, where the input's coordinates lie in input order and a pass over the
@@ -491,8 +497,8 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
       box.include(xyz + 3 * i);
       any = true;
     }
-  const double centre[3] = {box.lo[0] + box.extent(0) / 2, box.lo[1] + box.extent(1) / 2,
-    box.lo[2] + box.extent(2) / 2};
+  const double centre[3] = {
+    box.lo[0] + box.extent(0) / 2, box.lo[1] + box.extent(1) / 2, box.lo[2] + box.extent(2) / 2};
   bool exact[3] = {true, true, true};
   checkShifts(xyz, count, centre, exact);
   Frame frame = frameFor(box.lo, box.hi, exact);

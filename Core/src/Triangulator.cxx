@@ -109,7 +109,8 @@ std::size_t Triangulator::predictedSlots(
   double growth = 0.0;
   if (earlierDone > 0 && done_ > earlierDone)
     growth = std::max(0.0,
-      (perVertex - double(earlierSlots) / double(earlierDone)) / std::log2(double(done_) / double(earlierDone)));
+      (perVertex - double(earlierSlots) / double(earlierDone)) /
+        std::log2(double(done_) / double(earlierDone)));
   const double expected =
     std::min(perVertex + growth * std::log2(double(end) / double(done_)), 2.0 * perVertex);
   return static_cast<std::size_t>(1.15 * expected * double(end)) + 64;
@@ -124,8 +125,8 @@ void Triangulator::makeRoomFor(std::size_t count)
     free += pool->freeSlots().size();
   const double perVertex =
     std::max(7.0, double(mesh_.tets.slots() - free) / double(std::max<std::size_t>(done_, 1)));
-  mesh_.tets.makeRoom(static_cast<std::size_t>(1.25 * perVertex * double(count)) +
-    2048 * pools_.size() + 1024);
+  mesh_.tets.makeRoom(
+    static_cast<std::size_t>(1.25 * perVertex * double(count)) + 2048 * pools_.size() + 1024);
 }
 
 bool Triangulator::reportProgress(const std::function<bool(double)>& progress)

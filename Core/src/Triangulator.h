@@ -30,8 +30,8 @@ public:
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
   /// when it asked to stop.
-  bool insertAll(const std::vector<std::size_t>& roundStarts,
-    const std::function<bool(double)>& progress);
+  bool insertAll(
+    const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress);
   /// Appends `more` vertices, distinct from each other and within the bounds, and inserts them,
   /// in the rounds of `roundStarts` (indices into `more`). Those that repeat a vertex of the mesh
   /// are left out and listed in duplicates().
@@ -79,7 +79,8 @@ private:
   /// Inserts vertexAt(0), ..., vertexAt(count - 1) with inserter 0, in this thread (a round's
   /// consecutive ranks need no list: its 4 bytes a vertex would add to the peak at the end).
   template <typename VertexAt>
-  bool insertSerially(std::size_t count, VertexAt vertexAt, const std::function<bool(double)>& progress);
+  bool insertSerially(
+    std::size_t count, VertexAt vertexAt, const std::function<bool(double)>& progress);
   /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, twice,
   /// then serially what the regions could not take; a pass whose kind last yielded too little to
   /// pay for itself is left out. ParallelInsertion.cxx.
@@ -92,11 +93,12 @@ private:
   void startInRegions(const std::vector<Region>& regions, std::vector<std::vector<VertId>>& share,
     std::vector<std::vector<VertId>>& putOff);
   /// Inserts `vertices` in `regions`, one thread each; returns those that had to be put off.
-  std::vector<VertId> runPass(const std::vector<VertId>& vertices, const std::vector<Region>& regions,
-    const std::function<bool(double)>& progress);
+  std::vector<VertId> runPass(const std::vector<VertId>& vertices,
+    const std::vector<Region>& regions, const std::function<bool(double)>& progress);
   /// Slots enough for vertices up to `end`, from the slots per vertex now and after an earlier
   /// round (`earlierDone` vertices, `earlierSlots` slots; 0 when none), with a margin.
-  std::size_t predictedSlots(std::size_t earlierDone, std::size_t earlierSlots, std::size_t end) const;
+  std::size_t predictedSlots(
+    std::size_t earlierDone, std::size_t earlierSlots, std::size_t end) const;
   /// Room in the mesh for `count` more insertions, from the tetrahedra per vertex so far.
   void makeRoomFor(std::size_t count);
   bool reportProgress(const std::function<bool(double)>& progress);

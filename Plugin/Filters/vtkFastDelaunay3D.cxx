@@ -101,8 +101,9 @@ vtkSmartPointer<vtkPoints> MakeOutputPoints(
       farthest = std::max(farthest, std::fabs(centre[a]));
     }
     // No further than VTK_DOUBLE_MAX - |centre| (halved against the rounding of the sum).
-    const double length = std::min(offset * (fd3::diagonal(bounds) > 0 ? fd3::diagonal(bounds) : 1.0),
-      (VTK_DOUBLE_MAX - farthest) / 2);
+    const double length =
+      std::min(offset * (fd3::diagonal(bounds) > 0 ? fd3::diagonal(bounds) : 1.0),
+        (VTK_DOUBLE_MAX - farthest) / 2);
     for (int k = 0; k < 6; ++k)
     {
       double x[3] = { centre[0], centre[1], centre[2] };
@@ -254,7 +255,8 @@ private:
 void SetTetrahedra(vtkUnstructuredGrid* output, fd3::IdArray tets)
 {
   const std::size_t cells = tets.size() / 4;
-  if (cells == 0 || tets.size() >= static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+  if (cells == 0 ||
+    tets.size() >= static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
   {
     SetCells(output, { { VTK_TETRA, 4, tets.data(), nullptr, cells } });
     return;
@@ -280,8 +282,8 @@ void SetTetrahedra(vtkUnstructuredGrid* output, fd3::IdArray tets)
 }
 
 /// "Circumradius", "Volume" and "RadiusEdgeRatio" cell arrays, as requested.
-void AddCellMeasures(vtkUnstructuredGrid* output, const double* xyz, bool circumradius, bool volume,
-  bool ratio)
+void AddCellMeasures(
+  vtkUnstructuredGrid* output, const double* xyz, bool circumradius, bool volume, bool ratio)
 {
   const vtkIdType n = output->GetNumberOfCells();
   std::vector<vtkSmartPointer<vtkDoubleArray>> arrays(3);
@@ -388,7 +390,6 @@ void AddFieldValue(vtkFieldData* fields, const char* name, double value)
 
 vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
 
-
 void vtkFastDelaunay3D::SetClamped(double& property, double value, double lo, double hi, double nan)
 {
   value = Clamped(value, lo, hi, nan);
@@ -478,7 +479,8 @@ int vtkFastDelaunay3D::RequestData(
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
-    vtkErrorMacro("Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
+    vtkErrorMacro(
+      "Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
     SetPointsWithoutCells(output, points, pointData);
     return 0;
   }
@@ -568,15 +570,15 @@ bool vtkFastDelaunay3D::ReportOnInput(
   const std::string leftOut = LeftOutPoints(stats);
   if (status != fd3::Status::Ok)
   {
-    vtkWarningMacro("Cannot triangulate: " << fd3::toString(status)
-                                           << "; the output holds the points and no cells"
-                                           << (leftOut.empty() ? "" : " (left out: ") << leftOut
-                                           << (leftOut.empty() ? "" : ")"));
+    vtkWarningMacro("Cannot triangulate: "
+      << fd3::toString(status) << "; the output holds the points and no cells"
+      << (leftOut.empty() ? "" : " (left out: ") << leftOut << (leftOut.empty() ? "" : ")"));
     return false;
   }
   if (!leftOut.empty())
   {
-    const std::size_t unused = stats.duplicatesMerged + stats.closePointsSkipped + stats.nonFinitePoints;
+    const std::size_t unused =
+      stats.duplicatesMerged + stats.closePointsSkipped + stats.nonFinitePoints;
     vtkWarningMacro(<< unused << " of " << numberOfPoints
                     << " points are not vertices of the tetrahedralization (they remain in the "
                        "output, unused): "
@@ -612,7 +614,8 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
   std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
   if (this->AlphaTris)
   {
-    blocks.push_back({ VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
+    blocks.push_back(
+      { VTK_TRIANGLE, 3, shape.triangles.data(), nullptr, shape.triangles.size() / 3 });
   }
   if (this->AlphaLines)
   {
@@ -633,8 +636,8 @@ void vtkFastDelaunay3D::AddCellArrays(vtkUnstructuredGrid* output, const double*
 {
   if (this->ComputeCircumradius || this->ComputeVolume || this->ComputeRadiusEdgeRatio)
   {
-    AddCellMeasures(output, xyz, this->ComputeCircumradius, this->ComputeVolume,
-      this->ComputeRadiusEdgeRatio);
+    AddCellMeasures(
+      output, xyz, this->ComputeCircumradius, this->ComputeVolume, this->ComputeRadiusEdgeRatio);
   }
 }
 

@@ -42,10 +42,10 @@
 #include "vtkSmartPointer.h"             // for vtkSmartPointer
 #include "vtkUnstructuredGridAlgorithm.h"
 
-#include <cstddef> // for std::size_t
-#include <cstdint> // for std::uint32_t
+#include <cstddef>    // for std::size_t
+#include <cstdint>    // for std::uint32_t
 #include <functional> // for std::function
-#include <vector>  // for std::vector
+#include <vector>     // for std::vector
 
 class vtkFieldData;
 class vtkPointData;
@@ -56,7 +56,7 @@ struct Options;
 struct Statistics;
 struct Triangulation;
 enum class Status;
-}
+} // namespace fd3
 
 class FASTDELAUNAY3DFILTERS_EXPORT vtkFastDelaunay3D : public vtkUnstructuredGridAlgorithm
 {
@@ -325,7 +325,8 @@ protected:
   /// The points and point data with an empty cell array: the output where no tetrahedron exists
   /// (fewer than 4 distinct points, all coplanar, a failure), as vtkDelaunay3D's; the cell array
   /// keeps it a dataset that every writer writes and reads back.
-  static void SetPointsWithoutCells(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData);
+  static void SetPointsWithoutCells(
+    vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData);
 
 private:
   /// Sets `property` to `value` clamped to [lo, hi], or to `nan` for NaN.

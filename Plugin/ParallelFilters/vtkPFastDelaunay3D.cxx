@@ -126,7 +126,8 @@ void ForEachPoint(vtkDataArray* coordinates, Visit&& visit)
 /// Appends the coordinates of a 3-component array to xyz.
 void AppendPoints(vtkDataArray* coordinates, Coordinates& xyz)
 {
-  ForEachPoint(coordinates, [&xyz](vtkIdType, const double x[3]) { xyz.insert(xyz.end(), x, x + 3); });
+  ForEachPoint(
+    coordinates, [&xyz](vtkIdType, const double x[3]) { xyz.insert(xyz.end(), x, x + 3); });
 }
 
 /// The point data of `parts` one after the other: the arrays that all of them have, as
@@ -160,7 +161,8 @@ public:
 
   /// The tree of ranks [first, first + ranks) over the points [begin, end): those below the cut
   /// go to the first ranks / 2 ranks, in proportion. Returns the node, or -(rank + 1) for a leaf.
-  int Split(std::vector<Point>::iterator begin, std::vector<Point>::iterator end, int first, int ranks)
+  int Split(
+    std::vector<Point>::iterator begin, std::vector<Point>::iterator end, int first, int ranks)
   {
     if (ranks == 1)
     {
@@ -182,7 +184,8 @@ public:
     }
     const int lower = ranks / 2;
     const auto quantile = begin + (end - begin) * lower / ranks;
-    std::nth_element(begin, quantile, end, [axis](const Point& a, const Point& b) { return a[axis] < b[axis]; });
+    std::nth_element(
+      begin, quantile, end, [axis](const Point& a, const Point& b) { return a[axis] < b[axis]; });
     const double at = quantile == end ? HUGE_VAL : (*quantile)[axis];
     const auto split = std::partition(begin, end, [&](const Point& p) { return p[axis] < at; });
     const int node = static_cast<int>(this->Nodes.size());
@@ -241,7 +244,8 @@ struct RenumberIdsFrom
   }
 };
 
-void RenumberCellIdsFrom(vtkCellArray* cells, std::size_t first, std::vector<vtkIdType>& used, bool renumber)
+void RenumberCellIdsFrom(
+  vtkCellArray* cells, std::size_t first, std::vector<vtkIdType>& used, bool renumber)
 {
   using Ids = vtkArrayDispatch::DispatchByArray<vtkCellArray::StorageArrayList>;
   vtkDataArray* connectivity = cells->GetConnectivityArray();
@@ -256,11 +260,9 @@ class DistributedRun
 {
 public:
   DistributedRun(vtkMultiProcessController* controller)
-    : Controller(controller)
-    , Rank(controller->GetLocalProcessId())
-    , Ranks(controller->GetNumberOfProcesses())
-  {
-  }
+    : Controller(controller), Rank(controller->GetLocalProcessId()),
+      Ranks(controller->GetNumberOfProcesses())
+  {}
 
   /// Step 1: the finite points spread over the ranks by space (BalancedCuts()), this rank's
   /// non-finite ones after them (nothing to triangulate, but they stay in the output as unused
@@ -271,7 +273,8 @@ public:
     const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
     std::vector<vtkIdType> counts(this->Ranks);
     this->Controller->AllGather(&count, counts.data(), 1);
-    const vtkIdType firstId = std::accumulate(counts.begin(), counts.begin() + this->Rank, vtkIdType(0));
+    const vtkIdType firstId =
+      std::accumulate(counts.begin(), counts.begin() + this->Rank, vtkIdType(0));
     this->InputPoints = std::accumulate(counts.begin(), counts.end(), vtkIdType(0));
     int type = count > 0 ? points->GetDataType() : 0, widest = 0; // as the one-process output's
     this->Controller->AllReduce(&type, &widest, 1, vtkCommunicator::MAX_OP);
@@ -308,11 +311,14 @@ public:
       });
       finite = std::vector<vtkIdType>();
       this->Send(
-        lists, [&](int r) { return Subset(points->GetData(), data, lists[r], this->PointType); }, parts, senders);
+        lists, [&](int r) { return Subset(points->GetData(), data, lists[r], this->PointType); },
+        parts, senders);
       if (!lists[this->Rank].empty()) // in rank order
       {
-        const auto at = std::upper_bound(senders.begin(), senders.end(), this->Rank) - senders.begin();
-        parts.insert(parts.begin() + at, Subset(points->GetData(), data, lists[this->Rank], this->PointType));
+        const auto at =
+          std::upper_bound(senders.begin(), senders.end(), this->Rank) - senders.begin();
+        parts.insert(
+          parts.begin() + at, Subset(points->GetData(), data, lists[this->Rank], this->PointType));
         senders.insert(senders.begin() + at, this->Rank);
       }
     }
@@ -350,7 +356,8 @@ public:
     const vtkIdType local = static_cast<vtkIdType>(finite.size());
     vtkIdType total = 0;
     this->Controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
-    const std::size_t mine = static_cast<std::size_t>(std::ceil(kSample * double(local) / double(total)));
+    const std::size_t mine =
+      static_cast<std::size_t>(std::ceil(kSample * double(local) / double(total)));
     std::vector<double> sample(3 * std::min(mine, finite.size()));
     for (std::size_t k = 0; k < sample.size() / 3; ++k)
     {
@@ -360,8 +367,10 @@ public:
     const vtkIdType length = static_cast<vtkIdType>(sample.size());
     this->Controller->AllGather(&length, lengths.data(), 1);
     std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-    std::vector<std::array<double, 3>> all(static_cast<std::size_t>(offsets.back() + lengths.back()) / 3);
-    this->Controller->AllGatherV(sample.data(), all.data()->data(), length, lengths.data(), offsets.data());
+    std::vector<std::array<double, 3>> all(
+      static_cast<std::size_t>(offsets.back() + lengths.back()) / 3);
+    this->Controller->AllGatherV(
+      sample.data(), all.data()->data(), length, lengths.data(), offsets.data());
     SpaceCuts cuts;
     cuts.Split(all.begin(), all.end(), 0, this->Ranks);
     return cuts;
@@ -372,8 +381,8 @@ public:
   /// With DIY, as vtkDIYDataExchanger, but as raw arrays: vtkDIYDataExchanger writes each data
   /// set as a compressed XML file, which took most of the redistribution's time.
   template <typename List, typename Part>
-  void Send(const std::vector<List>& lists, Part&& part, std::vector<vtkSmartPointer<vtkPointSet>>& received,
-    std::vector<int>& senders)
+  void Send(const std::vector<List>& lists, Part&& part,
+    std::vector<vtkSmartPointer<vtkPointSet>>& received, std::vector<int>& senders)
   {
     diy::mpi::communicator comm = vtkDIYUtilities::GetCommunicator(this->Controller);
     std::vector<int> sends(this->Ranks);
@@ -420,7 +429,8 @@ public:
           byRank[from.gid] = vtkSmartPointer<vtkPolyData>::New();
           byRank[from.gid]->SetPoints(vtkNew<vtkPoints>());
           byRank[from.gid]->GetPoints()->SetData(vtkSmartPointer<vtkDataArray>::Take(xyz));
-          byRank[from.gid]->GetPointData()->ShallowCopy(vtkSmartPointer<vtkFieldData>::Take(values));
+          byRank[from.gid]->GetPointData()->ShallowCopy(
+            vtkSmartPointer<vtkFieldData>::Take(values));
         }
       }
     });
@@ -438,10 +448,7 @@ public:
   /// rank receives a few percent of its own count at 1M points a rank, more on small ones. Growing
   /// either later would copy it, and under MPI the copy's source stays resident (Open MPI keeps
   /// the freed pages).
-  std::size_t GhostRoom() const
-  {
-    return this->OwnCount / 4 + 1024;
-  }
+  std::size_t GhostRoom() const { return this->OwnCount / 4 + 1024; }
 
   /// Step 2: one exact frame for every rank, from the global bounds and the shifts that are
   /// exact on every rank.
@@ -507,8 +514,11 @@ public:
     // its points to every other), or from the mesh's records once Xyz is dropped, all at once.
     const std::vector<std::vector<double>> fromMesh =
       this->PointsInMesh ? mesh.points(halo) : std::vector<std::vector<double>>();
-    this->Send(halo,
-      [&](int r) { return this->HaloPart(halo[r], this->PointsInMesh ? fromMesh[r] : this->PointsOf(halo[r])); },
+    this->Send(
+      halo,
+      [&](int r) {
+        return this->HaloPart(halo[r], this->PointsInMesh ? fromMesh[r] : this->PointsOf(halo[r]));
+      },
       this->Ghosts, this->GhostSenders);
   }
 
@@ -525,7 +535,8 @@ public:
   }
 
   /// The own points `halo`, at `xyz` (3 each), with their point data.
-  vtkSmartPointer<vtkPolyData> HaloPart(const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz)
+  vtkSmartPointer<vtkPolyData> HaloPart(
+    const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz)
   {
     vtkNew<vtkPoints> points;
     points->SetDataType(this->PointType);
@@ -542,7 +553,8 @@ public:
   /// the mesh does not hold, are kept aside.
   void DropPoints()
   {
-    this->NonFinite.assign(this->Xyz.begin() + 3 * this->FiniteCount, this->Xyz.begin() + 3 * this->OwnCount);
+    this->NonFinite.assign(
+      this->Xyz.begin() + 3 * this->FiniteCount, this->Xyz.begin() + 3 * this->OwnCount);
     Coordinates().swap(this->Xyz);
     this->PointsInMesh = true;
   }
@@ -561,7 +573,8 @@ public:
     {
       this->Xyz.resize(3 * this->OwnCount + ghostXyz.size()); // not filled: no page is touched yet
       result = mesh.release(this->Xyz.data());
-      std::copy(this->NonFinite.begin(), this->NonFinite.end(), this->Xyz.begin() + 3 * this->FiniteCount);
+      std::copy(
+        this->NonFinite.begin(), this->NonFinite.end(), this->Xyz.begin() + 3 * this->FiniteCount);
       // The release wrote the ghosts too, but they are other ranks' points, which this rank did
       // not check with fd3::recoverable().
       std::copy(ghostXyz.begin(), ghostXyz.end(), this->Xyz.begin() + 3 * this->OwnCount);
@@ -594,10 +607,11 @@ public:
     {
       return owner == this->Rank;
     }
-    const std::uint32_t* smallest = std::min_element(ids, ids + size, [this](std::uint32_t a, std::uint32_t b) {
-      return std::lexicographical_compare(&this->Xyz[3 * a], &this->Xyz[3 * a + 3], &this->Xyz[3 * b],
-        &this->Xyz[3 * b + 3]);
-    });
+    const std::uint32_t* smallest =
+      std::min_element(ids, ids + size, [this](std::uint32_t a, std::uint32_t b) {
+        return std::lexicographical_compare(
+          &this->Xyz[3 * a], &this->Xyz[3 * a + 3], &this->Xyz[3 * b], &this->Xyz[3 * b + 3]);
+      });
     return this->Owner[*smallest] == this->Rank;
   }
 
@@ -681,14 +695,15 @@ public:
     }
     std::array<double, 10> sums = { double(s.nonFinitePoints), double(inserted), double(skipped),
       double(ownedTetrahedra), double(s.walkSteps), double(s.cavityTetrahedra),
-      double(s.integerExact), double(s.insertedPoints), double(this->Xyz.size() / 3 - this->OwnCount),
-      double(merged) },
-                            total;
+      double(s.integerExact), double(s.insertedPoints),
+      double(this->Xyz.size() / 3 - this->OwnCount), double(merged) },
+                           total;
     std::array<double, 7> maxima = { double(s.maxWalkSteps), s.secondsSort, s.secondsLocate,
       s.secondsCavity, s.secondsFill, s.secondsOutput, s.secondsTotal },
                           slowest;
     this->Controller->AllReduce(sums.data(), total.data(), sums.size(), vtkCommunicator::SUM_OP);
-    this->Controller->AllReduce(maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
+    this->Controller->AllReduce(
+      maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
     fd3::Statistics global;
     global.inputPoints = static_cast<std::size_t>(this->InputPoints);
     global.nonFinitePoints = static_cast<std::size_t>(total[0]);
@@ -698,7 +713,8 @@ public:
     global.tetrahedra = static_cast<std::size_t>(total[3]);
     // Walks and cavities of ghost insertions count too: that is the work done.
     global.walkSteps = static_cast<std::size_t>(total[4] * total[1] / std::max(total[7], 1.0));
-    global.cavityTetrahedra = static_cast<std::size_t>(total[5] * total[1] / std::max(total[7], 1.0));
+    global.cavityTetrahedra =
+      static_cast<std::size_t>(total[5] * total[1] / std::max(total[7], 1.0));
     global.integerExact = static_cast<std::size_t>(total[6]);
     this->GhostPoints = static_cast<vtkIdType>(total[8]);
     global.maxWalkSteps = static_cast<std::size_t>(slowest[0]);
@@ -725,8 +741,9 @@ public:
       options.tolerance == 0 && fd3::recoverable(frame, this->Xyz.data(), this->FiniteCount);
     try
     {
-      mesh = std::make_unique<fd3::IncrementalDelaunay>(this->Xyz.data(), this->OwnCount, options, frame,
-        this->GhostRoom(), recoverable ? std::function<void()>([this] { this->DropPoints(); }) : nullptr);
+      mesh = std::make_unique<fd3::IncrementalDelaunay>(this->Xyz.data(), this->OwnCount, options,
+        frame, this->GhostRoom(),
+        recoverable ? std::function<void()>([this] { this->DropPoints(); }) : nullptr);
     }
     catch (const std::exception& error) // out of memory, too many points
     {
@@ -742,7 +759,8 @@ public:
     try
     {
       result = this->AddGhosts(*mesh);
-      result.stats.secondsTotal = seconds + std::chrono::duration<double>(Clock::now() - start).count();
+      result.stats.secondsTotal =
+        seconds + std::chrono::duration<double>(Clock::now() - start).count();
     }
     catch (const std::exception& error) // aborted, or out of memory
     {
@@ -768,7 +786,10 @@ public:
   fd3::Status GlobalStatus(fd3::Status local)
   {
     auto rankOf = [](fd3::Status s) {
-      return s == fd3::Status::Ok ? 3 : s == fd3::Status::Degenerate ? 2 : s == fd3::Status::TooFewPoints ? 1 : 0;
+      return s == fd3::Status::Ok        ? 3
+        : s == fd3::Status::Degenerate   ? 2
+        : s == fd3::Status::TooFewPoints ? 1
+                                         : 0;
     };
     int mine = rankOf(local), best = 0;
     this->Controller->AllReduce(&mine, &best, 1, vtkCommunicator::MAX_OP);
@@ -788,14 +809,15 @@ public:
   vtkIdType InputPoints = 0;
   vtkIdType GhostPoints = 0;
   double Diagonal = 0;
-  vtkSmartPointer<vtkPointData> OwnData; ///< of this rank's points: finite ones by space, then its NaN/Inf
+  vtkSmartPointer<vtkPointData>
+    OwnData; ///< of this rank's points: finite ones by space, then its NaN/Inf
   std::size_t OwnCount = 0;
-  std::size_t FiniteCount = 0;            ///< the first own points, the finite ones
-  int PointType = VTK_DOUBLE;              ///< of the output's points
-  Coordinates Xyz;                        ///< own points, then the received ones (not while PointsInMesh)
-  bool PointsInMesh = false;              ///< Xyz dropped while the mesh holds the points
-  std::vector<double> NonFinite;          ///< own non-finite points, while PointsInMesh
-  std::vector<fd3::Bounds> Boxes;         ///< every rank's bounds
+  std::size_t FiniteCount = 0;    ///< the first own points, the finite ones
+  int PointType = VTK_DOUBLE;     ///< of the output's points
+  Coordinates Xyz;                ///< own points, then the received ones (not while PointsInMesh)
+  bool PointsInMesh = false;      ///< Xyz dropped while the mesh holds the points
+  std::vector<double> NonFinite;  ///< own non-finite points, while PointsInMesh
+  std::vector<fd3::Bounds> Boxes; ///< every rank's bounds
   std::vector<vtkSmartPointer<vtkPointSet>> Ghosts; ///< received, one set per sender
   std::vector<int> GhostSenders;
   std::vector<int> Owner; ///< per point: the rank whose own point it is
@@ -816,7 +838,8 @@ int vtkPFastDelaunay3D::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->NumberOfGhostPoints = 0;
-  if (!vtkMPIController::SafeDownCast(this->Controller) || this->Controller->GetNumberOfProcesses() < 2)
+  if (!vtkMPIController::SafeDownCast(this->Controller) ||
+    this->Controller->GetNumberOfProcesses() < 2)
   {
     return this->Superclass::RequestData(request, inputVector, outputVector);
   }
@@ -877,8 +900,8 @@ int vtkPFastDelaunay3D::RequestData(
   }
   if (status != fd3::Status::Ok)
   {
-    SetPointsWithoutCells(
-      output, InputPoints(input, this->OutputPointsPrecision), input ? input->GetPointData() : nullptr);
+    SetPointsWithoutCells(output, InputPoints(input, this->OutputPointsPrecision),
+      input ? input->GetPointData() : nullptr);
     return 1;
   }
   this->AddFigures(output->GetFieldData());

@@ -219,8 +219,8 @@ int cgalValidity(const fd3test::Points& p, const Triangulation& dt, std::size_t 
     return -1;
   std::vector<std::uint32_t> tets;
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
-    tets.insert(tets.end(), {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
-                              c->vertex(3)->info()});
+    tets.insert(tets.end(),
+      {c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(), c->vertex(3)->info()});
   return validity(p, tets, limit);
 }
 
@@ -240,7 +240,8 @@ Measurement runCgal(const fd3test::Points& p, std::size_t validateLimit, int thr
   std::vector<std::pair<CgalKernel::Point_3, std::uint32_t>> points;
   points.reserve(p.size() / 3);
   for (std::size_t i = 0; i < p.size(); i += 3)
-    points.emplace_back(CgalKernel::Point_3(p[i], p[i + 1], p[i + 2]), static_cast<std::uint32_t>(i / 3));
+    points.emplace_back(
+      CgalKernel::Point_3(p[i], p[i + 1], p[i + 2]), static_cast<std::uint32_t>(i / 3));
   Measurement m;
   if (threads > 1)
   {
@@ -294,12 +295,14 @@ Measurement runTetgen(const fd3test::Points& p, std::size_t validateLimit)
     std::map<std::array<double, 3>, std::uint32_t> inputId;
     for (std::uint32_t i = 0; i < p.size() / 3; ++i)
       inputId.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i);
-    std::vector<std::uint32_t> tets(out.tetrahedronlist, out.tetrahedronlist + 4 * out.numberoftetrahedra);
+    std::vector<std::uint32_t> tets(
+      out.tetrahedronlist, out.tetrahedronlist + 4 * out.numberoftetrahedra);
     for (std::uint32_t& id : tets)
     {
       const REAL* q = out.pointlist + 3 * std::size_t(id);
       const auto found = inputId.find({q[0], q[1], q[2]});
-      id = found == inputId.end() ? std::uint32_t(p.size()) : found->second; // out of range: invalid
+      id =
+        found == inputId.end() ? std::uint32_t(p.size()) : found->second; // out of range: invalid
     }
     m.valid = validity(p, tets, validateLimit);
   }
@@ -351,13 +354,14 @@ int table1(const std::string& markdownFile)
 {
   std::ostringstream md;
   md << "Machine: " << machineName() << ". Best of 5 runs of Core, single thread.\n\n"
-     << "| example | points | tetrahedra | tetrahedra/s | mean path | paper: tetrahedra | paper: tetrahedra/s (HP 735) | paper: path |\n"
+     << "| example | points | tetrahedra | tetrahedra/s | mean path | paper: tetrahedra | paper: "
+        "tetrahedra/s (HP 735) | paper: path |\n"
      << "|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const PaperRow& row : kPaperTable1)
   {
     const bool random = std::string(row.name) == "Random";
-    const fd3test::Points p = random ? fd3test::uniformCube(row.points, 3)
-                                     : fd3test::torusSurface(row.points, row.points);
+    const fd3test::Points p =
+      random ? fd3test::uniformCube(row.points, 3) : fd3test::torusSurface(row.points, row.points);
     double best = 1e30;
     fd3::Triangulation r;
     for (int run = 0; run < 5; ++run)
@@ -468,18 +472,20 @@ int main(int argc, char* argv[])
     return table1(markdownFile);
 
   auto column = [&](const char* name) {
-    const auto it = std::find_if(
-      methods.begin(), methods.end(), [&](const Method& m) { return m.name == name; });
+    const auto it =
+      std::find_if(methods.begin(), methods.end(), [&](const Method& m) { return m.name == name; });
     return it == methods.end() ? -1 : static_cast<int>(it - methods.begin());
   };
   const int ratioColumns[3] = {column("Core"), column("vtkDelaunay3D"), column("CGAL")};
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". "
-     << (repeat > 1 ? "Best of " + std::to_string(repeat) + " interleaved runs of every method. " : "")
+     << (repeat > 1 ? "Best of " + std::to_string(repeat) + " interleaved runs of every method. "
+                    : "")
      << "Kernel single-threaded; peak memory is each run's own "
      << "(above its input). Walk: tetrahedra visited per point location, mean and max. Speed-up "
      << "columns: the other method's time over this one's.\n\n"
-     << "| points | n | method | seconds | points/s | tets/s | peak MiB | B/point | walk | max walk | vs Core | vs vtkDelaunay3D | vs CGAL | exact validity |\n"
+     << "| points | n | method | seconds | points/s | tets/s | peak MiB | B/point | walk | max "
+        "walk | vs Core | vs vtkDelaunay3D | vs CGAL | exact validity |\n"
      << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
   csv << "kind,n,method,seconds,tetrahedra,peak_mib,valid,conversion_seconds,walk,max_walk\n";
   const double hugeLimit = 1e9;
@@ -539,7 +545,9 @@ int main(int argc, char* argv[])
             << ',' << m.walk << ',' << m.maxWalk << '\n';
         std::cerr << kind << " " << n << " " << methods[i].name << ": "
                   << (m.ran ? std::to_string(m.seconds) + " s" : m.note)
-                  << (walks ? ", walk " + std::to_string(m.walk) + " max " + std::to_string(m.maxWalk) : "")
+                  << (walks
+                         ? ", walk " + std::to_string(m.walk) + " max " + std::to_string(m.maxWalk)
+                         : "")
                   << "\n";
       }
     }

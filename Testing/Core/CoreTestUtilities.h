@@ -22,7 +22,8 @@ inline fd3::Frame frameOf(const Points& p)
       hi[a] = std::max(hi[a], p[i]);
     }
   }
-  const double centre[3] = {lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2};
+  const double centre[3] = {
+    lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2};
   bool exact[3] = {true, true, true};
   fd3::checkShifts(p.data(), p.size() / 3, centre, exact);
   const fd3::Frame frame = fd3::frameFor(lo, hi, exact);

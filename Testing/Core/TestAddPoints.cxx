@@ -26,7 +26,8 @@ fd3::Triangulation inBatches(const fd3test::Points& p, std::size_t first,
   std::size_t done = first;
   for (std::size_t b = 0; b <= batches.size() && done < p.size() / 3; ++b)
   {
-    const std::size_t count = b < batches.size() ? std::min(batches[b], p.size() / 3 - done) : p.size() / 3 - done;
+    const std::size_t count =
+      b < batches.size() ? std::min(batches[b], p.size() / 3 - done) : p.size() / 3 - done;
     mesh.add(p.data() + 3 * done, count);
     done += count;
   }
@@ -46,7 +47,8 @@ TEST(AddPoints, SameTetrahedraAsAllAtOnceOnEveryPointSet)
     const auto reference = fd3test::canonicalTetrahedra(whole.tetrahedra);
     // Room for none of the added points, for some (the vertex records grow in the third batch),
     // and for all.
-    for (const auto& [threads, room] : {std::pair<int, std::size_t>{1, 0}, {3, 0}, {1, 1600}, {3, 20000}})
+    for (const auto& [threads, room] :
+      {std::pair<int, std::size_t>{1, 0}, {3, 0}, {1, 1600}, {3, 20000}})
     {
       SCOPED_TRACE(std::to_string(threads) + " threads, room " + std::to_string(room));
       options.threads = threads;
@@ -81,7 +83,8 @@ TEST(AddPoints, PointsOffTheLatticeRetuneThePredicates)
   const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, added.tetrahedra);
   EXPECT_TRUE(report.valid()) << report.summary();
   const fd3::Triangulation whole = fd3::triangulate(p.data(), p.size() / 3, options);
-  EXPECT_EQ(fd3test::canonicalTetrahedra(added.tetrahedra), fd3test::canonicalTetrahedra(whole.tetrahedra));
+  EXPECT_EQ(
+    fd3test::canonicalTetrahedra(added.tetrahedra), fd3test::canonicalTetrahedra(whole.tetrahedra));
 }
 
 TEST(AddPoints, TooFewOrCoplanarPointsWaitForMore)
@@ -169,7 +172,8 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
     if (i == 2500)
       EXPECT_EQ(back[3 * i + 1], -1.0); // not finite: left as it was
     else
-      EXPECT_TRUE(std::equal(back.begin() + 3 * i, back.begin() + 3 * i + 3, p.begin() + 3 * i)) << i;
+      EXPECT_TRUE(std::equal(back.begin() + 3 * i, back.begin() + 3 * i + 3, p.begin() + 3 * i))
+        << i;
   }
 
   // Not recoverable: a -0 (its duplicate at +0 would come back as +0).

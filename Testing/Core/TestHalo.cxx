@@ -71,7 +71,8 @@ std::vector<std::uint32_t> distributedTetrahedra(
     std::vector<std::uint32_t> own;
     own.swap(piece.ids);
     piece.append(p, own);
-    piece.mesh = std::make_unique<fd3::IncrementalDelaunay>(piece.xyz.data(), piece.own, fd3::Options(), frame);
+    piece.mesh = std::make_unique<fd3::IncrementalDelaunay>(
+      piece.xyz.data(), piece.own, fd3::Options(), frame);
     boxes.push_back(boxOf(p, piece.ids));
   }
   std::vector<std::vector<std::uint32_t>> received(pieceCount);
@@ -127,9 +128,10 @@ std::vector<std::uint32_t> distributedTetrahedra(
     for (std::size_t tet = 0; tet < t.numberOfTetrahedra(); ++tet)
     {
       const std::uint32_t* v = t.tetrahedra.data() + 4 * tet;
-      const std::uint32_t smallest = *std::min_element(v, v + 4, [&](std::uint32_t a, std::uint32_t b) {
-        return at(p, piece.ids[a]) < at(p, piece.ids[b]);
-      });
+      const std::uint32_t smallest =
+        *std::min_element(v, v + 4, [&](std::uint32_t a, std::uint32_t b) {
+          return at(p, piece.ids[a]) < at(p, piece.ids[b]);
+        });
       if (holder[smallest] == j)
       {
         for (int k = 0; k < 4; ++k)
@@ -145,7 +147,8 @@ std::vector<int> slabs(const fd3test::Points& p, int count)
   std::vector<std::uint32_t> order(p.size() / 3);
   for (std::uint32_t i = 0; i < order.size(); ++i)
     order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return p[3 * a] < p[3 * b]; });
+  std::stable_sort(order.begin(), order.end(),
+    [&](std::uint32_t a, std::uint32_t b) { return p[3 * a] < p[3 * b]; });
   std::vector<int> pieceOf(order.size());
   for (std::size_t k = 0; k < order.size(); ++k)
     pieceOf[order[k]] = static_cast<int>(k * count / order.size());

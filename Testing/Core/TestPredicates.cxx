@@ -2,8 +2,8 @@
 #include "ExactValidator.h"
 #include "Predicates.h"
 
-#include <gtest/gtest.h>
 #include <gmpxx.h>
+#include <gtest/gtest.h>
 
 #include <cfloat>
 #include <cmath>
@@ -26,8 +26,8 @@ fd3::Box boxOf(const std::vector<double>& xyz)
 
 // Squared distance from e to the circumcentre, minus the squared circumradius, in rationals:
 // a definition of "inside" independent of any determinant formula.
-int insideByCircumcentre(const double* a, const double* b, const double* c, const double* d,
-  const double* e)
+int insideByCircumcentre(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   mpq_class m[3][3], rhs[3];
   const double* q[3] = {b, c, d};
@@ -121,8 +121,7 @@ TEST(Predicates, SignConventionsOnTheUnitTetrahedron)
 // Points near a plane or a sphere, perturbed by a few ulps: the float filter fails and the exact
 // path decides. Compared with GMP on every call.
 class PredicatesAgainstRationals : public ::testing::TestWithParam<double>
-{
-};
+{};
 
 TEST_P(PredicatesAgainstRationals, AgreeOnNearDegenerateInput)
 {
@@ -167,7 +166,8 @@ TEST_P(PredicatesAgainstRationals, AgreeOnNearDegenerateInput)
     // Random tetrahedra and points, mostly decided by the filter.
     if (exactOrient3d(p[0], p[1], p[2], p[4]) > 0)
     {
-      ASSERT_EQ(predicates.inSphere(p[0], p[1], p[2], p[4], p[3]), exactInSphere(p[0], p[1], p[2], p[4], p[3]));
+      ASSERT_EQ(predicates.inSphere(p[0], p[1], p[2], p[4], p[3]),
+        exactInSphere(p[0], p[1], p[2], p[4], p[3]));
       ++decided;
     }
   }
@@ -186,8 +186,7 @@ INSTANTIATE_TEST_SUITE_P(Scales, PredicatesAgainstRationals, ::testing::Values(1
 // threshold. Coordinates are drawn from the extremes of the grid (the worst case for the bounds)
 // and from a coarse sub-lattice (cospherical and coplanar ties), as well as at random.
 class AdaptedPredicates : public ::testing::TestWithParam<int>
-{
-};
+{};
 
 TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
 {
@@ -199,10 +198,14 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   auto coordinate = [&]() -> double {
     switch (pick(rng))
     {
-      case 0: return double(largest) * unit;
-      case 1: return -double(largest) * unit;
-      case 2: return double(coarse(rng) * (largest / 2)) * unit;
-      default: return double(any(rng)) * unit;
+      case 0:
+        return double(largest) * unit;
+      case 1:
+        return -double(largest) * unit;
+      case 2:
+        return double(coarse(rng) * (largest / 2)) * unit;
+      default:
+        return double(any(rng)) * unit;
     }
   };
   std::vector<double> xyz(3 * 2000);
@@ -220,7 +223,8 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   {
     const std::int64_t m = part(rng), n = part(rng), p = part(rng);
     const std::int64_t rest = radius - m * m - n * n - p * p;
-    const auto q = static_cast<std::int64_t>(std::llround(std::sqrt(double(std::max<std::int64_t>(rest, 0)))));
+    const auto q =
+      static_cast<std::int64_t>(std::llround(std::sqrt(double(std::max<std::int64_t>(rest, 0)))));
     if (rest < 0 || q * q != rest)
       continue;
     const double c[3] = {double(m * m + n * n - p * p - q * q), double(2 * (m * q + n * p)),
@@ -235,7 +239,8 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   ASSERT_GE(sphereCount, 40u);
   fd3::Predicates predicates;
   predicates.adaptTo(xyz.data(), xyz.size() / 3, 3, boxOf(xyz));
-  std::uniform_int_distribution<std::size_t> point(0, sphereFirst - 1), onSphere(0, sphereCount - 1);
+  std::uniform_int_distribution<std::size_t> point(0, sphereFirst - 1),
+    onSphere(0, sphereCount - 1);
   int orientTies = 0, sphereTies = 0;
   for (int trial = 0; trial < 20000; ++trial)
   {
@@ -256,7 +261,8 @@ TEST_P(AdaptedPredicates, AgreeWithRationalsOnGridPoints)
   EXPECT_GT(sphereTies, 10);
 }
 
-INSTANTIATE_TEST_SUITE_P(GridBits, AdaptedPredicates, ::testing::Values(3, 8, 9, 15, 16, 23, 24, 40));
+INSTANTIATE_TEST_SUITE_P(
+  GridBits, AdaptedPredicates, ::testing::Values(3, 8, 9, 15, 16, 23, 24, 40));
 
 // Off any grid, an adapted set decides well-spread points with its static bounds and the rest
 // with the semi-static filter and expansions; agreement with GMP on nearly degenerate input.
@@ -396,7 +402,8 @@ TEST(Predicates, ExactTiesOnIntegerLattice)
 {
   fd3::Predicates predicates;
   // All 8 corners of a cube are cospherical; any 4 non-coplanar ones with a 5th give a tie.
-  const double c[8][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+  const double c[8][3] = {
+    {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
   EXPECT_EQ(predicates.inSphere(c[0], c[1], c[2], c[4], c[7]), 0);
   EXPECT_EQ(predicates.orient3d(c[0], c[1], c[2], c[3]), 0);
   EXPECT_TRUE(predicates.collinear(c[0], c[7], c[7]));
@@ -435,7 +442,8 @@ TEST(Predicates, SymbolicPerturbationNeverTiesAndAgreesAcrossAFace)
     const double* second[4];
     points(tets[0], first);
     points(tets[2], second);
-    EXPECT_EQ(predicates.inSphereSoS(first, xyz + 3 * 7), predicates.inSphereSoS(second, xyz + 3 * 0))
+    EXPECT_EQ(
+      predicates.inSphereSoS(first, xyz + 3 * 7), predicates.inSphereSoS(second, xyz + 3 * 0))
       << "seed " << seed;
     EXPECT_GT(predicates.symbolicTies, 0u);
   }

@@ -46,7 +46,8 @@ TEST(Robustness, LatticesUpTo50Cubed)
 TEST(Robustness, RandomSubsetsOfLattices)
 {
   for (double keep : {0.1, 0.5, 0.9})
-    expectExactDelaunay(subset(fd3test::lattice(15), keep, 3), "lattice subset " + std::to_string(keep));
+    expectExactDelaunay(
+      subset(fd3test::lattice(15), keep, 3), "lattice subset " + std::to_string(keep));
 }
 
 TEST(Robustness, PointsExactlyOnASphere)
@@ -66,10 +67,18 @@ TEST(Robustness, PointsExactlyOnAFewPlanes)
     const double a = g(rng) / 64.0, b = g(rng) / 64.0;
     switch (i % 4)
     {
-      case 0: p.insert(p.end(), {a, b, 0.0}); break;
-      case 1: p.insert(p.end(), {a, 0.0, b}); break;
-      case 2: p.insert(p.end(), {0.0, a, b}); break;
-      default: p.insert(p.end(), {a / 2, b / 2, 1.0 - a / 2 - b / 2}); break;
+      case 0:
+        p.insert(p.end(), {a, b, 0.0});
+        break;
+      case 1:
+        p.insert(p.end(), {a, 0.0, b});
+        break;
+      case 2:
+        p.insert(p.end(), {0.0, a, b});
+        break;
+      default:
+        p.insert(p.end(), {a / 2, b / 2, 1.0 - a / 2 - b / 2});
+        break;
     }
   }
   expectExactDelaunay(p, "planes");
@@ -87,12 +96,14 @@ TEST(Robustness, CocircularAndCosphericalSubsets)
   for (int c = 0; c < 3; ++c)
     for (std::size_t i = 0; i < sphere.size(); i += 3)
       for (int a = 0; a < 3; ++a)
-        p.push_back(0.25 + 0.25 * c + std::ldexp(sphere[i + a], -2 - static_cast<int>(std::log2(radius))));
+        p.push_back(
+          0.25 + 0.25 * c + std::ldexp(sphere[i + a], -2 - static_cast<int>(std::log2(radius))));
   for (int ring = 0; ring < 5; ++ring)
     for (int k = 0; k < 4; ++k)
     {
       // (3,4), (4,3), (5,0), (0,5) and their signs lie on the circle of radius 5.
-      static const double circle[8][2] = {{3, 4}, {4, 3}, {5, 0}, {0, 5}, {-3, 4}, {-4, -3}, {-5, 0}, {0, -5}};
+      static const double circle[8][2] = {
+        {3, 4}, {4, 3}, {5, 0}, {0, 5}, {-3, 4}, {-4, -3}, {-5, 0}, {0, -5}};
       for (const auto& c : circle)
         p.insert(p.end(), {2 + c[0] / 64 + k, 2 + c[1] / 64, ring / 8.0});
     }
@@ -219,7 +230,8 @@ TEST(Robustness, SpansBeyondDoubleMax)
   for (int k = 0; k < 8; ++k)
     corners.insert(corners.end(), {k & 1 ? big : -big, k & 2 ? big : -big, k & 4 ? big : -big});
   expectExactAtAnyThreads(joined(corners, fd3test::uniformCube(300, 21)), "corners at DBL_MAX");
-  expectExactAtAnyThreads(scaled(fd3test::uniformCube(2000, 22), 1.78e308, -8.9e307), "within 9e307");
+  expectExactAtAnyThreads(
+    scaled(fd3test::uniformCube(2000, 22), 1.78e308, -8.9e307), "within 9e307");
 }
 
 TEST(Robustness, TinyAndSubnormalSets)
@@ -235,9 +247,11 @@ TEST(Robustness, OneOutlierBesideUnitData)
   for (double far : {1e100, 1e200, DBL_MAX})
   {
     const Points outlier = {far, 0, 0};
-    expectExactAtAnyThreads(joined(fd3test::uniformCube(1000, 25), outlier), "outlier " + std::to_string(far));
+    expectExactAtAnyThreads(
+      joined(fd3test::uniformCube(1000, 25), outlier), "outlier " + std::to_string(far));
     expectExactAtAnyThreads(joined(fd3test::uniformCube(100, 25), outlier), "100 and outlier");
-    expectExactAtAnyThreads(joined(fd3test::uniformCube(1000, 26), {-far, -far, far}), "corner outlier");
+    expectExactAtAnyThreads(
+      joined(fd3test::uniformCube(1000, 26), {-far, -far, far}), "corner outlier");
   }
 }
 
@@ -249,7 +263,8 @@ TEST(Robustness, TinyClustersBesideUnitData)
   {
     const Points cluster = scaled(fd3test::uniformCube(300, 27), spread);
     const Points centred = scaled(fd3test::uniformCube(300, 28), 1, -0.5);
-    expectExactAtAnyThreads(joined(centred, cluster), "cluster " + std::to_string(spread) + " inside");
+    expectExactAtAnyThreads(
+      joined(centred, cluster), "cluster " + std::to_string(spread) + " inside");
     expectExactAtAnyThreads(joined(fd3test::uniformCube(300, 30), cluster), "cluster at a corner");
   }
 }

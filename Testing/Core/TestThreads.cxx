@@ -43,7 +43,8 @@ TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
     {
       const fd3::Triangulation parallel = run(p, threads);
       ASSERT_EQ(parallel.status, fd3::Status::Ok) << threads << " threads";
-      EXPECT_EQ(fd3test::canonicalTetrahedra(parallel.tetrahedra), reference) << threads << " threads";
+      EXPECT_EQ(fd3test::canonicalTetrahedra(parallel.tetrahedra), reference)
+        << threads << " threads";
       EXPECT_EQ(parallel.stats.insertedPoints, serial.stats.insertedPoints);
       EXPECT_EQ(parallel.stats.duplicatesMerged, serial.stats.duplicatesMerged);
       deferred += parallel.stats.deferredInsertions;

@@ -25,11 +25,12 @@ fd3::Triangulation triangulateAndCheck(const Points& p, const fd3::Options& opti
   const std::size_t n = p.size() / 3;
   fd3::Triangulation result = fd3::triangulate(p.data(), n, options);
   EXPECT_EQ(result.status, fd3::Status::Ok) << fd3::toString(result.status);
-  const fd3test::ValidityReport report = fd3test::checkTriangulation(p.data(), n, result.tetrahedra);
+  const fd3test::ValidityReport report =
+    fd3test::checkTriangulation(p.data(), n, result.tetrahedra);
   EXPECT_TRUE(report.valid()) << report.summary();
   EXPECT_EQ(result.stats.insertedPoints, report.distinctPoints);
-  EXPECT_EQ(result.stats.insertedPoints + result.stats.duplicatesMerged + result.stats.nonFinitePoints,
-    n);
+  EXPECT_EQ(
+    result.stats.insertedPoints + result.stats.duplicatesMerged + result.stats.nonFinitePoints, n);
   EXPECT_EQ(result.neighbors.size(), result.tetrahedra.size());
   return result;
 }
@@ -194,7 +195,8 @@ TEST(Triangulate, SameTetrahedraForAnyOrderEvenWithTies)
     };
     fd3::Options options;
     const auto reference = byCoordinates(p, triangulateAndCheck(p, options).tetrahedra);
-    EXPECT_EQ(byCoordinates(shuffled, triangulateAndCheck(shuffled, options).tetrahedra), reference);
+    EXPECT_EQ(
+      byCoordinates(shuffled, triangulateAndCheck(shuffled, options).tetrahedra), reference);
     options.order = fd3::InsertionOrder::Input;
     EXPECT_EQ(byCoordinates(p, triangulateAndCheck(p, options).tetrahedra), reference);
     options.order = fd3::InsertionOrder::Random;
@@ -248,7 +250,8 @@ TEST(Triangulate, ToleranceSkipsOnlyClosePoints)
   const std::size_t n = p.size() / 3;
   const double tolerance = 2e-4;
   auto distance = [&](std::uint32_t a, std::uint32_t b) {
-    const double dx = p[3 * a] - p[3 * b], dy = p[3 * a + 1] - p[3 * b + 1], dz = p[3 * a + 2] - p[3 * b + 2];
+    const double dx = p[3 * a] - p[3 * b], dy = p[3 * a + 1] - p[3 * b + 1],
+                 dz = p[3 * a + 2] - p[3 * b + 2];
     return std::sqrt(dx * dx + dy * dy + dz * dz);
   };
   std::vector<std::array<std::uint32_t, 4>> reference;
@@ -273,12 +276,14 @@ TEST(Triangulate, ToleranceSkipsOnlyClosePoints)
     // Kept points are tolerance apart: checked among neighbours in x (sorted), which suffices.
     std::sort(kept.begin(), kept.end(), [&](auto a, auto b) { return p[3 * a] < p[3 * b]; });
     for (std::size_t i = 0; i < kept.size(); ++i)
-      for (std::size_t j = i + 1; j < kept.size() && p[3 * kept[j]] - p[3 * kept[i]] < tolerance; ++j)
+      for (std::size_t j = i + 1; j < kept.size() && p[3 * kept[j]] - p[3 * kept[i]] < tolerance;
+           ++j)
         ASSERT_GE(distance(kept[i], kept[j]), tolerance);
     fd3test::ValidityOptions validity;
     Points keptPoints;
     for (std::uint32_t i = 0; i < n; ++i)
-      keptPoints.insert(keptPoints.end(), {r.representative[i] == i ? p[3 * i] : NAN, p[3 * i + 1], p[3 * i + 2]});
+      keptPoints.insert(
+        keptPoints.end(), {r.representative[i] == i ? p[3 * i] : NAN, p[3 * i + 1], p[3 * i + 2]});
     const auto report = fd3test::checkTriangulation(keptPoints.data(), n, r.tetrahedra, validity);
     EXPECT_TRUE(report.valid()) << report.summary();
     if (threads == 1)

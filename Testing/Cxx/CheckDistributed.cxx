@@ -38,8 +38,8 @@ int fail(const std::string& why)
 
 /// Every cell as the sorted list of the first copies of its points (ids through `toInput`), all
 /// cells sorted: equal for two grids exactly when they have the same cells.
-std::vector<std::vector<std::uint32_t>> cellSet(
-  vtkUnstructuredGrid* grid, const std::vector<std::uint32_t>& firstCopy, const std::vector<std::uint32_t>& toInput)
+std::vector<std::vector<std::uint32_t>> cellSet(vtkUnstructuredGrid* grid,
+  const std::vector<std::uint32_t>& firstCopy, const std::vector<std::uint32_t>& toInput)
 {
   std::vector<std::vector<std::uint32_t>> cells;
   vtkIdType size;
@@ -95,7 +95,8 @@ int main(int argc, char* argv[])
   }
   for (vtkIdType id = 0; id < inputCount; ++id)
     if (seen[id] != 1)
-      return fail("input point " + std::to_string(id) + " owned " + std::to_string(seen[id]) + " times");
+      return fail(
+        "input point " + std::to_string(id) + " owned " + std::to_string(seen[id]) + " times");
   for (vtkIdType i = 0; i < n; ++i)
     if (!std::equal(&xyz[3 * i], &xyz[3 * i + 3], &input[3 * inputIds->GetValue(i)]))
       return fail("a ghost point differs from the input point it repeats");
@@ -118,13 +119,15 @@ int main(int argc, char* argv[])
   const auto cells = cellSet(pieces, firstCopy, toInput);
   if (cells != cellSet(serial->GetOutput(), firstCopy, identity))
     return fail("the pieces' cells (" + std::to_string(cells.size()) +
-      ") differ from the one-process run's (" + std::to_string(serial->GetOutput()->GetNumberOfCells()) + ")");
+      ") differ from the one-process run's (" +
+      std::to_string(serial->GetOutput()->GetNumberOfCells()) + ")");
   std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
   for (auto& id : tets)
     id = toInput[id];
   if (alpha == 0)
   {
-    const fd3test::ValidityReport report = fd3test::checkTriangulation(input.data(), inputCount, tets);
+    const fd3test::ValidityReport report =
+      fd3test::checkTriangulation(input.data(), inputCount, tets);
     if (!report.valid())
       return fail(report.summary());
   }
@@ -136,14 +139,15 @@ int main(int argc, char* argv[])
   {
     it->GetCurrentCell(size, ids);
     if (size == 4)
-      hull += std::abs(fd3::sixVolume(&input[3 * ids[0]], &input[3 * ids[1]], &input[3 * ids[2]],
-                &input[3 * ids[3]])) / 6;
+      hull += std::abs(fd3::sixVolume(
+                &input[3 * ids[0]], &input[3 * ids[1]], &input[3 * ids[2]], &input[3 * ids[3]])) /
+        6;
   }
   const double integrated = std::atof(argv[2]);
   if (!(std::abs(integrated - hull) <= 1e-9 * hull))
     return fail("Integrate Variables gives " + std::string(argv[2]) + ", the hull's volume is " +
       std::to_string(hull));
-  std::cout << "CheckDistributed: OK, " << cells.size() << " cells of " << inputCount
-            << " points, " << n - inputCount << " ghost points\n";
+  std::cout << "CheckDistributed: OK, " << cells.size() << " cells of " << inputCount << " points, "
+            << n - inputCount << " ghost points\n";
   return 0;
 }

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "vtkCellArray.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -23,9 +23,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
-#include <string>
 #include <stdexcept>
+#include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -137,8 +137,8 @@ TEST(Filter, DuplicatesAreMergedAndReported)
   EXPECT_EQ(filter->GetNumberOfDuplicatePoints(), 50);
   EXPECT_EQ(filter->GetNumberOfInsertedPoints(), 500);
   EXPECT_EQ(observer->CheckWarningMessage("50 of 550 points are not vertices of the "
-                                         "tetrahedralization (they remain in the output, unused): "
-                                         "50 exact duplicates (merged"),
+                                          "tetrahedralization (they remain in the output, unused): "
+                                          "50 exact duplicates (merged"),
     0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 550);
 }
@@ -193,11 +193,12 @@ TEST(Filter, DefaultsKeepEveryPointAndToleranceReportsWhatItSkips)
   EXPECT_EQ(static_cast<std::size_t>(skipped), distinctFinite - used);
   EXPECT_EQ(filter->GetNumberOfInsertedPoints(), static_cast<vtkIdType>(used));
   EXPECT_EQ(warnings, 1);
-  EXPECT_EQ(observer->CheckWarningMessage(std::to_string(20031 - used) + " of 20031 points are not " +
-              "vertices of the tetrahedralization (they remain in the output, unused): 30 exact " +
-              "duplicates (merged: points at one position make one vertex); " +
-              std::to_string(skipped) + " within Tolerance of an inserted point (Tolerance 0 " +
-              "keeps them); 1 with NaN or infinite coordinates (no position to triangulate)"),
+  EXPECT_EQ(
+    observer->CheckWarningMessage(std::to_string(20031 - used) + " of 20031 points are not " +
+      "vertices of the tetrahedralization (they remain in the output, unused): 30 exact " +
+      "duplicates (merged: points at one position make one vertex); " + std::to_string(skipped) +
+      " within Tolerance of an inserted point (Tolerance 0 " +
+      "keeps them); 1 with NaN or infinite coordinates (no position to triangulate)"),
     0);
   EXPECT_EQ(FieldValue(filter->GetOutput(), "NumberOfSkippedPoints"), skipped);
   EXPECT_EQ(FieldValue(filter->GetOutput(), "NumberOfDuplicatePoints"), 30);
@@ -322,8 +323,7 @@ TEST(Filter, SameTetrahedraForAnyNumberOfThreads)
 // executive empties an aborted algorithm's output), and the same filter then runs to a correct
 // result; on one thread and on several.
 class AbortWithThreads : public ::testing::TestWithParam<int>
-{
-};
+{};
 
 TEST_P(AbortWithThreads, LeavesAnEmptyOutputAndTheFilterRunsAgain)
 {

@@ -50,18 +50,24 @@ std::vector<std::pair<std::string, Points>> hostileSets()
   std::vector<std::pair<std::string, Points>> sets;
   Points corners;
   for (int k = 0; k < 8; ++k)
-    corners.insert(corners.end(), {k & 1 ? DBL_MAX : -DBL_MAX, k & 2 ? DBL_MAX : -DBL_MAX, k & 4 ? DBL_MAX : -DBL_MAX});
-  sets.emplace_back("corners at +-DBL_MAX beside unit data", joined(corners, fd3test::uniformCube(200, 1)));
-  sets.emplace_back("span above DBL_MAX", scaled(fd3test::uniformCube(2000, 2), 1.78e308, -8.9e307));
+    corners.insert(corners.end(),
+      {k & 1 ? DBL_MAX : -DBL_MAX, k & 2 ? DBL_MAX : -DBL_MAX, k & 4 ? DBL_MAX : -DBL_MAX});
+  sets.emplace_back(
+    "corners at +-DBL_MAX beside unit data", joined(corners, fd3test::uniformCube(200, 1)));
+  sets.emplace_back(
+    "span above DBL_MAX", scaled(fd3test::uniformCube(2000, 2), 1.78e308, -8.9e307));
   sets.emplace_back("within 1e300", scaled(fd3test::uniformCube(1000, 3), 1e300));
   sets.emplace_back("within 1e-300", scaled(fd3test::uniformCube(1000, 4), 1e-300));
   sets.emplace_back("subnormal", scaled(fd3test::uniformCube(500, 5), 1e-310));
   for (double far : {1e100, 1e200, DBL_MAX})
-    sets.emplace_back("outlier at " + std::to_string(far), joined(fd3test::uniformCube(1000, 6), {far, 0, 0}));
-  sets.emplace_back("100 points and an outlier", joined(fd3test::uniformCube(100, 6), {1e100, 0, 0}));
+    sets.emplace_back(
+      "outlier at " + std::to_string(far), joined(fd3test::uniformCube(1000, 6), {far, 0, 0}));
+  sets.emplace_back(
+    "100 points and an outlier", joined(fd3test::uniformCube(100, 6), {1e100, 0, 0}));
   for (double spread : {1e-70, 1e-150, 1e-250}) // at 0, in the middle of unit data
     sets.emplace_back("cluster of spread " + std::to_string(spread),
-      joined(scaled(fd3test::uniformCube(300, 7), 1, -0.5), scaled(fd3test::uniformCube(300, 8), spread)));
+      joined(scaled(fd3test::uniformCube(300, 7), 1, -0.5),
+        scaled(fd3test::uniformCube(300, 8), spread)));
   return sets;
 }
 
@@ -80,7 +86,8 @@ TEST(HostileInput, AnyFiniteMagnitudeOnOneAndTwoThreads)
       const auto report = fd3test::checkOutput(out);
       EXPECT_TRUE(report.valid()) << what << ": " << report.summary();
       EXPECT_EQ(report.usedVertices, report.distinctPoints) << what;
-      EXPECT_EQ(filter->GetNumberOfInsertedPoints(), static_cast<vtkIdType>(report.distinctPoints)) << what;
+      EXPECT_EQ(filter->GetNumberOfInsertedPoints(), static_cast<vtkIdType>(report.distinctPoints))
+        << what;
     }
 }
 
@@ -109,11 +116,15 @@ TEST(HostileInput, EveryNumericPropertyAtTheLimitsOfItsRange)
   for (double v : {-inf, -1.0, 0.0, 1e-9, 1000.0, 1e9, 1e70, inf, nan})
   {
     const std::string value = std::to_string(v);
-    expectWellFormed("GridResolution " + value, [v](vtkFastDelaunay3D* f) { f->SetGridResolution(v); });
-    expectWellFormed("Tolerance " + value, [v](vtkFastDelaunay3D* f) { f->SetTolerance(v); }, v <= 0 || std::isnan(v));
-    expectWellFormed("VolumeThreshold " + value, [v](vtkFastDelaunay3D* f) { f->SetVolumeThreshold(v); },
-      false);
-    expectWellFormed("Alpha " + value, [v](vtkFastDelaunay3D* f) { f->SetAlpha(v); }, !(v > 0));
+    expectWellFormed(
+      "GridResolution " + value, [v](vtkFastDelaunay3D* f) { f->SetGridResolution(v); });
+    expectWellFormed(
+      "Tolerance " + value, [v](vtkFastDelaunay3D* f) { f->SetTolerance(v); },
+      v <= 0 || std::isnan(v));
+    expectWellFormed(
+      "VolumeThreshold " + value, [v](vtkFastDelaunay3D* f) { f->SetVolumeThreshold(v); }, false);
+    expectWellFormed(
+      "Alpha " + value, [v](vtkFastDelaunay3D* f) { f->SetAlpha(v); }, !(v > 0));
     expectWellFormed("Offset " + value, [v](vtkFastDelaunay3D* f) {
       f->SetOffset(v);
       f->BoundingTriangulationOn();
@@ -123,7 +134,8 @@ TEST(HostileInput, EveryNumericPropertyAtTheLimitsOfItsRange)
     expectWellFormed("NumberOfThreads " + std::to_string(threads),
       [threads](vtkFastDelaunay3D* f) { f->SetNumberOfThreads(threads); });
   for (int seed : {std::numeric_limits<int>::min(), -1, 0, std::numeric_limits<int>::max()})
-    expectWellFormed("RandomSeed " + std::to_string(seed), [seed](vtkFastDelaunay3D* f) { f->SetRandomSeed(seed); });
+    expectWellFormed("RandomSeed " + std::to_string(seed),
+      [seed](vtkFastDelaunay3D* f) { f->SetRandomSeed(seed); });
 
   // A NaN sets the documented default; values beyond the range are clamped to it.
   vtkNew<vtkFastDelaunay3D> filter;
@@ -173,7 +185,8 @@ TEST(HostileInput, WarningsCountInEveryMode)
 }
 
 /// Writes `grid` in `mode` and reads it back.
-vtkSmartPointer<vtkUnstructuredGrid> roundTrip(vtkUnstructuredGrid* grid, int mode, const std::string& file)
+vtkSmartPointer<vtkUnstructuredGrid> roundTrip(
+  vtkUnstructuredGrid* grid, int mode, const std::string& file)
 {
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetInputData(grid);
@@ -216,7 +229,8 @@ TEST(HostileInput, OutputsWithoutTetrahedraWriteAndReadBackInEveryMode)
     const int modes[] = {vtkXMLWriter::Ascii, vtkXMLWriter::Binary, vtkXMLWriter::Appended};
     for (int mode : modes)
     {
-      const std::string file = std::string(FD3_TEST_OUTPUT_DIR) + "/hostile-" + std::to_string(mode) + ".vtu";
+      const std::string file =
+        std::string(FD3_TEST_OUTPUT_DIR) + "/hostile-" + std::to_string(mode) + ".vtu";
       vtkSmartPointer<vtkUnstructuredGrid> back = roundTrip(out, mode, file);
       EXPECT_EQ(back->GetNumberOfPoints(), out->GetNumberOfPoints()) << name << ", mode " << mode;
       EXPECT_EQ(back->GetNumberOfCells(), 0) << name << ", mode " << mode;

@@ -37,8 +37,8 @@ vtkSmartPointer<vtkPolyData> Cloud(const fd3test::Points& p)
 }
 
 /// Shows `cells` shrunk by `factor`, coloured by their cell array `name` over [0, maxValue].
-void ShowShrunkCells(
-  vtkAlgorithmOutput* cells, double factor, const char* name, double maxValue, vtkDataSetMapper* mapper)
+void ShowShrunkCells(vtkAlgorithmOutput* cells, double factor, const char* name, double maxValue,
+  vtkDataSetMapper* mapper)
 {
   vtkNew<vtkShrinkFilter> shrink;
   shrink->SetInputConnection(cells);

@@ -258,7 +258,7 @@ TEST(Parity, OptionalArraysAndStatistics)
   const double kernel = figure("KernelSeconds");
   EXPECT_GT(kernel, 0);
   double phases = 0;
-  for (const char* phase : { "SortSeconds", "LocateSeconds", "CavitySeconds", "FillSeconds" })
+  for (const char* phase : {"SortSeconds", "LocateSeconds", "CavitySeconds", "FillSeconds"})
   {
     EXPECT_GE(figure(phase), 0) << phase;
     phases += figure(phase);

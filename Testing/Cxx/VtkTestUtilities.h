@@ -29,7 +29,8 @@ std::vector<std::uint32_t> tetrahedra(vtkUnstructuredGrid* grid);
 Points coordinates(vtkPointSet* data);
 
 /// The exact validator's report on a filter output: its tetrahedra over its own points.
-ValidityReport checkOutput(vtkUnstructuredGrid* grid, const ValidityOptions& options = ValidityOptions());
+ValidityReport checkOutput(
+  vtkUnstructuredGrid* grid, const ValidityOptions& options = ValidityOptions());
 
 } // namespace fd3test
 

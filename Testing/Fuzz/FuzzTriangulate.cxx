@@ -69,7 +69,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const fd3test::ValidityReport report = fd3test::checkTriangulation(xyz.data(), n, r.tetrahedra);
     if (!report.valid() || r.stats.insertedPoints != distinct.size())
     {
-      std::fprintf(stderr, "invalid triangulation of %zu points: %s\n", n, report.summary().c_str());
+      std::fprintf(
+        stderr, "invalid triangulation of %zu points: %s\n", n, report.summary().c_str());
       std::abort();
     }
   }

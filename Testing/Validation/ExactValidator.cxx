@@ -77,7 +77,8 @@ int exactOrient3d(const double* a, const double* b, const double* c, const doubl
   return sign(det3(U, V, W));
 }
 
-int exactInSphere(const double* a, const double* b, const double* c, const double* d, const double* e)
+int exactInSphere(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   // Rows (x - e, |x - e|^2); the 4x4 determinant is negative for e inside a positive tetrahedron.
   const double* rows[4] = {a, b, c, d};
@@ -163,14 +164,8 @@ class Checker
 public:
   Checker(const double* xyz, std::size_t count, const std::uint32_t* tets, std::size_t tetCount,
     const ValidityOptions& options, ValidityReport& report)
-    : xyz_(xyz)
-    , count_(count)
-    , tets_(tets)
-    , tetCount_(tetCount)
-    , options_(options)
-    , report_(report)
-  {
-  }
+    : xyz_(xyz), count_(count), tets_(tets), tetCount_(tetCount), options_(options), report_(report)
+  {}
 
   void run()
   {
@@ -288,7 +283,8 @@ private:
       roots += root(f) == f;
     if (roots != 1)
       fail("hull has " + std::to_string(roots) + " components");
-    const long euler = long(hullVertices.size()) - long(directedEdges.size() / 2) + long(hull.size());
+    const long euler =
+      long(hullVertices.size()) - long(directedEdges.size() / 2) + long(hull.size());
     if (euler != 2)
       fail("hull is not a sphere (Euler characteristic " + std::to_string(euler) + ")");
   }
@@ -320,8 +316,10 @@ private:
     double c[3];
     for (int k = 0; k < 3; ++k)
       c[k] = p(v[0])[k] / 4 + p(v[1])[k] / 4 + p(v[2])[k] / 4 + p(v[3])[k] / 4; // no overflow
-    if (exactOrient3d(p(v[0]), p(v[1]), p(v[2]), c) <= 0 || exactOrient3d(p(v[1]), p(v[0]), p(v[3]), c) <= 0 ||
-      exactOrient3d(p(v[2]), p(v[3]), p(v[0]), c) <= 0 || exactOrient3d(p(v[3]), p(v[2]), p(v[1]), c) <= 0)
+    if (exactOrient3d(p(v[0]), p(v[1]), p(v[2]), c) <= 0 ||
+      exactOrient3d(p(v[1]), p(v[0]), p(v[3]), c) <= 0 ||
+      exactOrient3d(p(v[2]), p(v[3]), p(v[0]), c) <= 0 ||
+      exactOrient3d(p(v[3]), p(v[2]), p(v[1]), c) <= 0)
       return; // the rounded centroid is not strictly inside (a tiny sliver): nothing to learn
     std::size_t covering = 0;
     for (std::size_t t = 0; t < report_.tetrahedra; ++t)
@@ -357,7 +355,8 @@ ValidityReport checkTriangulation(const double* xyz, std::size_t count, const st
   return report;
 }
 
-std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const std::uint32_t* tets, std::size_t tetCount)
+std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(
+  const std::uint32_t* tets, std::size_t tetCount)
 {
   std::vector<std::array<std::uint32_t, 4>> sorted(tetCount);
   for (std::size_t t = 0; t < tetCount; ++t)

@@ -46,7 +46,8 @@ ValidityReport checkTriangulation(const double* xyz, std::size_t count, const Id
 
 /// The tetrahedra as a sorted list of sorted 4-tuples: equal for two triangulations exactly when
 /// they have the same tetrahedra, whatever their order and orientation.
-std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const std::uint32_t* tets, std::size_t tetCount);
+std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(
+  const std::uint32_t* tets, std::size_t tetCount);
 template <typename Ids>
 std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const Ids& tets)
 {
@@ -56,7 +57,8 @@ std::vector<std::array<std::uint32_t, 4>> canonicalTetrahedra(const Ids& tets)
 /// Sign of (b-a) x (c-a) . (d-a), exactly.
 int exactOrient3d(const double* a, const double* b, const double* c, const double* d);
 /// > 0 iff e is strictly inside the circumsphere of the positively oriented tetrahedron abcd.
-int exactInSphere(const double* a, const double* b, const double* c, const double* d, const double* e);
+int exactInSphere(
+  const double* a, const double* b, const double* c, const double* d, const double* e);
 
 } // namespace fd3test
 

@@ -61,7 +61,8 @@ Points exactSphere(std::size_t n, std::uint64_t seed)
         if (d * d != rest)
           continue;
         for (long dd : {d, -d})
-          found.insert({a * a + b * b - c * c - dd * dd, 2 * (b * c + a * dd), 2 * (b * dd - a * c)});
+          found.insert(
+            {a * a + b * b - c * c - dd * dd, 2 * (b * c + a * dd), 2 * (b * dd - a * c)});
       }
     }
   std::vector<std::array<long, 3>> all(found.begin(), found.end());
@@ -126,7 +127,9 @@ Points torusSurface(std::size_t n, std::uint64_t seed)
   for (std::size_t i = 0; i < n; ++i)
   {
     const double s = u(rng), t = u(rng);
-    p.insert(p.end(), {(1 + 0.4 * std::cos(t)) * std::cos(s), (1 + 0.4 * std::cos(t)) * std::sin(s), 0.4 * std::sin(t)});
+    p.insert(p.end(),
+      {(1 + 0.4 * std::cos(t)) * std::cos(s), (1 + 0.4 * std::cos(t)) * std::sin(s),
+        0.4 * std::sin(t)});
   }
   return p;
 }
@@ -193,7 +196,8 @@ Points overlappingScans(std::size_t n, std::uint64_t seed)
     for (std::size_t i = 0; i < count; ++i)
     {
       const auto d = randomDirection(rng);
-      const double bump = 1 + 0.15 * std::sin(5 * d[0]) * std::cos(4 * d[1]) * std::sin(3 * d[2] + 1);
+      const double bump =
+        1 + 0.15 * std::sin(5 * d[0]) * std::cos(4 * d[1]) * std::sin(3 * d[2] + 1);
       const double q[3] = {bump * d[0], bump * d[1], bump * d[2]};
       const double along = axis[0] * q[0] + axis[1] * q[1] + axis[2] * q[2];
       const double cross[3] = {axis[1] * q[2] - axis[2] * q[1], axis[2] * q[0] - axis[0] * q[2],
@@ -218,8 +222,8 @@ Points lidarTerrain(std::size_t n, std::uint64_t seed)
   while (p.size() < 3 * (n - repeated))
   {
     const double x = u(rng), y = u(rng);
-    const double z = 100 + 8 * std::sin(x / 37.0) * std::cos(y / 53.0) + 3 * std::sin((x + 2 * y) / 11.0) +
-      0.5 * std::cos(x / 3.1 - y / 4.3);
+    const double z = 100 + 8 * std::sin(x / 37.0) * std::cos(y / 53.0) +
+      3 * std::sin((x + 2 * y) / 11.0) + 0.5 * std::cos(x / 3.1 - y / 4.3);
     p.insert(p.end(), {snap(x0 + x), snap(y0 + y), snap(z)});
   }
   std::uniform_int_distribution<std::size_t> pick(0, n - repeated - 1);
@@ -305,7 +309,8 @@ std::vector<std::uint32_t> firstCopies(const Points& p)
   std::map<std::array<double, 3>, std::uint32_t> first;
   std::vector<std::uint32_t> copy(p.size() / 3);
   for (std::uint32_t i = 0; i < copy.size(); ++i)
-    copy[i] = first.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i).first->second;
+    copy[i] =
+      first.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, i).first->second;
   return copy;
 }
 

@@ -33,8 +33,7 @@ struct BulkAllocator
   BulkAllocator() = default;
   template <typename U>
   BulkAllocator(const BulkAllocator<U>&) noexcept
-  {
-  }
+  {}
 
   T* allocate(std::size_t n) { return static_cast<T*>(detail::allocateBulk(n * sizeof(T))); }
   void deallocate(T* p, std::size_t n) noexcept { detail::freeBulk(p, n * sizeof(T)); }

@@ -34,11 +34,11 @@ enum class InsertionOrder
 enum class Status
 {
   Ok,
-  Empty,          ///< no finite input point
-  TooFewPoints,   ///< fewer than 4 distinct finite points
-  Degenerate,     ///< all distinct points collinear or coplanar: no tetrahedron exists
-  Aborted,        ///< the progress callback asked to stop
-  CheckFailed     ///< Options::checkMesh found a broken invariant (a bug): see checkReport
+  Empty,        ///< no finite input point
+  TooFewPoints, ///< fewer than 4 distinct finite points
+  Degenerate,   ///< all distinct points collinear or coplanar: no tetrahedron exists
+  Aborted,      ///< the progress callback asked to stop
+  CheckFailed   ///< Options::checkMesh found a broken invariant (a bug): see checkReport
 };
 
 /// The most threads per hardware thread that Options::threads starts.
@@ -91,20 +91,20 @@ inline bool isFinite(const double* p)
 struct Statistics
 {
   std::size_t inputPoints = 0;
-  std::size_t nonFinitePoints = 0;     ///< NaN or Inf coordinates: skipped, left unused
-  std::size_t duplicatesMerged = 0;    ///< exact copies of an inserted point: left unused
-  std::size_t closePointsSkipped = 0;  ///< within Options::tolerance of an inserted point: unused
-  std::size_t insertedPoints = 0;      ///< vertices of the triangulation
-  std::size_t tetrahedra = 0;          ///< finite tetrahedra in the output
-  std::size_t walkSteps = 0;           ///< tetrahedra visited by all walks (the paper's "Path")
+  std::size_t nonFinitePoints = 0;    ///< NaN or Inf coordinates: skipped, left unused
+  std::size_t duplicatesMerged = 0;   ///< exact copies of an inserted point: left unused
+  std::size_t closePointsSkipped = 0; ///< within Options::tolerance of an inserted point: unused
+  std::size_t insertedPoints = 0;     ///< vertices of the triangulation
+  std::size_t tetrahedra = 0;         ///< finite tetrahedra in the output
+  std::size_t walkSteps = 0;          ///< tetrahedra visited by all walks (the paper's "Path")
   std::size_t maxWalkSteps = 0;
-  std::size_t cavityTetrahedra = 0;    ///< tetrahedra deleted by all insertions
+  std::size_t cavityTetrahedra = 0; ///< tetrahedra deleted by all insertions
   /// Insertions put off because they reached into another thread's region: each point is
   /// inserted later, in another pass.
   std::size_t deferredInsertions = 0;
-  std::size_t exactOrient = 0;         ///< orient3d calls the float filter could not decide
-  std::size_t exactInSphere = 0;       ///< insphere calls the float filter could not decide
-  std::size_t symbolicTies = 0;        ///< insphere ties broken by symbolic perturbation
+  std::size_t exactOrient = 0;   ///< orient3d calls the float filter could not decide
+  std::size_t exactInSphere = 0; ///< insphere calls the float filter could not decide
+  std::size_t symbolicTies = 0;  ///< insphere ties broken by symbolic perturbation
   /// Exact evaluations in integers of unbounded size: on points whose magnitudes lie too far apart
   /// for one exact scaled frame (Frame::identity), where double expansions would underflow or
   /// overflow. Exact either way; these only cost more.
@@ -117,19 +117,23 @@ struct Statistics
   void add(const Statistics& other)
   {
     for (auto field : {&Statistics::inputPoints, &Statistics::nonFinitePoints,
-           &Statistics::duplicatesMerged, &Statistics::closePointsSkipped, &Statistics::insertedPoints,
-           &Statistics::tetrahedra, &Statistics::walkSteps, &Statistics::cavityTetrahedra,
-           &Statistics::deferredInsertions, &Statistics::exactOrient, &Statistics::exactInSphere,
-           &Statistics::symbolicTies, &Statistics::integerExact})
+           &Statistics::duplicatesMerged, &Statistics::closePointsSkipped,
+           &Statistics::insertedPoints, &Statistics::tetrahedra, &Statistics::walkSteps,
+           &Statistics::cavityTetrahedra, &Statistics::deferredInsertions, &Statistics::exactOrient,
+           &Statistics::exactInSphere, &Statistics::symbolicTies, &Statistics::integerExact})
       this->*field += other.*field;
     maxWalkSteps = std::max(maxWalkSteps, other.maxWalkSteps);
-    for (auto field : {&Statistics::secondsSort, &Statistics::secondsLocate, &Statistics::secondsCavity,
-           &Statistics::secondsFill, &Statistics::secondsOutput, &Statistics::secondsTotal})
+    for (auto field :
+      {&Statistics::secondsSort, &Statistics::secondsLocate, &Statistics::secondsCavity,
+        &Statistics::secondsFill, &Statistics::secondsOutput, &Statistics::secondsTotal})
       this->*field += other.*field;
   }
 
   double meanWalk() const { return insertedPoints ? double(walkSteps) / insertedPoints : 0.0; }
-  double meanCavity() const { return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0; }
+  double meanCavity() const
+  {
+    return insertedPoints ? double(cavityTetrahedra) / insertedPoints : 0.0;
+  }
 };
 
 /// The kernel's arrays of ids: a std::vector whose resize() leaves elements uninitialized (fd3::BulkAllocator).
@@ -164,10 +168,10 @@ struct Triangulation
 /// those tetrahedra; the edges of half-length <= alpha on neither; the points on none of them.
 struct AlphaComplex
 {
-  IdArray tetrahedra; ///< indices into Triangulation::tetrahedra / 4
-  std::vector<std::uint32_t> triangles;  ///< 3 point ids each
-  std::vector<std::uint32_t> lines;      ///< 2 point ids each
-  std::vector<std::uint32_t> vertices;   ///< point ids (finite points only)
+  IdArray tetrahedra;                   ///< indices into Triangulation::tetrahedra / 4
+  std::vector<std::uint32_t> triangles; ///< 3 point ids each
+  std::vector<std::uint32_t> lines;     ///< 2 point ids each
+  std::vector<std::uint32_t> vertices;  ///< point ids (finite points only)
 };
 
 /// Requires `triangulation` to hold neighbours (Options::computeNeighbors).

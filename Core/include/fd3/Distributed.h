@@ -69,8 +69,8 @@ public:
   /// `pointsRead`: called once the points are in the vertex records, before they are inserted (not
   /// when the mesh cannot start yet): a caller whose points are recoverable() can free its copy
   /// there, and have them back from points() and release(xyz), so that they are not in the peak.
-  IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options, const Frame& frame,
-    std::size_t room = 0, const std::function<void()>& pointsRead = nullptr);
+  IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options,
+    const Frame& frame, std::size_t room = 0, const std::function<void()>& pointsRead = nullptr);
   ~IncrementalDelaunay();
   IncrementalDelaunay(const IncrementalDelaunay&) = delete;
   IncrementalDelaunay& operator=(const IncrementalDelaunay&) = delete;
@@ -94,7 +94,8 @@ public:
   /// For each list of vertices (point ids, as haloVertices() gives), their input coordinates, 3
   /// each, as the records give them back. Throws std::invalid_argument for an id that is not a
   /// vertex.
-  std::vector<std::vector<double>> points(const std::vector<std::vector<std::uint32_t>>& lists) const;
+  std::vector<std::vector<double>> points(
+    const std::vector<std::vector<std::uint32_t>>& lists) const;
 
   /// haloVertices() of the mesh as it stands, without a snapshot, computed in the frame; `boxes`
   /// in the input's coordinates. Empty lists while status() is not Ok.

@@ -61,9 +61,12 @@ inline Circumcentre circumcentre(const double* a, const double* b, const double*
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  const double vw[3] = {v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]};
-  const double wu[3] = {w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
-  const double uv[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double vw[3] = {
+    v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]};
+  const double wu[3] = {
+    w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
+  const double uv[3] = {
+    u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
   const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
   const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
@@ -80,7 +83,8 @@ inline Circumcentre circumcentre(const double* a, const double* b, const double*
 }
 
 /// Squared circumradius of tetrahedron abcd (infinite when flat).
-inline double tetrahedronCircumradius2(const double* a, const double* b, const double* c, const double* d)
+inline double tetrahedronCircumradius2(
+  const double* a, const double* b, const double* c, const double* d)
 {
   const Circumcentre centre = circumcentre(a, b, c, d);
   if (centre.sixVolume == 0)
@@ -97,7 +101,8 @@ inline double triangleCircumradius2(const double* a, const double* b, const doub
   const double ab = distance2(a, b), bc = distance2(b, c), ca = distance2(c, a);
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double n[3] = {
+    u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
   const double twiceArea2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2]; // (2 area)^2
   return twiceArea2 > 0 ? ab * bc * ca / (4 * twiceArea2) : INFINITY;
 }
