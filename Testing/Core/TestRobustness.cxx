@@ -11,7 +11,9 @@
 
 namespace
 {
+using fd3test::joined;
 using fd3test::Points;
+using fd3test::scaled;
 
 void expectExactDelaunay(const Points& p, const std::string& what, int threads = 1)
 {
@@ -208,19 +210,6 @@ void expectExactAtAnyThreads(const Points& p, const std::string& what)
 {
   for (int threads : {1, 2})
     expectExactDelaunay(p, what + ", " + std::to_string(threads) + " threads", threads);
-}
-
-Points scaled(Points p, double factor, double offset = 0)
-{
-  for (double& x : p)
-    x = x * factor + offset;
-  return p;
-}
-
-Points joined(Points a, const Points& b)
-{
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
 }
 
 TEST(Robustness, SpansBeyondDoubleMax)

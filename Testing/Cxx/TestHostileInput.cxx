@@ -29,20 +29,9 @@
 
 namespace
 {
+using fd3test::joined;
 using fd3test::Points;
-
-Points scaled(Points p, double factor, double offset = 0)
-{
-  for (double& x : p)
-    x = x * factor + offset;
-  return p;
-}
-
-Points joined(Points a, const Points& b)
-{
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
+using fd3test::scaled;
 
 /// The hostile sets of the issue that asked for them, by name.
 std::vector<std::pair<std::string, Points>> hostileSets()

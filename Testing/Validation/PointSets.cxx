@@ -314,4 +314,17 @@ std::vector<std::uint32_t> firstCopies(const Points& p)
   return copy;
 }
 
+Points scaled(Points p, double factor, double offset)
+{
+  for (double& x : p)
+    x = x * factor + offset;
+  return p;
+}
+
+Points joined(Points a, const Points& b)
+{
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
 } // namespace fd3test

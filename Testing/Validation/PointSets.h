@@ -38,6 +38,11 @@ Points overlappingScans(std::size_t n, std::uint64_t seed);
 /// x and y near 5e5 and z near 100 (metres), every coordinate snapped to a 1 cm grid, and 1% of
 /// the points repeated exactly (multiple returns).
 Points lidarTerrain(std::size_t n, std::uint64_t seed);
+
+/// Every coordinate x of `p` as x * factor + offset.
+Points scaled(Points p, double factor, double offset = 0);
+/// The points of `a`, then those of `b`.
+Points joined(Points a, const Points& b);
 /// A thin spherical shell (4 spacings thick) of points at molecule-like spacing: a jittered cubic
 /// lattice (spacing 1, jitter +-0.15), so no two points are closer than 0.7.
 Points molecularShell(std::size_t n, std::uint64_t seed);
