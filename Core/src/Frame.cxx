@@ -10,15 +10,26 @@
 namespace fd3
 {
 
-void checkShifts(const double* xyz, std::size_t count, const double centre[3], bool exact[3])
+namespace
+{
+// Not finite where hi - lo exceeds DBL_MAX: no shift then.
+double centre(const double lo[3], const double hi[3], int axis)
+{
+  return lo[axis] + (hi[axis] - lo[axis]) / 2;
+}
+} // namespace
+
+void checkShifts(
+  const double* xyz, std::size_t count, const double lo[3], const double hi[3], bool exact[3])
 {
   for (int a = 0; a < 3; ++a)
   {
-    exact[a] = exact[a] && std::isfinite(centre[a]);
+    const double shift = centre(lo, hi, a);
+    exact[a] = exact[a] && std::isfinite(shift);
     for (std::size_t i = 0; i < count && exact[a]; ++i)
     {
       double difference, error;
-      twoDiff(xyz[3 * i + a], centre[a], difference, error);
+      twoDiff(xyz[3 * i + a], shift, difference, error);
       exact[a] = error == 0.0 || !std::isfinite(xyz[3 * i + a]); // non-finite points are left out
     }
   }
@@ -32,9 +43,7 @@ Frame frameFor(const double lo[3], const double hi[3], const bool exact[3])
   double extent = 0;
   for (int a = 0; a < 3; ++a)
   {
-    // The centre that checkShifts() was given; not finite where hi - lo exceeds DBL_MAX.
-    const double centre = lo[a] + (hi[a] - lo[a]) / 2;
-    frame.shift[a] = exact[a] && std::isfinite(centre) ? centre : 0.0;
+    frame.shift[a] = exact[a] ? centre(lo, hi, a) : 0.0; // exact only where finite
     frame.lo[a] = lo[a];
     frame.hi[a] = hi[a];
     extent =
@@ -52,21 +61,34 @@ bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
 {
   if (frame.identity)
     return true;
-  // A power of two's inverse, where it is a double, undoes the scale as a division would.
-  const double inverse = 1 / frame.scale;
-  const bool multiply = std::isfinite(inverse);
-  auto fits = [&](double x, int a) {
+  auto fits = [&frame](double x, int a) {
     const double y = toFrame(frame, x, a);
-    if ((multiply ? y * inverse : y / frame.scale) + frame.shift[a] != x)
-      return false;
     // Below 2^-137 a double's last bit can lie below 2^-190 (53 bits of significand).
-    return std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190));
+    return mapsExactly(frame, x, a) &&
+      (std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190)));
   };
   for (std::size_t i = 0; i < count; ++i)
     if (isFinite(xyz + 3 * i) &&
       !(fits(xyz[3 * i], 0) && fits(xyz[3 * i + 1], 1) && fits(xyz[3 * i + 2], 2)))
       return false;
   return true;
+}
+
+Frame frameOf(const double* xyz, std::size_t count)
+{
+  Box box;
+  bool any = false;
+  for (std::size_t i = 0; i < count; ++i)
+    if (isFinite(xyz + 3 * i))
+    {
+      box = any ? box : Box::around(xyz + 3 * i);
+      box.include(xyz + 3 * i);
+      any = true;
+    }
+  bool exact[3] = {true, true, true};
+  checkShifts(xyz, count, box.lo, box.hi, exact);
+  const Frame frame = frameFor(box.lo, box.hi, exact);
+  return fitsFrame(frame, xyz, count) ? frame : identityFrame(box.lo, box.hi);
 }
 
 Frame identityFrame(const double lo[3], const double hi[3])
@@ -87,7 +109,7 @@ bool recoverable(const Frame& frame, const double* xyz, std::size_t count)
     for (int a = 0; a < 3; ++a)
     {
       const double x = xyz[3 * i + a];
-      if (fromFrame(frame, toFrame(frame, x, a), a) != x || (x == 0 && std::signbit(x)))
+      if (!mapsExactly(frame, x, a) || (x == 0 && std::signbit(x)))
         return false;
     }
   }

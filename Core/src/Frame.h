@@ -20,6 +20,12 @@ inline double fromFrame(const Frame& frame, double y, int axis)
   return y / frame.scale + frame.shift[axis];
 }
 
+/// Whether x comes back from the frame as it went in: its image is exact.
+inline bool mapsExactly(const Frame& frame, double x, int axis)
+{
+  return fromFrame(frame, toFrame(frame, x, axis), axis) == x;
+}
+
 inline void toFrame(const Frame& frame, const double* p, double* out)
 {
   for (int a = 0; a < 3; ++a)

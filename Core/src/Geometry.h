@@ -3,7 +3,6 @@
 #define fd3_Geometry_h
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -44,11 +43,6 @@ struct Box
   }
 
   double extent(int axis) const { return hi[axis] - lo[axis]; }
-  double largestExtent() const { return std::max({extent(0), extent(1), extent(2)}); }
-  double diagonal() const
-  {
-    return std::sqrt(extent(0) * extent(0) + extent(1) * extent(1) + extent(2) * extent(2));
-  }
 };
 
 } // namespace fd3

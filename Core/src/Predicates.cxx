@@ -38,18 +38,6 @@ constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
 // Below this permanent the low parts could reach the subnormal range: left to the exact stage.
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
 
-// Filters for coordinates of any magnitude: every largest difference within [2^-k, 2^k]. Then no
-// operation overflows (orient3d's products stay below 2^600, insphere's below 2^607), and a
-// rounding error lost to underflow (at most 2^-1075, times the factors it is multiplied by
-// afterwards, below 2^362) stays below 2^-60 of the bound, which the bounds' 2% margin covers.
-constexpr double kOrientRange = 0x1p200;
-constexpr double kInSphereRange = 0x1p120;
-
-bool withinRange(double range, double x, double y, double z)
-{
-  return std::min({x, y, z}) >= 1 / range && std::max({x, y, z}) <= range;
-}
-
 /// GMP integers that free themselves.
 class Integer
 {
@@ -274,40 +262,6 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
   const Expansion cy = x.subtract(x.multiply(v[2], w[0]), x.multiply(v[0], w[2]));
   const Expansion cz = x.subtract(x.multiply(v[0], w[1]), x.multiply(v[1], w[0]));
   return x.add(x.add(x.multiply(u[0], cx), x.multiply(u[1], cy)), x.multiply(u[2], cz));
-}
-
-int Predicates::orient3dAnyMagnitude(
-  const double* a, const double* b, const double* c, const double* d)
-{
-  // orient3d()'s semi-static filter, within the range where its bound holds.
-  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-  const double det =
-    adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
-  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
-  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
-  const double bound = filter::kOrientSemiStatic * (mx * my * mz);
-  if (withinRange(kOrientRange, mx, my, mz) && (det > bound || -det > bound))
-    return -signOf(det);
-  return orient3dExact(a, b, c, d);
-}
-
-int Predicates::inSphereFilteredAnyMagnitude(
-  const double* a, const double* b, const double* c, const double* d, const double* e)
-{
-  // inSphereFiltered()'s semi-static filter, within the range where its bound holds.
-  double largest[3];
-  for (int k = 0; k < 3; ++k)
-    largest[k] = std::max({std::fabs(a[k] - e[k]), std::fabs(b[k] - e[k]), std::fabs(c[k] - e[k]),
-      std::fabs(d[k] - e[k])});
-  if (!withinRange(kInSphereRange, largest[0], largest[1], largest[2]))
-    return 0;
-  const double det = inSphereDeterminantPlain(a, b, c, d, e);
-  const double m = std::max({largest[0], largest[1], largest[2]});
-  const double bound = filter::kInSphereSemiStatic * (m * m * largest[0] * largest[1] * largest[2]);
-  return det > bound || -det > bound ? -signOf(det) : 0;
 }
 
 int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)

@@ -64,6 +64,19 @@ constexpr double kInSphereLift = 108 * kInSphereLiftFactor * kInSphereLiftFactor
 // Below this magnitude products may have underflowed and the relative bounds no longer hold.
 constexpr double kUnderflowGuard = 1e-250;
 
+// For coordinates of any magnitude (Predicates::allowAnyMagnitude()) the semi-static filters also
+// require every largest difference within [2^-k, 2^k]. Then no operation overflows (orient3d's
+// products stay below 2^600, insphere's below 2^607), and a rounding error lost to underflow (at
+// most 2^-1075, times the factors it is multiplied by afterwards, below 2^362) stays below 2^-60
+// of the bound, which the bounds' 2% margin covers.
+constexpr double kOrientRange = 0x1p200;
+constexpr double kInSphereRange = 0x1p120;
+
+inline bool withinRange(double range, double x, double y, double z)
+{
+  return std::min({x, y, z}) >= 1 / range && std::max({x, y, z}) <= range;
+}
+
 template <typename T>
 int signOf(T x) // for doubles here, and 128-bit integers in the exact stage
 {
@@ -156,12 +169,16 @@ private:
   int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
-  int orient3dAnyMagnitude(const double* a, const double* b, const double* c, const double* d);
-  int inSphereFilteredAnyMagnitude(
-    const double* a, const double* b, const double* c, const double* d, const double* e);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
 
   bool liftsFilterProves(double det, const double lifts[4]) const;
+  /// Whether a semi-static bound on a product of differences as large as `scale` holds: no
+  /// product underflowed and, for any magnitude, the largest differences are within `range`.
+  bool semiStaticHolds(double scale, double range, const double largest[3]) const
+  {
+    return scale > filter::kUnderflowGuard &&
+      (!tuning_.anyMagnitude || filter::withinRange(range, largest[0], largest[1], largest[2]));
+  }
 
   ExpansionArena arena_;
   std::uint64_t perturbationSeed_;
@@ -197,17 +214,15 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
     return -filter::signOf(det);
   if (tuning_.floatExactOrient)
     return 0;
-  if (tuning_.anyMagnitude)
-    return orient3dAnyMagnitude(a, b, c, d);
-  // Semi-static filter: the permanent is at most 6 * mx * my * mz, mx being the largest |x|
-  // difference (and so on), so Shewchuk's bound (7 + 56 eps) eps * permanent is below
-  // filter::kOrientSemiStatic * mx * my * mz.
-  const double mx = std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)});
-  const double my = std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)});
-  const double mz = std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)});
-  const double scale = mx * my * mz;
+  // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
+  // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
+  // filter::kOrientSemiStatic times that product.
+  const double largest[3] = {std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)}),
+    std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)}),
+    std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)})};
+  const double scale = largest[0] * largest[1] * largest[2];
   const double bound = filter::kOrientSemiStatic * scale;
-  if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
+  if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kOrientRange, largest))
     return -filter::signOf(det);
   return orient3dExact(a, b, c, d);
 }
@@ -316,9 +331,7 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
     return -filter::signOf(det);
   if (tuning_.floatExactInSphere)
     return -filter::signOf(det);
-  if (tuning_.anyMagnitude)
-    return inSphereFilteredAnyMagnitude(a, b, c, d, e);
-  if (!liftsFirst_ && liftsFilterProves(det, lifts))
+  if (!liftsFirst_ && !tuning_.anyMagnitude && liftsFilterProves(det, lifts))
   {
     ++liftsFilterRescues_;
     return -filter::signOf(det);
@@ -334,7 +347,7 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
   const double m = std::max({largest[0], largest[1], largest[2]});
   const double scale = m * m * largest[0] * largest[1] * largest[2];
   const double bound = filter::kInSphereSemiStatic * scale;
-  if ((det > bound || -det > bound) && scale > filter::kUnderflowGuard)
+  if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kInSphereRange, largest))
     return -filter::signOf(det);
   return 0;
 }

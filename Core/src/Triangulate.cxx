@@ -488,23 +488,7 @@ std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)
 {
   const auto start = Clock::now();
-  Box box;
-  bool any = false;
-  for (std::size_t i = 0; i < count; ++i)
-    if (isFinite(xyz + 3 * i))
-    {
-      box = any ? box : Box::around(xyz + 3 * i);
-      box.include(xyz + 3 * i);
-      any = true;
-    }
-  const double centre[3] = {
-    box.lo[0] + box.extent(0) / 2, box.lo[1] + box.extent(1) / 2, box.lo[2] + box.extent(2) / 2};
-  bool exact[3] = {true, true, true};
-  checkShifts(xyz, count, centre, exact);
-  Frame frame = frameFor(box.lo, box.hi, exact);
-  if (!fitsFrame(frame, xyz, count))
-    frame = identityFrame(box.lo, box.hi);
-  IncrementalDelaunay mesh(xyz, count, options, frame);
+  IncrementalDelaunay mesh(xyz, count, options, frameOf(xyz, count));
   Triangulation out = mesh.release();
   out.stats.secondsTotal = secondsSince(start);
   return out;

@@ -45,11 +45,6 @@ vtkStandardNewMacro(vtkFastDelaunay3D);
 
 namespace
 {
-/// `value` clamped to [lo, hi]; NaN, which no comparison clamps, gives `nan`.
-double Clamped(double value, double lo, double hi, double nan)
-{
-  return std::isnan(value) ? nan : std::min(std::max(value, lo), hi);
-}
 
 /// The input's points in the requested precision, with room for `extra` more after them: the
 /// input's own array when nothing changes (shared, same ids), else a copy.
@@ -101,9 +96,9 @@ vtkSmartPointer<vtkPoints> MakeOutputPoints(
       farthest = std::max(farthest, std::fabs(centre[a]));
     }
     // No further than VTK_DOUBLE_MAX - |centre| (halved against the rounding of the sum).
+    const double diagonal = fd3::diagonal(bounds);
     const double length =
-      std::min(offset * (fd3::diagonal(bounds) > 0 ? fd3::diagonal(bounds) : 1.0),
-        (VTK_DOUBLE_MAX - farthest) / 2);
+      std::min(offset * (diagonal > 0 ? diagonal : 1.0), (VTK_DOUBLE_MAX - farthest) / 2);
     for (int k = 0; k < 6; ++k)
     {
       double x[3] = { centre[0], centre[1], centre[2] };
@@ -392,7 +387,7 @@ vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
 
 void vtkFastDelaunay3D::SetClamped(double& property, double value, double lo, double hi, double nan)
 {
-  value = Clamped(value, lo, hi, nan);
+  value = std::isnan(value) ? nan : std::min(std::max(value, lo), hi); // NaN passes comparisons
   if (property != value)
   {
     property = value;

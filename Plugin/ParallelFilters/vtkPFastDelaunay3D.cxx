@@ -475,10 +475,8 @@ public:
         hi[a] = std::max(hi[a], b[2 * a + 1]);
       }
     }
-    const double centre[3] = { lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2,
-      lo[2] + (hi[2] - lo[2]) / 2 };
     bool exact[3] = { true, true, true };
-    fd3::checkShifts(this->Xyz.data(), this->OwnCount, centre, exact);
+    fd3::checkShifts(this->Xyz.data(), this->OwnCount, lo, hi, exact);
     int local[3] = { exact[0], exact[1], exact[2] }, global[3];
     this->Controller->AllReduce(local, global, 3, vtkCommunicator::MIN_OP);
     for (int a = 0; a < 3; ++a)

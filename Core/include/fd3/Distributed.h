@@ -34,9 +34,11 @@ struct Frame
   bool identity = false;
 };
 
-/// Which coordinates of `count` points can have `centre` subtracted exactly: exact[a] is cleared
-/// when one cannot (it is never set, so that several calls, or several MPI ranks, combine by AND).
-void checkShifts(const double* xyz, std::size_t count, const double centre[3], bool exact[3]);
+/// Which coordinates of `count` points can have the centre of the box [lo, hi] subtracted exactly:
+/// exact[a] is cleared when one cannot (it is never set, so that several calls, or several MPI
+/// ranks, combine by AND).
+void checkShifts(
+  const double* xyz, std::size_t count, const double lo[3], const double hi[3], bool exact[3]);
 /// The frame for points within [lo, hi], shifted by the box's centre on the axes where exact (as
 /// checkShifts() found for every point) and scaled into [-1, 1].
 Frame frameFor(const double lo[3], const double hi[3], const bool exact[3]);
@@ -48,6 +50,10 @@ Frame frameFor(const double lo[3], const double hi[3], const bool exact[3]);
 bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count);
 /// The frame that leaves points within [lo, hi] as they are (Frame::identity).
 Frame identityFrame(const double lo[3], const double hi[3]);
+/// The frame of one whole point set (its finite points), the one that triangulate() uses: every
+/// piece of the set computes the same with checkShifts(), frameFor() and fitsFrame() combined
+/// over the pieces.
+Frame frameOf(const double* xyz, std::size_t count);
 /// Whether the kernel's records of `count` points in `frame` give each finite one back bit for bit
 /// (IncrementalDelaunay::points(), release(xyz)): every coordinate maps into the frame and back
 /// exactly (no underflow), and none is -0, which an exact duplicate at +0 would come back as.
