@@ -41,106 +41,152 @@ private:
 };
 } // namespace
 
-std::string Triangulator::checkMesh() const
+/// The checks of Triangulator::checkMesh(), one kind at a time.
+class MeshCheck
 {
-  Predicates predicates = inserters_[0]->predicates(); // a copy: it leaves the counters alone
-  const TetMesh& tets = mesh_.tets;
-  Report report;
-  const std::size_t slots = tets.slots();
-  std::vector<char> listedFree(slots, 0);
-  for (const auto& pool : pools_)
-    for (TetId t : pool->freeSlots())
-    {
-      if (t >= slots || !tets.isDead(t))
-        report.add("free list") << "slot " << t << " is listed but live\n";
-      else if (listedFree[t]++)
-        report.add("free list") << "slot " << t << " is listed twice\n";
-    }
-  std::vector<char> isVertex(vertexCount(), 0);
-  for (TetId t = 0; t < slots; ++t)
+public:
+  explicit MeshCheck(const Triangulator& triangulator)
+    : triangulator_(triangulator), tets_(triangulator.mesh_.tets), slots_(tets_.slots()),
+      predicates_(triangulator.inserters_[0]->predicates()) // a copy: it leaves the counters alone
+  {}
+
+  std::string run()
   {
-    if (tets.isDead(t))
+    const std::vector<char> listedFree = freeSlots();
+    std::vector<char> isVertex(triangulator_.vertexCount(), 0);
+    for (TetId t = 0; t < slots_; ++t)
     {
-      if (!listedFree[t])
-        report.add("free list") << "dead slot " << t << " is not listed\n";
-      continue;
+      if (!tets_.isDead(t))
+        tetrahedron(t, isVertex);
+      else if (!listedFree[t])
+        report_.add("free list") << "dead slot " << t << " is not listed\n";
     }
-    if (tets.flags(t) != 0)
-      report.add("flags") << "tet " << t << " keeps cavity flags\n";
+    vertexEntries(isVertex);
+    return report_.str();
+  }
+
+private:
+  const double* point(VertId v) const { return triangulator_.point(v); }
+
+  /// Every slot that the pools list as free is dead and listed once; which ones are listed.
+  std::vector<char> freeSlots()
+  {
+    std::vector<char> listed(slots_, 0);
+    for (const auto& pool : triangulator_.pools_)
+      for (TetId t : pool->freeSlots())
+      {
+        if (t >= slots_ || !tets_.isDead(t))
+          report_.add("free list") << "slot " << t << " is listed but live\n";
+        else if (listed[t]++)
+          report_.add("free list") << "slot " << t << " is listed twice\n";
+      }
+    return listed;
+  }
+
+  void tetrahedron(TetId t, std::vector<char>& isVertex)
+  {
+    if (tets_.flags(t) != 0)
+      report_.add("flags") << "tet " << t << " keeps cavity flags\n";
     VertId tv[4];
-    tets.vertices(t, tv);
+    tets_.vertices(t, tv);
     for (int k = 0; k < 4; ++k)
     {
       if (tv[k] == kInfinite && k != 3)
-        report.add("ghost") << "tet " << t << " has the ghost vertex at " << k << "\n";
-      else if (tv[k] != kInfinite && tv[k] >= vertexCount())
-        report.add("vertex") << "tet " << t << " has vertex " << tv[k] << " out of range\n";
+        report_.add("ghost") << "tet " << t << " has the ghost vertex at " << k << "\n";
+      else if (tv[k] != kInfinite && tv[k] >= isVertex.size())
+        report_.add("vertex") << "tet " << t << " has vertex " << tv[k] << " out of range\n";
       else if (tv[k] != kInfinite)
         isVertex[tv[k]] = 1;
     }
     for (int f = 0; f < 4; ++f)
+      adjacency(t, f, tv);
+    geometry(t, tv);
+  }
+
+  /// The face f of t and its neighbour's point back to each other and have the same vertices.
+  void adjacency(TetId t, int f, const VertId tv[4])
+  {
+    const FaceCode back = tets_.neighbor(t, f);
+    if (back == kUnlinked || tetOf(back) >= slots_ || tets_.isDead(tetOf(back)) ||
+      tets_.across(back) != faceCode(t, f))
     {
-      const FaceCode back = tets.neighbor(t, f);
-      if (back == kUnlinked || tetOf(back) >= slots || tets.isDead(tetOf(back)) ||
-        tets.across(back) != faceCode(t, f))
-      {
-        report.add("adjacency") << "tet " << t << " face " << f << " is not linked both ways\n";
-        continue;
-      }
-      VertId nv[4];
-      tets.vertices(tetOf(back), nv);
-      for (int k = 0; k < 4; ++k)
-      {
-        bool shared = k == f;
-        for (int m = 0; m < 4; ++m)
-          shared |= m != faceOf(back) && nv[m] == tv[k];
-        if (!shared)
-          report.add("adjacency") << "tet " << t << " face " << f
-                                  << " differs from its neighbour's\n";
-      }
+      report_.add("adjacency") << "tet " << t << " face " << f << " is not linked both ways\n";
+      return;
     }
-    if (tets.isGhost(t))
+    VertId nv[4];
+    tets_.vertices(tetOf(back), nv);
+    for (int k = 0; k < 4; ++k)
+    {
+      bool shared = k == f;
+      for (int m = 0; m < 4; ++m)
+        shared |= m != faceOf(back) && nv[m] == tv[k];
+      if (!shared)
+        report_.add("adjacency") << "tet " << t << " face " << f
+                                 << " differs from its neighbour's\n";
+    }
+  }
+
+  /// Orientation, hull faces facing out, and (unless a volume threshold was used) every face
+  /// locally Delaunay: exactly, with the kernel's predicates.
+  void geometry(TetId t, const VertId tv[4])
+  {
+    if (tets_.isGhost(t))
     {
       // The hull face points outwards: the finite tetrahedron behind it lies on its negative side.
-      const FaceCode inside = tets.neighbor(t, 3);
-      const VertId w = tets.vertex(tetOf(inside), faceOf(inside));
+      const FaceCode inside = tets_.neighbor(t, 3);
+      const VertId w = tets_.vertex(tetOf(inside), faceOf(inside));
       if (w == kInfinite ||
-        predicates.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(w)) >= 0)
-        report.add("ghost") << "tet " << t << " does not face out of the hull\n";
-      continue;
+        predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(w)) >= 0)
+        report_.add("ghost") << "tet " << t << " does not face out of the hull\n";
+      return;
     }
-    if (predicates.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])) <= 0)
-      report.add("orientation") << "tet " << t << " is not positively oriented\n";
-    if (mesh_.options.volumeThreshold > 0)
-      continue;
+    if (predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])) <= 0)
+      report_.add("orientation") << "tet " << t << " is not positively oriented\n";
+    if (triangulator_.mesh_.options.volumeThreshold > 0)
+      return;
     for (int f = 0; f < 4; ++f)
     {
-      const FaceCode back = tets.neighbor(t, f);
-      const VertId opposite = tets.vertex(tetOf(back), faceOf(back));
+      const FaceCode back = tets_.neighbor(t, f);
+      const VertId opposite = tets_.vertex(tetOf(back), faceOf(back));
       if (opposite != kInfinite &&
-        predicates.inSphere(
+        predicates_.inSphere(
           point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]), point(opposite)) > 0)
-        report.add("Delaunay") << "tet " << t << " face " << f << " is not locally Delaunay\n";
+        report_.add("Delaunay") << "tet " << t << " face " << f << " is not locally Delaunay\n";
     }
   }
-  std::size_t vertices = 0;
-  for (VertId u = 0; u < vertexCount(); ++u)
+
+  /// Every vertex's entry tetrahedron is live and has it; as many vertices as were inserted.
+  void vertexEntries(const std::vector<char>& isVertex)
   {
-    if (!isVertex[u])
-      continue;
-    ++vertices;
-    const TetId t = mesh_.vertices[u].tet;
-    VertId tv[4];
-    if (t < slots && !tets.isDead(t))
-      tets.vertices(t, tv);
-    if (t >= slots || tets.isDead(t) || std::count(tv, tv + 4, u) != 1)
-      report.add("vertex tet") << "vertex " << u << " points to tet " << t
-                               << ", not one of its own\n";
+    std::size_t vertices = 0;
+    for (VertId u = 0; u < isVertex.size(); ++u)
+    {
+      if (!isVertex[u])
+        continue;
+      ++vertices;
+      const TetId t = triangulator_.mesh_.vertices[u].tet;
+      VertId tv[4];
+      if (t < slots_ && !tets_.isDead(t))
+        tets_.vertices(t, tv);
+      if (t >= slots_ || tets_.isDead(t) || std::count(tv, tv + 4, u) != 1)
+        report_.add("vertex tet") << "vertex " << u << " points to tet " << t
+                                  << ", not one of its own\n";
+    }
+    const std::size_t inserted = triangulator_.statistics().insertedPoints;
+    if (vertices != inserted)
+      report_.add("vertices") << vertices << " vertices in the mesh, " << inserted << " inserted\n";
   }
-  if (vertices != statistics().insertedPoints)
-    report.add("vertices") << vertices << " vertices in the mesh, " << statistics().insertedPoints
-                           << " inserted\n";
-  return report.str();
+
+  const Triangulator& triangulator_;
+  const TetMesh& tets_;
+  const std::size_t slots_;
+  Predicates predicates_;
+  Report report_;
+};
+
+std::string Triangulator::checkMesh() const
+{
+  return MeshCheck(*this).run();
 }
 
 } // namespace fd3

@@ -67,6 +67,7 @@ public:
   std::string checkMesh() const;
 
 private:
+  friend class MeshCheck; // checkMesh(), CheckMesh.cxx
   // Progress is reported (and abort checked) once per this many insertions.
   static constexpr std::size_t kProgressInterval = 1u << 14;
   const double* point(VertId v) const { return mesh_.point(v); }
