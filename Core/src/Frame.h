@@ -26,6 +26,11 @@ inline bool mapsExactly(const Frame& frame, double x, int axis)
   return fromFrame(frame, toFrame(frame, x, axis), axis) == x;
 }
 
+/// Whether vertex records of `count` points in `frame` give each finite one back bit for bit: every
+/// coordinate maps into the frame and back exactly (no underflow), and none is -0, which an exact
+/// duplicate at +0 would come back as.
+bool recoverable(const Frame& frame, const double* xyz, std::size_t count);
+
 inline void toFrame(const Frame& frame, const double* p, double* out)
 {
   for (int a = 0; a < 3; ++a)

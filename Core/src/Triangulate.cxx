@@ -7,6 +7,7 @@
 #include "fd3/Distributed.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -128,6 +129,7 @@ struct IncrementalDelaunay::Impl
   Options options;
   Frame frame;
   Status status = Status::Ok;
+  bool released = false;  // release() handed the records out: nothing is left to add to
   Statistics stats;       // the figures of every batch; the inserters' are added on output
   std::size_t points = 0; // point ids handed out
   std::size_t room = 0;   // vertex records reserved beyond the first batch's
@@ -135,16 +137,32 @@ struct IncrementalDelaunay::Impl
   // are resolved in.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped, duplicates;
   std::unique_ptr<Triangulator> triangulator;
-  std::vector<double> held; // every point so far, until the mesh starts
+  // The input coordinates the mesh holds: those of the points from id heldFrom on. That is every
+  // point until the mesh starts. After that, a mesh that reads its points holds none (the caller
+  // keeps them), and one that takes them holds them all, except a first batch that the vertex
+  // records give back bit for bit (recoverable()): that batch is freed once the records are
+  // made, and its non-finite points, which have no record, are set aside.
+  bool takesPoints = false;
+  Coordinates held;
+  std::size_t heldFrom = 0;
+  std::vector<std::pair<std::uint32_t, std::array<double, 3>>> aside;
 
-  void insertFirst(const double* xyz, std::size_t count, const std::function<void()>& pointsRead);
+  void insertFirst(const double* xyz, std::size_t count);
   void insertMore(const double* xyz, std::size_t count);
   /// The output; with `release`, the mesh's records go into it, which ends the mesh, and with
-  /// `xyz` too, the points are written back there (IncrementalDelaunay::release(xyz)).
-  Triangulation output(bool release, double* xyz = nullptr);
-  void writePoints(double* xyz) const;
+  /// `xyz` too, the coordinates of every point go there (IncrementalDelaunay::release(xyz)).
+  Triangulation output(bool release, Coordinates* xyz = nullptr);
+  /// The input coordinates of point `id` where the mesh holds them, else null.
+  const double* heldPoint(std::size_t id) const;
+  /// For each point id, its vertex; kNoVertex for a point that is not one.
+  std::vector<VertId> vertexOfPoint() const;
 
 private:
+  /// Frees the held first batch where the vertex records give it back (see `held`).
+  void freeRecoverablePoints();
+  void giveBackPoints(Coordinates& xyz);
+  /// The input coordinates of every vertex and exact duplicate, as the records give them back.
+  void writeRecordedPoints(double* xyz) const;
   /// The finite ones of `count` points, as point ids, and their bounding box.
   std::vector<std::uint32_t> finitePoints(const double* xyz, std::size_t count, Box& box);
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
@@ -211,8 +229,7 @@ VertexArray IncrementalDelaunay::Impl::vertices(const double* xyz,
   return out;
 }
 
-void IncrementalDelaunay::Impl::insertFirst(
-  const double* xyz, std::size_t count, const std::function<void()>& pointsRead)
+void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count)
 {
   const auto start = Clock::now();
   Box box;
@@ -239,8 +256,8 @@ void IncrementalDelaunay::Impl::insertFirst(
   VertexArray records = vertices(xyz, plan.order, 0, room);
   std::vector<std::uint32_t>().swap(plan.order);
   std::vector<std::uint16_t>().swap(key);
-  if (pointsRead)
-    pointsRead();
+  if (takesPoints)
+    freeRecoverablePoints(); // xyz, which may be `held`, is not read after this
   stats.secondsSort = secondsSince(start);
 #if defined(__GLIBC__)
   // The sort's large scratch buffers were freed, but glibc keeps such memory in its heap once its
@@ -268,11 +285,13 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
     held.insert(held.end(), xyz, xyz + 3 * count);
     stats = Statistics();
     skipped.clear();
-    insertFirst(held.data(), held.size() / 3, nullptr);
-    if (triangulator)
-      std::vector<double>().swap(held);
+    insertFirst(held.data(), held.size() / 3);
+    if (triangulator && !takesPoints)
+      Coordinates().swap(held);
     return;
   }
+  if (takesPoints)
+    held.insert(held.end(), xyz, xyz + 3 * count);
   const auto start = Clock::now();
   Box box;
   std::vector<std::uint32_t> ids = finitePoints(xyz, count, box);
@@ -292,9 +311,13 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
   points += count;
 }
 
-Triangulation IncrementalDelaunay::Impl::output(bool release, double* xyz)
+Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
 {
+  if (released)
+    throw std::logic_error("fd3::IncrementalDelaunay: the mesh was released");
   const auto start = Clock::now();
+  if (xyz)
+    giveBackPoints(*xyz);
   Triangulation out;
   out.status = status;
   out.stats = stats;
@@ -318,8 +341,6 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, double* xyz)
       return out;
     }
   }
-  if (xyz)
-    writePoints(xyz);
   const std::size_t slots = triangulator->slots();
   const std::size_t vertexCount = triangulator->vertices().size();
   IdArray records;
@@ -350,14 +371,61 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, double* xyz)
   if (release)
   {
     triangulator.reset();
-    status = Status::Aborted; // nothing left to add to
+    released = true;
   }
   out.stats.tetrahedra = out.numberOfTetrahedra();
   out.stats.secondsOutput = secondsSince(start);
   return out;
 }
 
-void IncrementalDelaunay::Impl::writePoints(double* xyz) const
+const double* IncrementalDelaunay::Impl::heldPoint(std::size_t id) const
+{
+  return id >= heldFrom && id - heldFrom < held.size() / 3 ? &held[3 * (id - heldFrom)] : nullptr;
+}
+
+std::vector<VertId> IncrementalDelaunay::Impl::vertexOfPoint() const
+{
+  std::vector<VertId> vertexOf(points, kNoVertex);
+  if (triangulator)
+  {
+    const VertexArray& vertices = triangulator->vertices();
+    for (VertId v = 0; v < vertices.size(); ++v)
+      vertexOf[vertices[v].point] = v;
+  }
+  return vertexOf;
+}
+
+void IncrementalDelaunay::Impl::freeRecoverablePoints()
+{
+  const std::size_t count = held.size() / 3;
+  if (heldFrom != 0 || options.tolerance != 0 || !recoverable(frame, held.data(), count))
+    return; // a point skipped for the tolerance has no record
+  for (std::size_t i = 0; i < count; ++i)
+    if (!isFinite(&held[3 * i]))
+      aside.push_back(
+        {static_cast<std::uint32_t>(i), {held[3 * i], held[3 * i + 1], held[3 * i + 2]}});
+  heldFrom = count;
+  Coordinates().swap(held);
+}
+
+void IncrementalDelaunay::Impl::giveBackPoints(Coordinates& xyz)
+{
+  if (heldFrom == 0)
+  {
+    xyz = std::move(held);
+    return;
+  }
+  // Every point is written: the first batch's finite points are vertices or exact duplicates
+  // (no tolerance), its others are aside, and the later batches are held.
+  xyz.resize(3 * points);
+  writeRecordedPoints(xyz.data());
+  for (const auto& [id, p] : aside)
+    std::copy(p.begin(), p.end(), xyz.begin() + 3 * std::size_t(id));
+  std::copy(held.begin(), held.end(), xyz.begin() + 3 * heldFrom);
+  Coordinates().swap(held);
+}
+
+void IncrementalDelaunay::Impl::writeRecordedPoints(double* xyz) const
 {
   const VertexArray& vertices = triangulator->vertices();
   std::vector<bool> written(points, false);
@@ -373,16 +441,29 @@ void IncrementalDelaunay::Impl::writePoints(double* xyz) const
 }
 
 IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count,
-  const Options& options, const Frame& frame, std::size_t room,
-  const std::function<void()>& pointsRead)
+  const Options& options, const Frame& frame, std::size_t room)
   : impl_(std::make_unique<Impl>())
 {
   impl_->options = options;
   impl_->frame = frame;
   impl_->room = room;
-  impl_->insertFirst(xyz, count, pointsRead);
-  if (!impl_->triangulator && impl_->status != Status::Aborted)
-    impl_->held.assign(xyz, xyz + 3 * count);
+  impl_->insertFirst(xyz, count);
+  if (!impl_->triangulator)
+    impl_->held.assign(xyz, xyz + 3 * count); // until the mesh can start
+}
+
+IncrementalDelaunay::IncrementalDelaunay(
+  Coordinates xyz, const Options& options, const Frame& frame, std::size_t room)
+  : impl_(std::make_unique<Impl>())
+{
+  if (xyz.size() % 3 != 0)
+    throw std::invalid_argument("fd3::IncrementalDelaunay: coordinates are not in threes");
+  impl_->options = options;
+  impl_->frame = frame;
+  impl_->room = room;
+  impl_->takesPoints = true;
+  impl_->held = std::move(xyz);
+  impl_->insertFirst(impl_->held.data(), impl_->held.size() / 3);
 }
 
 IncrementalDelaunay::~IncrementalDelaunay() = default;
@@ -394,7 +475,7 @@ Status IncrementalDelaunay::status() const
 
 void IncrementalDelaunay::add(const double* xyz, std::size_t count)
 {
-  if (impl_->status == Status::Aborted || impl_->status == Status::CheckFailed)
+  if (impl_->released || impl_->status == Status::Aborted || impl_->status == Status::CheckFailed)
     throw std::logic_error("fd3::IncrementalDelaunay::add: the tetrahedralization ended");
   impl_->insertMore(xyz, count);
 }
@@ -409,38 +490,44 @@ Triangulation IncrementalDelaunay::release()
   return impl_->output(true);
 }
 
-Triangulation IncrementalDelaunay::release(double* xyz)
+Triangulation IncrementalDelaunay::release(Coordinates& xyz)
 {
-  return impl_->output(true, xyz);
+  if (!impl_->takesPoints)
+    throw std::logic_error("fd3::IncrementalDelaunay::release: the mesh did not take its points");
+  return impl_->output(true, &xyz);
 }
 
 std::vector<std::vector<double>> IncrementalDelaunay::points(
   const std::vector<std::vector<std::uint32_t>>& lists) const
 {
   std::vector<std::vector<double>> out(lists.size());
-  if (!impl_->triangulator)
-  {
-    if (std::any_of(lists.begin(), lists.end(), [](const auto& ids) { return !ids.empty(); }))
-      throw std::invalid_argument("fd3::IncrementalDelaunay::points: no vertex yet");
-    return out;
-  }
-  const VertexArray& vertices = impl_->triangulator->vertices();
-  std::vector<VertId> vertexOf(impl_->points, kNoVertex);
-  for (VertId v = 0; v < vertices.size(); ++v)
-    vertexOf[vertices[v].point] = v;
+  std::vector<VertId> vertexOf; // made for the first point that the mesh does not hold
   for (std::size_t l = 0; l < lists.size(); ++l)
   {
     out[l].resize(3 * lists[l].size());
     for (std::size_t k = 0; k < lists[l].size(); ++k)
     {
       const std::uint32_t id = lists[l][k];
+      if (const double* p = impl_->heldPoint(id))
+      {
+        std::copy_n(p, 3, &out[l][3 * k]);
+        continue;
+      }
+      if (vertexOf.empty())
+        vertexOf = impl_->vertexOfPoint();
       if (id >= vertexOf.size() || vertexOf[id] == kNoVertex)
         throw std::invalid_argument("fd3::IncrementalDelaunay::points: not a vertex");
+      const Vertex& vertex = impl_->triangulator->vertices()[vertexOf[id]];
       for (int a = 0; a < 3; ++a)
-        out[l][3 * k + a] = fromFrame(impl_->frame, vertices[vertexOf[id]].xyz[a], a);
+        out[l][3 * k + a] = fromFrame(impl_->frame, vertex.xyz[a], a);
     }
   }
   return out;
+}
+
+std::size_t IncrementalDelaunay::heldPoints() const
+{
+  return impl_->held.size() / 3;
 }
 
 std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(

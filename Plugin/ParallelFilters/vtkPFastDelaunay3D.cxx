@@ -39,8 +39,10 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -92,9 +94,7 @@ vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkId
   return Subset(points->GetData(), source->GetPointData(), ids, points->GetDataType());
 }
 
-/// Doubles x, y, z of points, in the kernel's allocator: resize() does not zero them, which would
-/// touch every page once more before they are filled.
-using Coordinates = std::vector<double, fd3::BulkAllocator<double>>;
+using fd3::Coordinates;
 
 /// Calls visit(i, x) for every point i of a 3-component array, x its coordinates as doubles,
 /// without a virtual call per point.
@@ -218,205 +218,214 @@ private:
   std::vector<Cut> Nodes;
 };
 
-/// The cells' point ids from `first` on: marked as used in `used` (indexed by id - first), or,
-/// with `renumber`, replaced by used[id - first].
-struct RenumberIdsFrom
+/// Marks the point ids from `first` on that the cells use: used[id - first] = 0.
+struct MarkIdsFrom
 {
   template <typename Array>
-  void operator()(Array* ids, std::size_t first, std::vector<vtkIdType>& used, bool renumber) const
+  void operator()(Array* ids, std::size_t first, std::vector<vtkIdType>& used) const
   {
-    using Id = vtk::GetAPIType<Array>;
-    for (auto&& id : vtk::DataArrayValueRange<1>(ids))
+    for (const auto id : vtk::DataArrayValueRange<1>(ids))
     {
-      const std::size_t k = static_cast<std::size_t>(id);
-      if (k >= first)
+      if (static_cast<std::size_t>(id) >= first)
       {
-        if (renumber)
-        {
-          id = static_cast<Id>(used[k - first]);
-        }
-        else
-        {
-          used[k - first] = 0;
-        }
+        used[static_cast<std::size_t>(id) - first] = 0;
       }
     }
   }
 };
 
-void RenumberCellIdsFrom(
-  vtkCellArray* cells, std::size_t first, std::vector<vtkIdType>& used, bool renumber)
+/// Replaces the cells' point ids from `first` on by newId[id - first].
+struct RenumberIdsFrom
+{
+  template <typename Array>
+  void operator()(Array* ids, std::size_t first, const std::vector<vtkIdType>& newId) const
+  {
+    using Id = vtk::GetAPIType<Array>;
+    for (auto&& id : vtk::DataArrayValueRange<1>(ids))
+    {
+      if (static_cast<std::size_t>(id) >= first)
+      {
+        id = static_cast<Id>(newId[static_cast<std::size_t>(id) - first]);
+      }
+    }
+  }
+};
+
+/// Runs `worker` on the cells' connectivity array, without a virtual call per id.
+template <typename Worker, typename... Args>
+void OnCellIds(vtkCellArray* cells, Worker worker, Args&... args)
 {
   using Ids = vtkArrayDispatch::DispatchByArray<vtkCellArray::StorageArrayList>;
   vtkDataArray* connectivity = cells->GetConnectivityArray();
-  if (!Ids::Execute(connectivity, RenumberIdsFrom{}, first, used, renumber))
+  if (!Ids::Execute(connectivity, worker, args...))
   {
-    RenumberIdsFrom{}(connectivity, first, used, renumber);
+    worker(connectivity, args...);
   }
 }
 
-/// One execution across the ranks, step by step (see the class documentation).
-class DistributedRun
+/// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
+/// which catches what it throws; then every rank learns whether all got through, before any
+/// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the
+/// others waiting in a collective call: all of them stop after the same step.
+class RankGroup
 {
 public:
-  DistributedRun(vtkMultiProcessController* controller)
+  explicit RankGroup(vtkMultiProcessController* controller)
     : Controller(controller), Rank(controller->GetLocalProcessId()),
-      Ranks(controller->GetNumberOfProcesses())
+      Size(controller->GetNumberOfProcesses())
   {}
 
-  /// Step 1: the finite points spread over the ranks by space (BalancedCuts()), this rank's
-  /// non-finite ones after them (nothing to triangulate, but they stay in the output as unused
-  /// points): their coordinates, as doubles, in Xyz with room for the ghosts, their point data in
-  /// OwnData. `points`: the input's, in the output's precision. False when no rank has a point.
-  bool Distribute(vtkDataSet* input, vtkPoints* points)
+  /// Runs `work` on this rank (it returns false when aborted); whether it succeeded on all.
+  template <typename Work>
+  bool Local(Work&& work)
   {
-    const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
-    std::vector<vtkIdType> counts(this->Ranks);
-    this->Controller->AllGather(&count, counts.data(), 1);
-    const vtkIdType firstId =
-      std::accumulate(counts.begin(), counts.begin() + this->Rank, vtkIdType(0));
-    this->InputPoints = std::accumulate(counts.begin(), counts.end(), vtkIdType(0));
-    int type = count > 0 ? points->GetDataType() : 0, widest = 0; // as the one-process output's
-    this->Controller->AllReduce(&type, &widest, 1, vtkCommunicator::MAX_OP);
-    this->PointType = widest > 0 ? widest : VTK_DOUBLE;
-
-    vtkNew<vtkPointData> data;
-    if (input)
+    bool succeeded = false;
+    try
     {
-      data->ShallowCopy(input->GetPointData());
-      data->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+      succeeded = work();
     }
-    vtkNew<vtkIdTypeArray> inputIds;
-    inputIds->SetName(kInputIds);
-    inputIds->SetNumberOfValues(count);
-    std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + count, firstId);
-    std::vector<vtkIdType> finite, nonFinite;
-    ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
-      (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
-    });
-    data->AddArray(inputIds);
-    std::vector<vtkSmartPointer<vtkPointSet>> parts;
-    std::vector<int> senders;
-    int mine = !finite.empty(), any = 0;
-    this->Controller->AllReduce(&mine, &any, 1, vtkCommunicator::MAX_OP);
-    if (any)
+    catch (const std::exception& error)
     {
-      const SpaceCuts cuts = this->BalancedCuts(points->GetData(), finite);
-      std::vector<std::vector<vtkIdType>> lists(this->Ranks);
-      ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
-        if (fd3::isFinite(x))
-        {
-          lists[cuts.RankOf(x)].push_back(i);
-        }
-      });
-      finite = std::vector<vtkIdType>();
-      this->Send(
-        lists, [&](int r) { return Subset(points->GetData(), data, lists[r], this->PointType); },
-        parts, senders);
-      if (!lists[this->Rank].empty()) // in rank order
-      {
-        const auto at =
-          std::upper_bound(senders.begin(), senders.end(), this->Rank) - senders.begin();
-        parts.insert(
-          parts.begin() + at, Subset(points->GetData(), data, lists[this->Rank], this->PointType));
-        senders.insert(senders.begin() + at, this->Rank);
-      }
+      this->Failure = error.what();
     }
-    this->FiniteCount = 0;
-    for (const auto& part : parts)
-    {
-      this->FiniteCount += static_cast<std::size_t>(part->GetNumberOfPoints());
-    }
-    if (!nonFinite.empty() || parts.empty())
-    {
-      parts.push_back(Subset(points->GetData(), data, nonFinite, this->PointType));
-    }
-    this->OwnCount = this->FiniteCount + nonFinite.size();
-    this->Xyz.reserve(3 * (this->OwnCount + this->GhostRoom()));
-    std::vector<vtkPointData*> partData;
-    for (const auto& part : parts)
-    {
-      AppendPoints(part->GetPoints()->GetData(), this->Xyz);
-      partData.push_back(part->GetPointData());
-    }
-    this->OwnData = GatherPointData(partData);
-    return this->InputPoints > 0;
+    return this->AllSucceeded(succeeded);
   }
 
-  /// A split of space into one part per rank, balanced by count: recursive bisection of a sample
-  /// of every rank's `finite` points (kSample in all, each rank's share in proportion to its
-  /// count), each time across the sample's longest side, at the quantile that gives each side
+  /// Whether every rank succeeded; AnyFailed says whether a rank failed rather than aborted.
+  bool AllSucceeded(bool succeeded)
+  {
+    int local[2] = { succeeded, this->Failure.empty() }, global[2] = { 0, 0 };
+    this->Controller->AllReduce(local, global, 2, vtkCommunicator::MIN_OP);
+    this->AnyFailed = global[1] == 0;
+    return global[0] != 0;
+  }
+
+  vtkMultiProcessController* const Controller;
+  const int Rank;
+  const int Size;
+  std::string Failure;    ///< why this rank failed, when it did
+  bool AnyFailed = false; ///< whether some rank failed (else a stop was an abort)
+};
+
+/// The point sets that other ranks sent to this one, one per sender, in rank order.
+struct Received
+{
+  std::vector<vtkSmartPointer<vtkPointSet>> Parts;
+  std::vector<int> Senders;
+};
+
+/// Points moved between ranks: the split of space that balances them, and the exchange of point
+/// sets as raw arrays. Nothing in it is particular to Delaunay.
+class PointExchange
+{
+public:
+  explicit PointExchange(RankGroup& ranks) : Ranks(ranks) {}
+
+  /// A split of space into one part per rank, balanced by count: recursive bisection of a
+  /// sample of every rank's `finite` points (kSample in all, each rank's share in proportion to
+  /// its count), each time across the sample's longest side, at the quantile that gives each side
   /// its share of ranks. Every rank computes it from the same gathered sample, so all agree.
   /// (vtkDistributedPointCloudFilter gives single-precision points under MPI, whatever the
   /// input's, and is several times slower; vtkDIYKdTreeUtilities, whose cuts
   /// vtkRedistributeDataSetFilter uses, is not in ParaView's SDK.)
-  SpaceCuts BalancedCuts(vtkDataArray* coordinates, const std::vector<vtkIdType>& finite)
+  bool BalancedCuts(
+    vtkDataArray* coordinates, const std::vector<vtkIdType>& finite, SpaceCuts& cuts)
   {
-    constexpr double kSample = 1 << 18; // 6 MB gathered; parts within about 1% of the mean
+    constexpr double kSample = 1 << 18; // parts within about 1% of the mean
+    vtkMultiProcessController* controller = this->Ranks.Controller;
     const vtkIdType local = static_cast<vtkIdType>(finite.size());
     vtkIdType total = 0;
-    this->Controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
-    const std::size_t mine =
-      static_cast<std::size_t>(std::ceil(kSample * double(local) / double(total)));
-    std::vector<double> sample(3 * std::min(mine, finite.size()));
-    for (std::size_t k = 0; k < sample.size() / 3; ++k)
+    controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
+    std::vector<double> sample;
+    if (!this->Ranks.Local([&] {
+          const auto mine = static_cast<std::size_t>(std::ceil(kSample * local / double(total)));
+          sample.resize(3 * std::min(mine, finite.size()));
+          for (std::size_t k = 0; k < sample.size() / 3; ++k)
+          {
+            coordinates->GetTuple(finite[k * finite.size() / (sample.size() / 3)], &sample[3 * k]);
+          }
+          return true;
+        }))
     {
-      coordinates->GetTuple(finite[k * finite.size() / (sample.size() / 3)], &sample[3 * k]);
+      return false;
     }
-    std::vector<vtkIdType> lengths(this->Ranks), offsets(this->Ranks);
+    std::vector<vtkIdType> lengths(this->Ranks.Size), offsets(this->Ranks.Size);
     const vtkIdType length = static_cast<vtkIdType>(sample.size());
-    this->Controller->AllGather(&length, lengths.data(), 1);
+    controller->AllGather(&length, lengths.data(), 1);
     std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-    std::vector<std::array<double, 3>> all(
-      static_cast<std::size_t>(offsets.back() + lengths.back()) / 3);
-    this->Controller->AllGatherV(
+    std::vector<std::array<double, 3>> all;
+    if (!this->Ranks.Local([&] {
+          all.resize(static_cast<std::size_t>(offsets.back() + lengths.back()) / 3);
+          return true;
+        }))
+    {
+      return false;
+    }
+    controller->AllGatherV(
       sample.data(), all.data()->data(), length, lengths.data(), offsets.data());
-    SpaceCuts cuts;
-    cuts.Split(all.begin(), all.end(), 0, this->Ranks);
-    return cuts;
+    return this->Ranks.Local([&] {
+      cuts.Split(all.begin(), all.end(), 0, this->Ranks.Size);
+      return true;
+    });
   }
 
-  /// Sends every other rank r the points part(r), made when sent, where lists[r] is not empty;
-  /// what this rank receives, one set per sender, in rank order, with its sender.
-  /// With DIY, as vtkDIYDataExchanger, but as raw arrays: vtkDIYDataExchanger writes each data
-  /// set as a compressed XML file, which took most of the redistribution's time.
+  /// Sends every other rank r the points part(r), made as they are sent, where lists[r] is not
+  /// empty, and appends what this rank receives to `received`. With DIY, as vtkDIYDataExchanger,
+  /// but as raw arrays: vtkDIYDataExchanger writes each data set as a compressed XML file, which
+  /// took most of the redistribution's time.
   template <typename List, typename Part>
-  void Send(const std::vector<List>& lists, Part&& part,
-    std::vector<vtkSmartPointer<vtkPointSet>>& received, std::vector<int>& senders)
+  bool Send(const std::vector<List>& lists, Part&& part, Received& received)
   {
-    diy::mpi::communicator comm = vtkDIYUtilities::GetCommunicator(this->Controller);
-    std::vector<int> sends(this->Ranks);
-    for (int r = 0; r < this->Ranks; ++r)
+    const int rank = this->Ranks.Rank, size = this->Ranks.Size;
+    diy::mpi::communicator comm = vtkDIYUtilities::GetCommunicator(this->Ranks.Controller);
+    std::vector<int> sends(size);
+    for (int r = 0; r < size; ++r)
     {
-      sends[r] = r != this->Rank && !lists[r].empty();
+      sends[r] = r != rank && !lists[r].empty();
     }
     std::vector<std::vector<int>> allSends;
     diy::mpi::all_gather(comm, sends, allSends);
     diy::Master master(comm, 1, -1, nullptr, [](void*) {});
-    diy::ContiguousAssigner assigner(this->Ranks, this->Ranks);
+    diy::ContiguousAssigner assigner(size, size);
     auto* link = new diy::Link(); // the master's
-    for (int r = 0; r < this->Ranks; ++r)
+    for (int r = 0; r < size; ++r)
     {
-      if (allSends[this->Rank][r] || allSends[r][this->Rank])
+      if (allSends[rank][r] || allSends[r][rank])
       {
         link->add_neighbor(diy::BlockID(r, assigner.rank(r)));
       }
     }
     int block = 0; // DIY's one block per rank; its content is not used
-    master.add(this->Rank, &block, link);
-    master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
-      for (const diy::BlockID& to : proxy.link()->neighbors())
-      {
-        if (sends[to.gid])
-        {
-          vtkSmartPointer<vtkPolyData> points = part(to.gid);
-          proxy.enqueue<vtkDataArray*>(to, points->GetPoints()->GetData());
-          proxy.enqueue<vtkFieldData*>(to, points->GetPointData());
-        }
-      }
-    });
+    master.add(rank, &block, link);
+    if (!this->Ranks.Local([&] {
+          master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
+            for (const diy::BlockID& to : proxy.link()->neighbors())
+            {
+              if (sends[to.gid])
+              {
+                vtkSmartPointer<vtkPolyData> points = part(to.gid);
+                proxy.enqueue<vtkDataArray*>(to, points->GetPoints()->GetData());
+                proxy.enqueue<vtkFieldData*>(to, points->GetPointData());
+              }
+            }
+          });
+          return true;
+        }))
+    {
+      return false;
+    }
     master.exchange();
-    std::vector<vtkSmartPointer<vtkPointSet>> byRank(this->Ranks);
+    return this->Ranks.Local([&] {
+      this->Take(master, received);
+      return true;
+    });
+  }
+
+private:
+  /// What the exchange brought, in rank order.
+  void Take(diy::Master& master, Received& received)
+  {
+    std::vector<vtkSmartPointer<vtkPolyData>> byRank(this->Ranks.Size);
     master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
       for (const diy::BlockID& from : proxy.link()->neighbors())
       {
@@ -434,38 +443,183 @@ public:
         }
       }
     });
-    for (int r = 0; r < this->Ranks; ++r)
+    for (int r = 0; r < this->Ranks.Size; ++r)
     {
       if (byRank[r] && byRank[r]->GetNumberOfPoints() > 0)
       {
-        received.push_back(byRank[r]);
-        senders.push_back(r);
+        received.Parts.push_back(byRank[r]);
+        received.Senders.push_back(r);
       }
     }
   }
 
-  /// The ghost points that room is made for up front, in Xyz and in the kernel's vertex records: a
-  /// rank receives a few percent of its own count at 1M points a rank, more on small ones. Growing
-  /// either later would copy it, and under MPI the copy's source stays resident (Open MPI keeps
-  /// the freed pages).
-  std::size_t GhostRoom() const { return this->OwnCount / 4 + 1024; }
+  RankGroup& Ranks;
+};
 
-  /// Step 2: one exact frame for every rank, from the global bounds and the shifts that are
-  /// exact on every rank.
-  fd3::Frame Frame()
+/// This rank's points once spread by space: the finite points in its part of space, then its own
+/// non-finite ones (nothing to triangulate, but they stay in the output as unused points).
+struct OwnPoints
+{
+  Coordinates Xyz; ///< 3 per point; the mesh takes them and gives them back
+  vtkSmartPointer<vtkPointData> Data;
+  std::size_t Count = 0;
+  std::size_t Finite = 0; ///< the first points, the finite ones
+};
+
+/// The input pieces' point ids in rank order, as the "GlobalIds" array of each point.
+vtkSmartPointer<vtkPointData> InputData(vtkDataSet* input, vtkIdType count, vtkIdType firstId)
+{
+  auto data = vtkSmartPointer<vtkPointData>::New();
+  if (input)
+  {
+    data->ShallowCopy(input->GetPointData());
+    data->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  }
+  vtkNew<vtkIdTypeArray> inputIds;
+  inputIds->SetName(kInputIds);
+  inputIds->SetNumberOfValues(count);
+  std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + count, firstId);
+  data->AddArray(inputIds);
+  return data;
+}
+
+/// One rank's figures, then all ranks' together (Reduce()): counts are summed, each vertex and
+/// tetrahedron counted by its owner; times and the status are the slowest or best rank's.
+struct RankFigures
+{
+  double NonFinite = 0, Inserted = 0, Skipped = 0, Merged = 0, Tetrahedra = 0, WalkSteps = 0,
+         CavityTetrahedra = 0, IntegerExact = 0, MeshInsertions = 0, Ghosts = 0;
+  double MaxWalkSteps = 0, SecondsSort = 0, SecondsLocate = 0, SecondsCavity = 0, SecondsFill = 0,
+         SecondsOutput = 0, SecondsTotal = 0, StatusRank = 0;
+
+  /// The order of the statuses across ranks: the whole is Ok when any rank has tetrahedra, else
+  /// the most telling. A failed check or an abort never gets here.
+  static constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
+    fd3::Status::Degenerate, fd3::Status::Ok };
+
+  void Reduce(vtkMultiProcessController* controller)
+  {
+    using F = RankFigures;
+    ReduceFields(controller, vtkCommunicator::SUM_OP,
+      { &F::NonFinite, &F::Inserted, &F::Skipped, &F::Merged, &F::Tetrahedra, &F::WalkSteps,
+        &F::CavityTetrahedra, &F::IntegerExact, &F::MeshInsertions, &F::Ghosts });
+    ReduceFields(controller, vtkCommunicator::MAX_OP,
+      { &F::MaxWalkSteps, &F::SecondsSort, &F::SecondsLocate, &F::SecondsCavity, &F::SecondsFill,
+        &F::SecondsOutput, &F::SecondsTotal, &F::StatusRank });
+  }
+
+  fd3::Statistics Statistics(vtkIdType inputPoints) const
+  {
+    fd3::Statistics s;
+    s.inputPoints = static_cast<std::size_t>(inputPoints);
+    s.nonFinitePoints = static_cast<std::size_t>(this->NonFinite);
+    s.insertedPoints = static_cast<std::size_t>(this->Inserted);
+    s.closePointsSkipped = static_cast<std::size_t>(this->Skipped);
+    s.duplicatesMerged = static_cast<std::size_t>(this->Merged);
+    s.tetrahedra = static_cast<std::size_t>(this->Tetrahedra);
+    // Walks and cavities of ghost insertions count too: that is the work done.
+    const double perPoint = this->Inserted / std::max(this->MeshInsertions, 1.0);
+    s.walkSteps = static_cast<std::size_t>(this->WalkSteps * perPoint);
+    s.cavityTetrahedra = static_cast<std::size_t>(this->CavityTetrahedra * perPoint);
+    s.integerExact = static_cast<std::size_t>(this->IntegerExact);
+    s.maxWalkSteps = static_cast<std::size_t>(this->MaxWalkSteps);
+    s.secondsSort = this->SecondsSort;
+    s.secondsLocate = this->SecondsLocate;
+    s.secondsCavity = this->SecondsCavity;
+    s.secondsFill = this->SecondsFill;
+    s.secondsOutput = this->SecondsOutput;
+    s.secondsTotal = this->SecondsTotal;
+    return s;
+  }
+
+private:
+  void ReduceFields(vtkMultiProcessController* controller, int operation,
+    std::initializer_list<double RankFigures::*> fields)
+  {
+    std::vector<double> local, global(fields.size());
+    for (auto field : fields)
+    {
+      local.push_back(this->*field);
+    }
+    controller->AllReduce(local.data(), global.data(), local.size(), operation);
+    auto value = global.begin();
+    for (auto field : fields)
+    {
+      this->*field = *value++;
+    }
+  }
+};
+
+/// One execution across the ranks, step by step (see the class documentation). Each step returns
+/// whether every rank got through it (RankGroup); a step that returns false stopped them all.
+class DistributedRun
+{
+public:
+  explicit DistributedRun(vtkMultiProcessController* controller)
+    : Ranks(controller), Exchange(this->Ranks)
+  {}
+
+  /// Step 1: the finite points spread over the ranks by space (PointExchange::BalancedCuts()),
+  /// with their point data and input ids, this rank's non-finite ones after them. `points`: the
+  /// input's, in the output's precision.
+  bool Redistribute(vtkDataSet* input, vtkPoints* points)
+  {
+    const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
+    std::vector<vtkIdType> counts(this->Ranks.Size);
+    this->Ranks.Controller->AllGather(&count, counts.data(), 1);
+    const vtkIdType firstId =
+      std::accumulate(counts.begin(), counts.begin() + this->Ranks.Rank, vtkIdType(0));
+    this->InputPoints = std::accumulate(counts.begin(), counts.end(), vtkIdType(0));
+    int type = count > 0 ? points->GetDataType() : 0, widest = 0; // as the one-process output's
+    this->Ranks.Controller->AllReduce(&type, &widest, 1, vtkCommunicator::MAX_OP);
+    this->PointType = widest > 0 ? widest : VTK_DOUBLE;
+
+    vtkSmartPointer<vtkPointData> data;
+    std::vector<vtkIdType> finite, nonFinite;
+    if (!this->Ranks.Local([&] {
+          data = InputData(input, count, firstId);
+          ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
+            (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
+          });
+          return true;
+        }))
+    {
+      return false;
+    }
+    Received parts;
+    if (!this->SpreadFinite(points->GetData(), data, finite, parts))
+    {
+      return false;
+    }
+    return this->Ranks.Local([&] {
+      this->Gather(points->GetData(), data, nonFinite, parts);
+      return true;
+    });
+  }
+
+  /// Step 2: one exact frame for every rank, from the global bounds (computed here once, for the
+  /// diagonal too) and the shifts that are exact on every rank.
+  bool ChooseFrame()
   {
     fd3::Bounds box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
       VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (std::size_t i = 0; i < this->FiniteCount; ++i)
+    const Coordinates& xyz = this->Own.Xyz;
+    for (std::size_t i = 0; i < this->Own.Finite; ++i)
     {
       for (int a = 0; a < 3; ++a)
       {
-        box[2 * a] = std::min(box[2 * a], this->Xyz[3 * i + a]);
-        box[2 * a + 1] = std::max(box[2 * a + 1], this->Xyz[3 * i + a]);
+        box[2 * a] = std::min(box[2 * a], xyz[3 * i + a]);
+        box[2 * a + 1] = std::max(box[2 * a + 1], xyz[3 * i + a]);
       }
     }
-    this->Boxes.assign(this->Ranks, fd3::Bounds());
-    this->Controller->AllGather(box.data(), this->Boxes[0].data(), 6);
+    if (!this->Ranks.Local([&] {
+          this->Boxes.assign(this->Ranks.Size, fd3::Bounds());
+          return true;
+        }))
+    {
+      return false;
+    }
+    this->Ranks.Controller->AllGather(box.data(), this->Boxes[0].data(), 6);
     double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
     for (const fd3::Bounds& b : this->Boxes)
     {
@@ -475,121 +629,121 @@ public:
         hi[a] = std::max(hi[a], b[2 * a + 1]);
       }
     }
+    const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
+    this->Diagonal = fd3::diagonal(bounds);
     bool exact[3] = { true, true, true };
-    fd3::checkShifts(this->Xyz.data(), this->OwnCount, lo, hi, exact);
+    fd3::checkShifts(xyz.data(), this->Own.Count, lo, hi, exact);
     int local[3] = { exact[0], exact[1], exact[2] }, global[3];
-    this->Controller->AllReduce(local, global, 3, vtkCommunicator::MIN_OP);
+    this->Ranks.Controller->AllReduce(local, global, 3, vtkCommunicator::MIN_OP);
     for (int a = 0; a < 3; ++a)
     {
       exact[a] = global[a] != 0;
     }
-    const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
-    this->Diagonal = fd3::diagonal(bounds);
     const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
-    int fits = fd3::fitsFrame(frame, this->Xyz.data(), this->OwnCount), allFit = 0;
-    this->Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
-    return allFit ? frame : fd3::identityFrame(lo, hi);
+    int fits = fd3::fitsFrame(frame, xyz.data(), this->Own.Count), allFit = 0;
+    this->Ranks.Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
+    this->Frame = allFit ? frame : fd3::identityFrame(lo, hi);
+    return true;
   }
 
-  /// Step 3: this rank's points tetrahedralized, and the halo of every other rank sent to it.
-  void Exchange(fd3::IncrementalDelaunay& mesh)
+  /// Step 3: this rank's points tetrahedralized. The mesh takes them, and frees them where its
+  /// records give them back, so that they are not in the rank's peak.
+  bool Triangulate(const fd3::Options& options)
   {
-    std::vector<fd3::Bounds> others = this->Boxes;
-    others[this->Rank] = { 1, -1, 1, -1, 1, -1 };
-    std::vector<std::vector<std::uint32_t>> halo = mesh.haloVertices(others);
-    if (mesh.status() != fd3::Status::Ok) // no tetrahedron to choose from: every point might matter
+    const auto start = std::chrono::steady_clock::now();
+    const bool done = this->Ranks.Local([&] {
+      this->Mesh = std::make_unique<fd3::IncrementalDelaunay>(
+        std::move(this->Own.Xyz), options, this->Frame, GhostRoom(this->Own.Count));
+      return this->Mesh->status() != fd3::Status::Aborted;
+    });
+    this->MeshSeconds = SecondsSince(start);
+    return done;
+  }
+
+  /// Step 4: the halo of every other rank sent to it (fd3::haloVertices).
+  bool ExchangeHalo()
+  {
+    std::vector<std::vector<std::uint32_t>> halo;
+    std::vector<std::vector<double>> xyz;
+    const bool meshed = this->Mesh->status() == fd3::Status::Ok;
+    if (!this->Ranks.Local([&] {
+          halo = meshed ? this->Mesh->haloVertices(this->OtherBoxes()) : this->AllToAll();
+          xyz = meshed ? this->Mesh->points(halo) : std::vector<std::vector<double>>();
+          return true;
+        }))
     {
-      for (int r = 0; r < this->Ranks; ++r)
-      {
-        if (r != this->Rank)
-        {
-          halo[r].resize(this->FiniteCount);
-          std::iota(halo[r].begin(), halo[r].end(), 0u);
-        }
-      }
+      return false;
     }
-    // Their coordinates from Xyz, made as each part is sent (with no tetrahedron, a rank sends all
-    // its points to every other), or from the mesh's records once Xyz is dropped, all at once.
-    const std::vector<std::vector<double>> fromMesh =
-      this->PointsInMesh ? mesh.points(halo) : std::vector<std::vector<double>>();
-    this->Send(
+    // With no tetrahedron, a rank sends all its points to every other: each part is made as it
+    // is sent.
+    return this->Exchange.Send(
       halo,
       [&](int r) {
-        return this->HaloPart(halo[r], this->PointsInMesh ? fromMesh[r] : this->PointsOf(halo[r]));
+        return this->HaloPart(halo[r], meshed ? xyz[r] : this->Mesh->points({ halo[r] })[0]);
       },
-      this->Ghosts, this->GhostSenders);
+      this->Ghosts);
   }
 
-  /// The coordinates of own points `ids` in Xyz, 3 each.
-  std::vector<double> PointsOf(const std::vector<std::uint32_t>& ids) const
+  /// Step 5: the received points added to this rank's mesh, the output taken from it with every
+  /// point's coordinates, and the owner of every point.
+  bool AddGhosts()
   {
-    std::vector<double> xyz;
-    xyz.reserve(3 * ids.size());
-    for (const std::uint32_t id : ids)
-    {
-      xyz.insert(xyz.end(), &this->Xyz[3 * std::size_t(id)], &this->Xyz[3 * std::size_t(id) + 3]);
-    }
-    return xyz;
+    const auto start = std::chrono::steady_clock::now();
+    return this->Ranks.Local([&] {
+      Coordinates ghostXyz;
+      for (const auto& part : this->Ghosts.Parts)
+      {
+        AppendPoints(part->GetPoints()->GetData(), ghostXyz);
+      }
+      this->Mesh->add(ghostXyz.data(), ghostXyz.size() / 3);
+      Coordinates().swap(ghostXyz); // the mesh holds them
+      this->Result = this->Mesh->release(this->Xyz);
+      this->Mesh.reset();
+      if (this->Result.status == fd3::Status::CheckFailed)
+      {
+        throw std::runtime_error(std::string("the kernel's mesh check failed (a bug; please report "
+                                             "it with the input): ") +
+          this->Result.checkReport);
+      }
+      this->Result.stats.secondsTotal = this->MeshSeconds + SecondsSince(start);
+      // Made after the release, which gives back most of the mesh.
+      this->Owner.assign(this->Own.Count, this->Ranks.Rank);
+      for (std::size_t k = 0; k < this->Ghosts.Parts.size(); ++k)
+      {
+        this->Owner.insert(this->Owner.end(),
+          static_cast<std::size_t>(this->Ghosts.Parts[k]->GetNumberOfPoints()),
+          this->Ghosts.Senders[k]);
+      }
+      return this->Result.status != fd3::Status::Aborted;
+    });
   }
 
-  /// The own points `halo`, at `xyz` (3 each), with their point data.
-  vtkSmartPointer<vtkPolyData> HaloPart(
-    const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz)
+  /// Step 6: the figures and status of all ranks together.
+  fd3::Statistics GlobalFigures(fd3::Status& status)
   {
-    vtkNew<vtkPoints> points;
-    points->SetDataType(this->PointType);
-    points->SetNumberOfPoints(static_cast<vtkIdType>(halo.size()));
-    for (std::size_t k = 0; k < halo.size(); ++k)
-    {
-      points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
-    }
-    return WithPointData(points, this->OwnData, IdList(halo));
-  }
-
-  /// Frees Xyz once the mesh has read the points into its records, which give them back exactly
-  /// (fd3::recoverable()), so that it is not in the peak, the mesh's. The non-finite points, which
-  /// the mesh does not hold, are kept aside.
-  void DropPoints()
-  {
-    this->NonFinite.assign(
-      this->Xyz.begin() + 3 * this->FiniteCount, this->Xyz.begin() + 3 * this->OwnCount);
-    Coordinates().swap(this->Xyz);
-    this->PointsInMesh = true;
-  }
-
-  /// Step 4: the received points added to this rank's mesh; the owner of every vertex.
-  fd3::Triangulation AddGhosts(fd3::IncrementalDelaunay& mesh)
-  {
-    Coordinates ghostXyz;
-    for (const auto& ghosts : this->Ghosts)
-    {
-      AppendPoints(ghosts->GetPoints()->GetData(), ghostXyz);
-    }
-    mesh.add(ghostXyz.data(), ghostXyz.size() / 3);
-    fd3::Triangulation result;
-    if (this->PointsInMesh)
-    {
-      this->Xyz.resize(3 * this->OwnCount + ghostXyz.size()); // not filled: no page is touched yet
-      result = mesh.release(this->Xyz.data());
-      std::copy(
-        this->NonFinite.begin(), this->NonFinite.end(), this->Xyz.begin() + 3 * this->FiniteCount);
-      // The release wrote the ghosts too, but they are other ranks' points, which this rank did
-      // not check with fd3::recoverable().
-      std::copy(ghostXyz.begin(), ghostXyz.end(), this->Xyz.begin() + 3 * this->OwnCount);
-    }
-    else
-    {
-      result = mesh.release();
-      this->Xyz.insert(this->Xyz.end(), ghostXyz.begin(), ghostXyz.end());
-    }
-    // Made after the release, which gives back most of the mesh.
-    this->Owner.assign(this->OwnCount, this->Rank);
-    for (std::size_t k = 0; k < this->Ghosts.size(); ++k)
-    {
-      this->Owner.insert(this->Owner.end(),
-        static_cast<std::size_t>(this->Ghosts[k]->GetNumberOfPoints()), this->GhostSenders[k]);
-    }
-    return result;
+    const fd3::Statistics& s = this->Result.stats;
+    RankFigures figures;
+    figures.NonFinite = double(s.nonFinitePoints);
+    figures.MeshInsertions = double(s.insertedPoints);
+    figures.WalkSteps = double(s.walkSteps);
+    figures.CavityTetrahedra = double(s.cavityTetrahedra);
+    figures.IntegerExact = double(s.integerExact);
+    figures.Ghosts = double(this->Xyz.size() / 3 - this->Own.Count);
+    figures.MaxWalkSteps = double(s.maxWalkSteps);
+    figures.SecondsSort = s.secondsSort;
+    figures.SecondsLocate = s.secondsLocate;
+    figures.SecondsCavity = s.secondsCavity;
+    figures.SecondsFill = s.secondsFill;
+    figures.SecondsOutput = s.secondsOutput;
+    figures.SecondsTotal = s.secondsTotal;
+    figures.StatusRank = double(std::find(std::begin(RankFigures::kByRank),
+                                  std::end(RankFigures::kByRank), this->Result.status) -
+      std::begin(RankFigures::kByRank));
+    this->CountOwned(figures);
+    figures.Reduce(this->Ranks.Controller);
+    status = RankFigures::kByRank[static_cast<int>(figures.StatusRank)];
+    this->GhostPoints = static_cast<vtkIdType>(figures.Ghosts);
+    return figures.Statistics(this->InputPoints);
   }
 
   /// Whether this rank owns the simplex: it owns its lexicographically smallest vertex, which
@@ -603,34 +757,35 @@ public:
     const int owner = this->Owner[ids[0]];
     if (std::all_of(ids + 1, ids + size, [&](std::uint32_t v) { return this->Owner[v] == owner; }))
     {
-      return owner == this->Rank;
+      return owner == this->Ranks.Rank;
     }
     const std::uint32_t* smallest =
       std::min_element(ids, ids + size, [this](std::uint32_t a, std::uint32_t b) {
         return std::lexicographical_compare(
           &this->Xyz[3 * a], &this->Xyz[3 * a + 3], &this->Xyz[3 * b], &this->Xyz[3 * b + 3]);
       });
-    return this->Owner[*smallest] == this->Rank;
+    return this->Owner[*smallest] == this->Ranks.Rank;
   }
 
-  /// Step 5: the output's points: this rank's own, then the received ones its cells use (as
-  /// duplicate points, in the order received), with the cells' ids renumbered to match.
+  /// Step 7, after the cells: the output's points, this rank's own, then the received ones its
+  /// cells use (as duplicate points, in the order received), with the cells' ids renumbered to
+  /// match, and their point data.
   void SetOutputPoints(vtkUnstructuredGrid* output)
   {
-    std::vector<vtkIdType> ghostId(this->Xyz.size() / 3 - this->OwnCount, -1);
-    RenumberCellIdsFrom(output->GetCells(), this->OwnCount, ghostId, false);
-    vtkIdType next = static_cast<vtkIdType>(this->OwnCount);
+    std::vector<vtkIdType> ghostId(this->Xyz.size() / 3 - this->Own.Count, -1);
+    OnCellIds(output->GetCells(), MarkIdsFrom{}, this->Own.Count, ghostId);
+    vtkIdType next = static_cast<vtkIdType>(this->Own.Count);
     for (vtkIdType& id : ghostId)
     {
       id = id == 0 ? next++ : -1;
     }
-    RenumberCellIdsFrom(output->GetCells(), this->OwnCount, ghostId, true);
+    OnCellIds(output->GetCells(), RenumberIdsFrom{}, this->Own.Count, ghostId);
 
     vtkNew<vtkPoints> points;
     points->SetDataType(this->PointType);
     points->SetNumberOfPoints(next);
     vtkDataArray* coordinates = points->GetData();
-    for (std::size_t i = 0; i < this->OwnCount; ++i)
+    for (std::size_t i = 0; i < this->Own.Count; ++i)
     {
       coordinates->SetTuple(static_cast<vtkIdType>(i), &this->Xyz[3 * i]);
     }
@@ -638,15 +793,167 @@ public:
     {
       if (ghostId[g] >= 0)
       {
-        coordinates->SetTuple(ghostId[g], &this->Xyz[3 * (this->OwnCount + g)]);
+        coordinates->SetTuple(ghostId[g], &this->Xyz[3 * (this->Own.Count + g)]);
       }
     }
     output->SetPoints(points);
+    this->SetOutputPointData(output, ghostId);
+  }
 
+  RankGroup Ranks;
+  vtkIdType InputPoints = 0; ///< all ranks'
+  vtkIdType GhostPoints = 0; ///< all ranks'
+  double Diagonal = 0;       ///< of the global bounds
+  fd3::Triangulation Result; ///< this rank's: its points and the received ones
+  Coordinates Xyz;           ///< from step 5: this rank's points, then the received ones
+
+private:
+  /// The ghost points that room is made for up front, in Xyz and in the mesh's vertex records: a
+  /// rank receives a few percent of its own count at 1M points a rank, more on small ones.
+  /// Growing either later would copy it, and under MPI the copy's source stays resident (Open MPI
+  /// keeps the freed pages).
+  static std::size_t GhostRoom(std::size_t own) { return own / 4 + 1024; }
+
+  static double SecondsSince(std::chrono::steady_clock::time_point start)
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  /// The finite points `finite` sent to the ranks whose part of space holds them; `parts`: those
+  /// this rank gets, its own among them, in rank order.
+  bool SpreadFinite(
+    vtkDataArray* coordinates, vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts)
+  {
+    int mine = !finite.empty(), any = 0;
+    this->Ranks.Controller->AllReduce(&mine, &any, 1, vtkCommunicator::MAX_OP);
+    SpaceCuts cuts;
+    if (!any || !this->Exchange.BalancedCuts(coordinates, finite, cuts))
+    {
+      return !any;
+    }
+    std::vector<std::vector<vtkIdType>> lists(this->Ranks.Size);
+    if (!this->Ranks.Local([&] {
+          ForEachPoint(coordinates, [&](vtkIdType i, const double x[3]) {
+            if (fd3::isFinite(x))
+            {
+              lists[cuts.RankOf(x)].push_back(i);
+            }
+          });
+          std::vector<vtkIdType>().swap(finite);
+          return true;
+        }))
+    {
+      return false;
+    }
+    const int type = this->PointType;
+    if (!this->Exchange.Send(
+          lists, [&](int r) { return Subset(coordinates, data, lists[r], type); }, parts))
+    {
+      return false;
+    }
+    return this->Ranks.Local([&] {
+      const int rank = this->Ranks.Rank;
+      if (!lists[rank].empty()) // in rank order
+      {
+        const auto at = std::upper_bound(parts.Senders.begin(), parts.Senders.end(), rank) -
+          parts.Senders.begin();
+        parts.Parts.insert(parts.Parts.begin() + at, Subset(coordinates, data, lists[rank], type));
+        parts.Senders.insert(parts.Senders.begin() + at, rank);
+      }
+      return true;
+    });
+  }
+
+  /// OwnPoints from the parts received and this rank's non-finite points, with room for the
+  /// ghosts in Xyz.
+  void Gather(vtkDataArray* coordinates, vtkPointData* data,
+    const std::vector<vtkIdType>& nonFinite, Received& parts)
+  {
+    this->Own.Finite = 0;
+    for (const auto& part : parts.Parts)
+    {
+      this->Own.Finite += static_cast<std::size_t>(part->GetNumberOfPoints());
+    }
+    if (!nonFinite.empty() || parts.Parts.empty())
+    {
+      parts.Parts.push_back(Subset(coordinates, data, nonFinite, this->PointType));
+    }
+    this->Own.Count = this->Own.Finite + nonFinite.size();
+    this->Own.Xyz.reserve(3 * (this->Own.Count + GhostRoom(this->Own.Count)));
+    std::vector<vtkPointData*> partData;
+    for (const auto& part : parts.Parts)
+    {
+      AppendPoints(part->GetPoints()->GetData(), this->Own.Xyz);
+      partData.push_back(part->GetPointData());
+    }
+    this->Own.Data = GatherPointData(partData);
+  }
+
+  std::vector<fd3::Bounds> OtherBoxes() const
+  {
+    std::vector<fd3::Bounds> others = this->Boxes;
+    others[this->Ranks.Rank] = { 1, -1, 1, -1, 1, -1 };
+    return others;
+  }
+
+  /// Every finite point for every other rank: without a tetrahedron to choose from, any point
+  /// might matter.
+  std::vector<std::vector<std::uint32_t>> AllToAll() const
+  {
+    std::vector<std::vector<std::uint32_t>> halo(this->Ranks.Size);
+    for (int r = 0; r < this->Ranks.Size; ++r)
+    {
+      if (r != this->Ranks.Rank)
+      {
+        halo[r].resize(this->Own.Finite);
+        std::iota(halo[r].begin(), halo[r].end(), 0u);
+      }
+    }
+    return halo;
+  }
+
+  /// The own points `halo`, at `xyz` (3 each), with their point data.
+  vtkSmartPointer<vtkPolyData> HaloPart(
+    const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz) const
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataType(this->PointType);
+    points->SetNumberOfPoints(static_cast<vtkIdType>(halo.size()));
+    for (std::size_t k = 0; k < halo.size(); ++k)
+    {
+      points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
+    }
+    return WithPointData(points, this->Own.Data, IdList(halo));
+  }
+
+  /// Counts what this rank owns: its vertices, the points merged into them or skipped, and the
+  /// tetrahedra.
+  void CountOwned(RankFigures& figures) const
+  {
+    for (std::size_t t = 0; t < this->Result.numberOfTetrahedra(); ++t)
+    {
+      figures.Tetrahedra += this->Owns(this->Result.tetrahedra.data() + 4 * t, 4);
+    }
+    for (std::size_t k = 0; k < this->Own.Count && this->Result.status == fd3::Status::Ok; ++k)
+    {
+      const std::uint32_t v = this->Result.representative[k];
+      figures.Inserted += v == k;
+      if (v != k && v != fd3::kNoPoint)
+      {
+        const bool same = std::equal(&this->Xyz[3 * k], &this->Xyz[3 * k + 3], &this->Xyz[3 * v]);
+        (same ? figures.Merged : figures.Skipped) += 1;
+      }
+    }
+  }
+
+  /// The point data of the output's points: this rank's own, then that of the received points
+  /// in use (ghostId >= 0), with GlobalIds and the ghost marks.
+  void SetOutputPointData(vtkUnstructuredGrid* output, const std::vector<vtkIdType>& ghostId)
+  {
     std::vector<vtkSmartPointer<vtkPolyData>> used;
-    std::vector<vtkPointData*> parts{ this->OwnData };
+    std::vector<vtkPointData*> parts{ this->Own.Data };
     std::size_t g = 0;
-    for (const auto& ghosts : this->Ghosts)
+    for (const auto& ghosts : this->Ghosts.Parts)
     {
       std::vector<vtkIdType> ids;
       for (vtkIdType i = 0; i < ghosts->GetNumberOfPoints(); ++i, ++g)
@@ -662,163 +969,25 @@ public:
     output->GetPointData()->ShallowCopy(GatherPointData(parts));
     vtkPointData* data = output->GetPointData();
     data->SetGlobalIds(data->GetArray(kInputIds));
+    const vtkIdType count = output->GetNumberOfPoints();
     vtkNew<vtkUnsignedCharArray> ghostType;
     ghostType->SetName(vtkDataSetAttributes::GhostArrayName());
-    ghostType->SetNumberOfValues(next);
-    std::fill_n(ghostType->GetPointer(0), this->OwnCount, 0);
-    std::fill(ghostType->GetPointer(0) + this->OwnCount, ghostType->GetPointer(0) + next,
+    ghostType->SetNumberOfValues(count);
+    std::fill_n(ghostType->GetPointer(0), this->Own.Count, 0);
+    std::fill(ghostType->GetPointer(0) + this->Own.Count, ghostType->GetPointer(0) + count,
       static_cast<unsigned char>(vtkDataSetAttributes::DUPLICATEPOINT));
     data->AddArray(ghostType);
   }
 
-  /// The figures of all ranks: counts summed (each vertex and tetrahedron counted by its owner),
-  /// times the slowest rank's.
-  fd3::Statistics GlobalFigures(const fd3::Triangulation& result)
-  {
-    const fd3::Statistics& s = result.stats;
-    std::size_t ownedTetrahedra = 0;
-    for (std::size_t t = 0; t < result.numberOfTetrahedra(); ++t)
-    {
-      ownedTetrahedra += this->Owns(result.tetrahedra.data() + 4 * t, 4);
-    }
-    std::size_t inserted = 0, skipped = 0, merged = 0;
-    for (std::size_t k = 0; k < this->OwnCount && result.status == fd3::Status::Ok; ++k)
-    {
-      const std::uint32_t v = result.representative[k];
-      inserted += v == k;
-      if (v != k && v != fd3::kNoPoint)
-      {
-        (this->SamePosition(k, v) ? merged : skipped) += 1;
-      }
-    }
-    std::array<double, 10> sums = { double(s.nonFinitePoints), double(inserted), double(skipped),
-      double(ownedTetrahedra), double(s.walkSteps), double(s.cavityTetrahedra),
-      double(s.integerExact), double(s.insertedPoints),
-      double(this->Xyz.size() / 3 - this->OwnCount), double(merged) },
-                           total;
-    std::array<double, 7> maxima = { double(s.maxWalkSteps), s.secondsSort, s.secondsLocate,
-      s.secondsCavity, s.secondsFill, s.secondsOutput, s.secondsTotal },
-                          slowest;
-    this->Controller->AllReduce(sums.data(), total.data(), sums.size(), vtkCommunicator::SUM_OP);
-    this->Controller->AllReduce(
-      maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
-    fd3::Statistics global;
-    global.inputPoints = static_cast<std::size_t>(this->InputPoints);
-    global.nonFinitePoints = static_cast<std::size_t>(total[0]);
-    global.insertedPoints = static_cast<std::size_t>(total[1]);
-    global.closePointsSkipped = static_cast<std::size_t>(total[2]);
-    global.duplicatesMerged = static_cast<std::size_t>(total[9]);
-    global.tetrahedra = static_cast<std::size_t>(total[3]);
-    // Walks and cavities of ghost insertions count too: that is the work done.
-    global.walkSteps = static_cast<std::size_t>(total[4] * total[1] / std::max(total[7], 1.0));
-    global.cavityTetrahedra =
-      static_cast<std::size_t>(total[5] * total[1] / std::max(total[7], 1.0));
-    global.integerExact = static_cast<std::size_t>(total[6]);
-    this->GhostPoints = static_cast<vtkIdType>(total[8]);
-    global.maxWalkSteps = static_cast<std::size_t>(slowest[0]);
-    global.secondsSort = slowest[1];
-    global.secondsLocate = slowest[2];
-    global.secondsCavity = slowest[3];
-    global.secondsFill = slowest[4];
-    global.secondsOutput = slowest[5];
-    global.secondsTotal = slowest[6];
-    return global;
-  }
-
-  /// Steps 3 and 4 on every rank: this rank's mesh, the exchange, the received points added.
-  /// False on every rank when any rank failed or was aborted (so that none waits for it in a
-  /// collective call); `failure` then says why on a rank that failed.
-  bool Triangulate(const fd3::Options& options, const fd3::Frame& frame, fd3::Triangulation& result,
-    std::string& failure)
-  {
-    using Clock = std::chrono::steady_clock;
-    std::unique_ptr<fd3::IncrementalDelaunay> mesh;
-    auto start = Clock::now();
-    double seconds = 0; // meshing only: the exchange is left out
-    const bool recoverable =
-      options.tolerance == 0 && fd3::recoverable(frame, this->Xyz.data(), this->FiniteCount);
-    try
-    {
-      mesh = std::make_unique<fd3::IncrementalDelaunay>(this->Xyz.data(), this->OwnCount, options,
-        frame, this->GhostRoom(),
-        recoverable ? std::function<void()>([this] { this->DropPoints(); }) : nullptr);
-    }
-    catch (const std::exception& error) // out of memory, too many points
-    {
-      failure = error.what();
-    }
-    if (!this->AllSucceeded(mesh && mesh->status() != fd3::Status::Aborted))
-    {
-      return false;
-    }
-    seconds += std::chrono::duration<double>(Clock::now() - start).count();
-    this->Exchange(*mesh);
-    start = Clock::now();
-    try
-    {
-      result = this->AddGhosts(*mesh);
-      result.stats.secondsTotal =
-        seconds + std::chrono::duration<double>(Clock::now() - start).count();
-    }
-    catch (const std::exception& error) // aborted, or out of memory
-    {
-      if (mesh->status() != fd3::Status::Aborted)
-      {
-        failure = error.what();
-      }
-      result.status = fd3::Status::Aborted;
-    }
-    return this->AllSucceeded(result.status != fd3::Status::Aborted);
-  }
-
-  /// Whether every rank got through the last step (a rank that failed or was aborted makes all
-  /// of them stop, so that none waits in a collective call for it).
-  bool AllSucceeded(bool succeeded)
-  {
-    int local = succeeded, global = 0;
-    this->Controller->AllReduce(&local, &global, 1, vtkCommunicator::MIN_OP);
-    return global != 0;
-  }
-
-  /// The status of the whole: Ok when any rank has tetrahedra, else the most telling one.
-  fd3::Status GlobalStatus(fd3::Status local)
-  {
-    auto rankOf = [](fd3::Status s) {
-      return s == fd3::Status::Ok        ? 3
-        : s == fd3::Status::Degenerate   ? 2
-        : s == fd3::Status::TooFewPoints ? 1
-                                         : 0;
-    };
-    int mine = rankOf(local), best = 0;
-    this->Controller->AllReduce(&mine, &best, 1, vtkCommunicator::MAX_OP);
-    const fd3::Status byRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
-      fd3::Status::Degenerate, fd3::Status::Ok };
-    return byRank[best];
-  }
-
-  bool SamePosition(std::size_t a, std::size_t b) const
-  {
-    return std::equal(&this->Xyz[3 * a], &this->Xyz[3 * a + 3], &this->Xyz[3 * b]);
-  }
-
-  vtkMultiProcessController* Controller;
-  const int Rank;
-  const int Ranks;
-  vtkIdType InputPoints = 0;
-  vtkIdType GhostPoints = 0;
-  double Diagonal = 0;
-  vtkSmartPointer<vtkPointData>
-    OwnData; ///< of this rank's points: finite ones by space, then its NaN/Inf
-  std::size_t OwnCount = 0;
-  std::size_t FiniteCount = 0;    ///< the first own points, the finite ones
-  int PointType = VTK_DOUBLE;     ///< of the output's points
-  Coordinates Xyz;                ///< own points, then the received ones (not while PointsInMesh)
-  bool PointsInMesh = false;      ///< Xyz dropped while the mesh holds the points
-  std::vector<double> NonFinite;  ///< own non-finite points, while PointsInMesh
+  PointExchange Exchange;
+  int PointType = VTK_DOUBLE; ///< of the output's points
+  OwnPoints Own;
   std::vector<fd3::Bounds> Boxes; ///< every rank's bounds
-  std::vector<vtkSmartPointer<vtkPointSet>> Ghosts; ///< received, one set per sender
-  std::vector<int> GhostSenders;
-  std::vector<int> Owner; ///< per point: the rank whose own point it is
+  fd3::Frame Frame;
+  std::unique_ptr<fd3::IncrementalDelaunay> Mesh;
+  double MeshSeconds = 0;
+  Received Ghosts;
+  std::vector<int> Owner; ///< per point of Xyz: the rank whose own point it is
 };
 } // namespace
 
@@ -850,60 +1019,88 @@ int vtkPFastDelaunay3D::RequestData(
     vtkErrorMacro("BoundingTriangulation is not available across MPI ranks; the output is empty");
     return 1;
   }
+  vtkSmartPointer<vtkPoints> inputPoints = InputPoints(input, this->OutputPointsPrecision);
+  vtkPointData* inputData = input ? input->GetPointData() : nullptr;
+  const bool root = this->Controller->GetLocalProcessId() == 0;
 
   DistributedRun run(this->Controller);
-  if (!run.Distribute(input, InputPoints(input, this->OutputPointsPrecision)))
+  const bool redistributed = run.Redistribute(input, inputPoints);
+  if (redistributed && run.InputPoints == 0)
   {
-    if (this->Controller->GetLocalProcessId() == 0)
+    if (root)
     {
       vtkWarningMacro("Cannot triangulate; no input points");
     }
     SetPointsWithoutCells(output, nullptr, nullptr);
     return 1;
   }
-  const fd3::Frame frame = run.Frame();
-  fd3::Triangulation result;
-  std::string failure;
-  const bool done = run.Triangulate(this->KernelOptions(run.Diagonal), frame, result, failure);
-  if (!failure.empty())
+  if (!redistributed || !run.ChooseFrame() || !run.Triangulate(this->KernelOptions(run.Diagonal)) ||
+    !run.ExchangeHalo() || !run.AddGhosts())
   {
-    vtkErrorMacro("Triangulation failed: " << failure << "; the output is empty");
-  }
-  if (!done)
-  {
-    // Every rank stops as the one that aborted or failed, and runs again on the next update as
-    // an aborted filter does; else that rank alone would, and wait for the others.
-    this->SetAbortOutput(true);
-    return 1;
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed, output, inputPoints, inputData);
   }
 
   const auto outputStart = std::chrono::steady_clock::now();
-  const fd3::Status status = run.GlobalStatus(result.status);
-  fd3::Statistics figures = run.GlobalFigures(result);
+  fd3::Status status = fd3::Status::Ok;
+  fd3::Statistics figures = run.GlobalFigures(status);
   this->NumberOfGhostPoints = run.GhostPoints;
-  if (status == fd3::Status::Ok && result.status == fd3::Status::Ok)
-  {
-    this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, result,
-      [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); });
-    run.SetOutputPoints(output);
-    std::vector<double> converted;
-    this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));
-  }
-  figures.secondsOutput +=
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
-  this->RecordFigures(figures);
-  if (this->Controller->GetLocalProcessId() == 0) // one report for all ranks
+  if (root) // one report for all ranks
   {
     this->ReportOnInput(status, figures, static_cast<vtkIdType>(figures.inputPoints));
   }
   if (status != fd3::Status::Ok)
   {
-    SetPointsWithoutCells(output, InputPoints(input, this->OutputPointsPrecision),
-      input ? input->GetPointData() : nullptr);
+    this->RecordFigures(figures);
+    SetPointsWithoutCells(output, inputPoints, inputData);
     return 1;
   }
+  try // no rank waits for this one from here on
+  {
+    if (run.Result.status == fd3::Status::Ok)
+    {
+      this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, run.Result,
+        [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); });
+    }
+    else // a rank whose points are all NaN or Inf: they stay in its output, unused
+    {
+      SetPointsWithoutCells(output, nullptr, nullptr);
+    }
+    run.SetOutputPoints(output);
+    std::vector<double> converted;
+    this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));
+  }
+  catch (const std::exception& error)
+  {
+    return this->Stop(error.what(), true, output, inputPoints, inputData);
+  }
+  figures.secondsOutput +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
+  this->RecordFigures(figures);
   this->AddFigures(output->GetFieldData());
   return 1;
+}
+
+int vtkPFastDelaunay3D::Stop(const std::string& failure, bool anyFailed,
+  vtkUnstructuredGrid* output, vtkPoints* inputPoints, vtkPointData* inputData)
+{
+  if (!anyFailed)
+  {
+    // Every rank stops as the one that was aborted, and runs again on the next update as an
+    // aborted filter does; else that rank alone would, and wait for the others.
+    this->SetAbortOutput(true);
+    return 1;
+  }
+  if (!failure.empty())
+  {
+    vtkErrorMacro(
+      "Triangulation failed: " << failure << "; the output holds the points and no cells");
+  }
+  else if (this->Controller->GetLocalProcessId() == 0)
+  {
+    vtkErrorMacro("Triangulation failed on another rank; the output holds the points and no cells");
+  }
+  SetPointsWithoutCells(output, inputPoints, inputData);
+  return 0;
 }
 
 void vtkPFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)

@@ -15,9 +15,9 @@
  *    decides every predicate, and every tie, alike;
  * 3. each rank tetrahedralizes its points and sends every other rank the vertices of its
  *    tetrahedra whose circumsphere meets that rank's bounds (fd3::haloVertices), sent the same
- *    way; one exchange is enough (Funke and Sanders, 2017); while its mesh holds its points, a
- *    rank frees its own copy of their coordinates and takes them back from the mesh's records
- *    after (fd3::recoverable), so that the copy is not in the rank's peak;
+ *    way; one exchange is enough (Funke and Sanders, 2017); the mesh takes the rank's points,
+ *    and frees them where its records give them back exactly, so that they are not in the
+ *    rank's peak;
  * 4. each rank adds the points it received and keeps the tetrahedra whose lexicographically
  *    smallest vertex it owns (every position is one rank's: the cuts send a point by its
  *    coordinates, so the copies of a position all go to one rank, which merges them).
@@ -42,6 +42,8 @@
 
 #include "FastDelaunay3DParallelFiltersModule.h" // For export macro
 #include "vtkFastDelaunay3D.h"
+
+#include <string> // for std::string
 
 class vtkMultiProcessController;
 
@@ -73,6 +75,11 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  /// Ends an execution that some rank could not finish: aborted, it runs again on the next update;
+  /// failed (`failure`: this rank's reason, when it was this rank), the output keeps the points.
+  int Stop(const std::string& failure, bool anyFailed, vtkUnstructuredGrid* output,
+    vtkPoints* inputPoints, vtkPointData* inputData);
+
   vtkPFastDelaunay3D(const vtkPFastDelaunay3D&) = delete;
   void operator=(const vtkPFastDelaunay3D&) = delete;
 

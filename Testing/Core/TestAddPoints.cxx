@@ -3,6 +3,7 @@
 // points at once, exactly valid; a mesh that cannot start yet keeps its points.
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
+#include "Frame.h"
 #include "PointSets.h"
 #include "fd3/Distributed.h"
 
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -133,10 +135,15 @@ TEST(AddPoints, SnapshotsLeaveTheMeshToGrowAndReleaseEndsIt)
   EXPECT_THROW(mesh.add(p.data(), 1), std::logic_error);
 }
 
-// The distributed filter frees its copy of the points once the kernel has read them, and takes
-// them back from the vertex records: far from the origin (the frame's shift), with exact
-// duplicates within a batch and across batches, and a point that is not finite.
-TEST(AddPoints, ThePointsComeBackBitForBit)
+bool sameBits(const double* a, const double* b, std::size_t count)
+{
+  return std::memcmp(a, b, count * sizeof(double)) == 0;
+}
+
+// A mesh that takes its points (the distributed filter's) frees them once its vertex records hold
+// them, and gives them back bit for bit: far from the origin (the frame's shift), with exact
+// duplicates within a batch and across batches, and points that are not finite.
+TEST(AddPoints, TakenPointsComeBackBitForBit)
 {
   fd3test::Points p = fd3test::uniformCube(4000, 17);
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -144,13 +151,14 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
   for (std::size_t k = 0; k < 40; ++k) // duplicates: of the first batch, in it and in the second
     std::copy_n(p.begin() + 3 * (37 * k), 3, p.begin() + 3 * (1000 + 51 * k));
   const fd3::Frame frame = fd3test::frameOf(p);
-  p[3 * 2500 + 1] = std::numeric_limits<double>::quiet_NaN();
+  p[3 * 1500 + 1] = std::numeric_limits<double>::quiet_NaN();
+  p[3 * 2500 + 2] = -std::numeric_limits<double>::infinity();
   ASSERT_NE(frame.shift[0], 0.0);
   ASSERT_TRUE(fd3::recoverable(frame, p.data(), p.size() / 3));
 
-  int reads = 0;
-  fd3::IncrementalDelaunay mesh(p.data(), 2000, fd3::Options(), frame, 0, [&reads] { ++reads; });
-  EXPECT_EQ(reads, 1);
+  fd3::IncrementalDelaunay mesh(
+    fd3::Coordinates(p.begin(), p.begin() + 3 * 2000), fd3::Options(), frame);
+  EXPECT_EQ(mesh.heldPoints(), 0u);
   const std::vector<std::vector<std::uint32_t>> vertices = {{0, 1, 999}, {}, {1999, 0}};
   const std::vector<std::vector<double>> some = mesh.points(vertices);
   ASSERT_EQ(some.size(), vertices.size());
@@ -158,29 +166,40 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
   {
     ASSERT_EQ(some[l].size(), 3 * vertices[l].size());
     for (std::size_t k = 0; k < vertices[l].size(); ++k)
-      EXPECT_TRUE(std::equal(&some[l][3 * k], &some[l][3 * k + 3], &p[3 * vertices[l][k]]));
+      EXPECT_TRUE(sameBits(&some[l][3 * k], &p[3 * vertices[l][k]], 3));
   }
   EXPECT_THROW(mesh.points({{1000}}), std::invalid_argument); // a duplicate of point 0
   mesh.add(p.data() + 3 * 2000, p.size() / 3 - 2000);
+  EXPECT_EQ(mesh.heldPoints(), p.size() / 3 - 2000); // another's points: held as they are
 
-  std::vector<double> back(p.size(), -1.0);
-  const fd3::Triangulation out = mesh.release(back.data());
+  fd3::Coordinates back;
+  const fd3::Triangulation out = mesh.release(back);
   ASSERT_EQ(out.status, fd3::Status::Ok);
   EXPECT_EQ(out.stats.duplicatesMerged, 40u);
+  ASSERT_EQ(back.size(), p.size());
   for (std::size_t i = 0; i < p.size() / 3; ++i)
-  {
-    if (i == 2500)
-      EXPECT_EQ(back[3 * i + 1], -1.0); // not finite: left as it was
-    else
-      EXPECT_TRUE(std::equal(back.begin() + 3 * i, back.begin() + 3 * i + 3, p.begin() + 3 * i))
-        << i;
-  }
+    EXPECT_TRUE(sameBits(&back[3 * i], &p[3 * i], 3)) << i;
+  EXPECT_THROW(mesh.release(back), std::logic_error);
+  EXPECT_THROW(mesh.snapshot(), std::logic_error);
+}
 
-  // Not recoverable: a -0 (its duplicate at +0 would come back as +0).
-  fd3test::Points q = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-  EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+// Where the records would not give them back, or there are no records yet, the mesh holds the
+// points.
+TEST(AddPoints, TakenPointsAreHeldWhereRecordsCannotGiveThemBack)
+{
+  // A -0: its duplicate at +0 would come back as +0.
+  fd3test::Points q = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 5));
   q[0] = -0.0;
-  EXPECT_FALSE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
+  EXPECT_FALSE(fd3::recoverable(fd3test::frameOf(q), q.data(), 5));
+  fd3::IncrementalDelaunay signedZero(
+    fd3::Coordinates(q.begin(), q.end()), fd3::Options(), fd3test::frameOf(q));
+  EXPECT_EQ(signedZero.heldPoints(), 5u);
+  fd3::Coordinates back;
+  EXPECT_EQ(signedZero.release(back).stats.duplicatesMerged, 1u);
+  ASSERT_EQ(back.size(), q.size());
+  EXPECT_TRUE(sameBits(back.data(), q.data(), q.size()));
+
   // A coordinate that the scaled frame takes below the smallest double: that frame does not hold
   // the points, and the identity frame they get instead gives them back.
   q = {-1e300, 0, 0, 1e300, 0, 0, 0, 1, 0, 1e-300, 0, 1};
@@ -192,10 +211,32 @@ TEST(AddPoints, ThePointsComeBackBitForBit)
   EXPECT_TRUE(fd3test::frameOf(q).identity);
   EXPECT_TRUE(fd3::recoverable(fd3test::frameOf(q), q.data(), 4));
 
-  // A mesh that cannot start yet has not read the points into its records.
-  fd3::IncrementalDelaunay few(p.data(), 3, fd3::Options(), frame, 0, [&reads] { ++reads; });
+  // With a tolerance, a skipped point has no record.
+  const fd3test::Points p = fd3test::uniformCube(300, 5);
+  fd3::Options options;
+  options.tolerance = 1e-12;
+  fd3::IncrementalDelaunay tolerant(
+    fd3::Coordinates(p.begin(), p.end()), options, fd3test::frameOf(p));
+  EXPECT_EQ(tolerant.heldPoints(), 300u);
+
+  // No records before the mesh starts: three points, then the rest.
+  fd3::IncrementalDelaunay few(
+    fd3::Coordinates(p.begin(), p.begin() + 9), fd3::Options(), fd3test::frameOf(p));
   EXPECT_EQ(few.status(), fd3::Status::TooFewPoints);
-  EXPECT_EQ(reads, 1);
+  EXPECT_EQ(few.heldPoints(), 3u);
+  EXPECT_EQ(few.points({{2, 0}})[0], std::vector<double>({p[6], p[7], p[8], p[0], p[1], p[2]}));
+  few.add(p.data() + 9, p.size() / 3 - 3);
+  EXPECT_EQ(few.status(), fd3::Status::Ok);
+  EXPECT_EQ(few.heldPoints(), 0u);
+  few.release(back);
+  EXPECT_TRUE(sameBits(back.data(), p.data(), p.size()));
+
+  // A mesh that reads its points leaves them to the caller.
+  fd3::IncrementalDelaunay reads(p.data(), 3, fd3::Options(), fd3test::frameOf(p));
+  EXPECT_EQ(reads.heldPoints(), 3u);
+  reads.add(p.data() + 9, p.size() / 3 - 3);
+  EXPECT_EQ(reads.heldPoints(), 0u);
+  EXPECT_THROW(reads.release(back), std::logic_error);
 }
 
 TEST(AddPoints, PointsOutsideTheFrameAreRefused)

@@ -9,7 +9,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -54,29 +53,34 @@ Frame identityFrame(const double lo[3], const double hi[3]);
 /// piece of the set computes the same with checkShifts(), frameFor() and fitsFrame() combined
 /// over the pieces.
 Frame frameOf(const double* xyz, std::size_t count);
-/// Whether the kernel's records of `count` points in `frame` give each finite one back bit for bit
-/// (IncrementalDelaunay::points(), release(xyz)): every coordinate maps into the frame and back
-/// exactly (no underflow), and none is -0, which an exact duplicate at +0 would come back as.
-bool recoverable(const Frame& frame, const double* xyz, std::size_t count);
+/// Coordinates x, y, z of points, in the kernel's allocator: resize() does not zero them, which
+/// would touch every page once more before they are filled.
+using Coordinates = std::vector<double, BulkAllocator<double>>;
 
 /// A Delaunay tetrahedralization that points can be added to once it is built: the distributed
-/// filter inserts the ghost points it receives from other MPI ranks, round after round, into one
-/// mesh. One thread uses a mesh at a time (its own threads work inside each call). Ids of added points follow the earlier ones. The rules are triangulate()'s, with the
-/// figures summed over every batch; Options::tolerance applies to the first batch only.
-/// Until there are 4 affinely independent points, status() says why (TooFewPoints, Degenerate,
-/// Empty) and the points are kept: the first batch that completes them starts the mesh.
+/// filter inserts the ghost points it receives from other MPI ranks into the mesh of its own.
+/// Ids of added points follow the earlier ones. The rules are triangulate()'s, with the figures
+/// summed over every batch; Options::tolerance applies to the first batch only. Until there are 4
+/// affinely independent points, status() says why (TooFewPoints, Degenerate, Empty) and the mesh
+/// keeps the points: the first batch that completes them starts it.
+/// A mesh is used by one thread at a time and is not shared between threads; its own threads work
+/// inside each call, and the progress callback runs on the calling thread.
 class IncrementalDelaunay
 {
 public:
   /// Tetrahedralizes the first `count` points in `frame`, which must hold every point added later
-  /// too (frameFor() over all of them). Throws as triangulate() does. `room`: about how many points
-  /// will be added; the kernel's vertex records are reserved for them (address space, which costs
-  /// no memory until used), so that add() does not copy the records of the first ones.
-  /// `pointsRead`: called once the points are in the vertex records, before they are inserted (not
-  /// when the mesh cannot start yet): a caller whose points are recoverable() can free its copy
-  /// there, and have them back from points() and release(xyz), so that they are not in the peak.
+  /// too (frameFor() over all of them); the caller keeps its points. Throws as triangulate() does.
+  /// `room`: about how many points will be added; the kernel's vertex records are reserved for
+  /// them (address space, which costs no memory until used), so that add() does not copy the
+  /// records of the first ones.
   IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options,
-    const Frame& frame, std::size_t room = 0, const std::function<void()>& pointsRead = nullptr);
+    const Frame& frame, std::size_t room = 0);
+  /// The same on points that the mesh takes (xyz.size() / 3 of them), and those of every add():
+  /// it holds them for points() and release(Coordinates&), except where its vertex records give
+  /// them back bit for bit, which it then frees as soon as the records are made, so that they
+  /// are not in the peak.
+  IncrementalDelaunay(
+    Coordinates xyz, const Options& options, const Frame& frame, std::size_t room = 0);
   ~IncrementalDelaunay();
   IncrementalDelaunay(const IncrementalDelaunay&) = delete;
   IncrementalDelaunay& operator=(const IncrementalDelaunay&) = delete;
@@ -92,16 +96,17 @@ public:
 
   /// What triangulate() does with it, without a copy: the output, which ends the mesh.
   Triangulation release();
-  /// release(), which also writes the input coordinates of every vertex and of every exact
-  /// duplicate to xyz[3 * id], as the records give them back (exactly for recoverable() points),
-  /// once the tetrahedra are compacted: the records of half their size are given back by then.
-  /// Other points (not finite, skipped for the tolerance) are left as they are.
-  Triangulation release(double* xyz);
-  /// For each list of vertices (point ids, as haloVertices() gives), their input coordinates, 3
-  /// each, as the records give them back. Throws std::invalid_argument for an id that is not a
-  /// vertex.
+  /// release() of a mesh that took its points, which gives back the coordinates of every point
+  /// so far, as they were given, in `xyz`. Throws std::logic_error for a mesh that did not take
+  /// its points.
+  Triangulation release(Coordinates& xyz);
+  /// For each list of point ids (as haloVertices() gives), their input coordinates, 3 each: as
+  /// the mesh holds them or, for a vertex, as its records give them back. Throws
+  /// std::invalid_argument for any other id.
   std::vector<std::vector<double>> points(
     const std::vector<std::vector<std::uint32_t>>& lists) const;
+  /// The points whose input coordinates the mesh holds (the rest it reads from its records).
+  std::size_t heldPoints() const;
 
   /// haloVertices() of the mesh as it stands, without a snapshot, computed in the frame; `boxes`
   /// in the input's coordinates. Empty lists while status() is not Ok.
