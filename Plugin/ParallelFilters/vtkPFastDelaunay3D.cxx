@@ -39,7 +39,6 @@
 #include <cmath>
 #include <exception>
 #include <functional>
-#include <initializer_list>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -483,14 +482,14 @@ vtkSmartPointer<vtkPointData> InputData(vtkDataSet* input, vtkIdType count, vtkI
   return data;
 }
 
-/// One rank's figures, then all ranks' together (Reduce()): counts are summed, each vertex and
-/// tetrahedron counted by its owner; times and the status are the slowest or best rank's.
+/// One rank's figures, then all ranks' together (Reduce()): counts are summed, with each vertex
+/// and tetrahedron counted by its owner; times and the status are the slowest or best rank's.
 struct RankFigures
 {
-  double NonFinite = 0, Inserted = 0, Skipped = 0, Merged = 0, Tetrahedra = 0, WalkSteps = 0,
-         CavityTetrahedra = 0, IntegerExact = 0, MeshInsertions = 0, Ghosts = 0;
-  double MaxWalkSteps = 0, SecondsSort = 0, SecondsLocate = 0, SecondsCavity = 0, SecondsFill = 0,
-         SecondsOutput = 0, SecondsTotal = 0, StatusRank = 0;
+  fd3::Statistics Stats;
+  double MeshInsertions = 0; ///< vertices of the rank's mesh, ghosts included
+  double Ghosts = 0;         ///< points received
+  double StatusRank = 0;     ///< the index of the rank's status in kByRank
 
   /// The order of the statuses across ranks: the whole is Ok when any rank has tetrahedra, else
   /// the most telling. A failed check or an abort never gets here.
@@ -499,54 +498,42 @@ struct RankFigures
 
   void Reduce(vtkMultiProcessController* controller)
   {
-    using F = RankFigures;
-    ReduceFields(controller, vtkCommunicator::SUM_OP,
-      { &F::NonFinite, &F::Inserted, &F::Skipped, &F::Merged, &F::Tetrahedra, &F::WalkSteps,
-        &F::CavityTetrahedra, &F::IntegerExact, &F::MeshInsertions, &F::Ghosts });
-    ReduceFields(controller, vtkCommunicator::MAX_OP,
-      { &F::MaxWalkSteps, &F::SecondsSort, &F::SecondsLocate, &F::SecondsCavity, &F::SecondsFill,
-        &F::SecondsOutput, &F::SecondsTotal, &F::StatusRank });
-  }
+    std::vector<double> sums;
+    for (auto field : fd3::Statistics::counts())
+    {
+      sums.push_back(double(this->Stats.*field));
+    }
+    sums.insert(sums.end(), { this->MeshInsertions, this->Ghosts });
+    std::vector<double> maxima = { double(this->Stats.maxWalkSteps) };
+    for (auto field : fd3::Statistics::seconds())
+    {
+      maxima.push_back(this->Stats.*field);
+    }
+    maxima.push_back(this->StatusRank);
+    std::vector<double> total(sums.size()), slowest(maxima.size());
+    controller->AllReduce(sums.data(), total.data(), sums.size(), vtkCommunicator::SUM_OP);
+    controller->AllReduce(maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
 
-  fd3::Statistics Statistics(vtkIdType inputPoints) const
-  {
-    fd3::Statistics s;
-    s.inputPoints = static_cast<std::size_t>(inputPoints);
-    s.nonFinitePoints = static_cast<std::size_t>(this->NonFinite);
-    s.insertedPoints = static_cast<std::size_t>(this->Inserted);
-    s.closePointsSkipped = static_cast<std::size_t>(this->Skipped);
-    s.duplicatesMerged = static_cast<std::size_t>(this->Merged);
-    s.tetrahedra = static_cast<std::size_t>(this->Tetrahedra);
+    auto sum = total.begin();
+    for (auto field : fd3::Statistics::counts())
+    {
+      this->Stats.*field = static_cast<std::size_t>(*sum++);
+    }
+    this->MeshInsertions = *sum++;
+    this->Ghosts = *sum++;
+    auto largest = slowest.begin();
+    this->Stats.maxWalkSteps = static_cast<std::size_t>(*largest++);
+    for (auto field : fd3::Statistics::seconds())
+    {
+      this->Stats.*field = *largest++;
+    }
+    this->StatusRank = *largest++;
     // Walks and cavities of ghost insertions count too: that is the work done.
-    const double perPoint = this->Inserted / std::max(this->MeshInsertions, 1.0);
-    s.walkSteps = static_cast<std::size_t>(this->WalkSteps * perPoint);
-    s.cavityTetrahedra = static_cast<std::size_t>(this->CavityTetrahedra * perPoint);
-    s.integerExact = static_cast<std::size_t>(this->IntegerExact);
-    s.maxWalkSteps = static_cast<std::size_t>(this->MaxWalkSteps);
-    s.secondsSort = this->SecondsSort;
-    s.secondsLocate = this->SecondsLocate;
-    s.secondsCavity = this->SecondsCavity;
-    s.secondsFill = this->SecondsFill;
-    s.secondsOutput = this->SecondsOutput;
-    s.secondsTotal = this->SecondsTotal;
-    return s;
-  }
-
-private:
-  void ReduceFields(vtkMultiProcessController* controller, int operation,
-    std::initializer_list<double RankFigures::*> fields)
-  {
-    std::vector<double> local, global(fields.size());
-    for (auto field : fields)
-    {
-      local.push_back(this->*field);
-    }
-    controller->AllReduce(local.data(), global.data(), local.size(), operation);
-    auto value = global.begin();
-    for (auto field : fields)
-    {
-      this->*field = *value++;
-    }
+    const double perVertex =
+      double(this->Stats.insertedPoints) / std::max(this->MeshInsertions, 1.0);
+    this->Stats.walkSteps = static_cast<std::size_t>(double(this->Stats.walkSteps) * perVertex);
+    this->Stats.cavityTetrahedra =
+      static_cast<std::size_t>(double(this->Stats.cavityTetrahedra) * perVertex);
   }
 };
 
@@ -721,29 +708,19 @@ public:
   /// Step 6: the figures and status of all ranks together.
   fd3::Statistics GlobalFigures(fd3::Status& status)
   {
-    const fd3::Statistics& s = this->Result.stats;
     RankFigures figures;
-    figures.NonFinite = double(s.nonFinitePoints);
-    figures.MeshInsertions = double(s.insertedPoints);
-    figures.WalkSteps = double(s.walkSteps);
-    figures.CavityTetrahedra = double(s.cavityTetrahedra);
-    figures.IntegerExact = double(s.integerExact);
+    figures.Stats = this->Result.stats;
+    figures.MeshInsertions = double(this->Result.stats.insertedPoints);
     figures.Ghosts = double(this->Xyz.size() / 3 - this->Own.Count);
-    figures.MaxWalkSteps = double(s.maxWalkSteps);
-    figures.SecondsSort = s.secondsSort;
-    figures.SecondsLocate = s.secondsLocate;
-    figures.SecondsCavity = s.secondsCavity;
-    figures.SecondsFill = s.secondsFill;
-    figures.SecondsOutput = s.secondsOutput;
-    figures.SecondsTotal = s.secondsTotal;
-    figures.StatusRank = double(std::find(std::begin(RankFigures::kByRank),
-                                  std::end(RankFigures::kByRank), this->Result.status) -
-      std::begin(RankFigures::kByRank));
-    this->CountOwned(figures);
+    const auto& byRank = RankFigures::kByRank;
+    figures.StatusRank =
+      double(std::find(std::begin(byRank), std::end(byRank), this->Result.status) - byRank);
+    this->CountOwned(figures.Stats);
     figures.Reduce(this->Ranks.Controller);
-    status = RankFigures::kByRank[static_cast<int>(figures.StatusRank)];
+    status = byRank[static_cast<int>(figures.StatusRank)];
     this->GhostPoints = static_cast<vtkIdType>(figures.Ghosts);
-    return figures.Statistics(this->InputPoints);
+    figures.Stats.inputPoints = static_cast<std::size_t>(this->InputPoints);
+    return figures.Stats;
   }
 
   /// Whether this rank owns the simplex: it owns its lexicographically smallest vertex, which
@@ -926,22 +903,24 @@ private:
     return WithPointData(points, this->Own.Data, IdList(halo));
   }
 
-  /// Counts what this rank owns: its vertices, the points merged into them or skipped, and the
-  /// tetrahedra.
-  void CountOwned(RankFigures& figures) const
+  /// The counts of what this rank owns, in place of its mesh's: its vertices, the points merged
+  /// into them or skipped, and the tetrahedra.
+  void CountOwned(fd3::Statistics& stats) const
   {
+    stats.inputPoints = stats.insertedPoints = stats.duplicatesMerged = 0;
+    stats.closePointsSkipped = stats.tetrahedra = 0;
     for (std::size_t t = 0; t < this->Result.numberOfTetrahedra(); ++t)
     {
-      figures.Tetrahedra += this->Owns(this->Result.tetrahedra.data() + 4 * t, 4);
+      stats.tetrahedra += this->Owns(this->Result.tetrahedra.data() + 4 * t, 4);
     }
     for (std::size_t k = 0; k < this->Own.Count && this->Result.status == fd3::Status::Ok; ++k)
     {
       const std::uint32_t v = this->Result.representative[k];
-      figures.Inserted += v == k;
+      stats.insertedPoints += v == k;
       if (v != k && v != fd3::kNoPoint)
       {
         const bool same = std::equal(&this->Xyz[3 * k], &this->Xyz[3 * k + 3], &this->Xyz[3 * v]);
-        (same ? figures.Merged : figures.Skipped) += 1;
+        (same ? stats.duplicatesMerged : stats.closePointsSkipped) += 1;
       }
     }
   }

@@ -13,6 +13,7 @@
 #include "vtkCellArrayIterator.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFastDelaunay3D.h"
+#include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -27,6 +28,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <numeric>
+#include <utility>
 
 namespace
 {
@@ -121,6 +123,20 @@ int main(int argc, char* argv[])
     return fail("the pieces' cells (" + std::to_string(cells.size()) +
       ") differ from the one-process run's (" +
       std::to_string(serial->GetOutput()->GetNumberOfCells()) + ")");
+  // The figures of all ranks together are the one-process run's.
+  const std::pair<const char*, vtkIdType> counts[] = {
+    {"NumberOfInsertedPoints", serial->GetNumberOfInsertedPoints()},
+    {"NumberOfDuplicatePoints", serial->GetNumberOfDuplicatePoints()},
+    {"NumberOfInvalidPoints", serial->GetNumberOfInvalidPoints()},
+    {"NumberOfTetrahedra", serial->GetNumberOfTetrahedra()}};
+  for (const auto& [name, expected] : counts)
+  {
+    vtkDataArray* figure = pieces->GetFieldData()->GetArray(name);
+    if (!figure || figure->GetComponent(0, 0) != double(expected))
+      return fail(std::string(name) + " is " +
+        (figure ? std::to_string(figure->GetComponent(0, 0)) : "missing") +
+        ", the one-process run's " + std::to_string(expected));
+  }
   std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
   for (auto& id : tets)
     id = toInput[id];

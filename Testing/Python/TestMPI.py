@@ -72,7 +72,8 @@ if distribution == "pvtp":
     pieces = os.path.splitext(pieces_path)[0] + "-input.pvtp"
     SaveData(pieces, proxy=cloud)
     cloud = XMLPartitionedPolydataReader(FileName=[pieces])
-delaunay = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1)  # every dimension
+delaunay = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1,  # every dimension
+                           ComputeStatistics=1)  # all ranks' figures, as field data
 SaveData(pieces_path, proxy=delaunay)
 volume = IntegrateVariables(Input=delaunay)
 volume.UpdatePipeline()

@@ -112,20 +112,30 @@ struct Statistics
   double secondsSort = 0, secondsLocate = 0, secondsCavity = 0, secondsFill = 0, secondsOutput = 0;
   double secondsTotal = 0;
 
+  /// The counts and the times, each field listed once: add() sums them, and the MPI filter sums
+  /// the counts and takes the slowest rank's times.
+  static constexpr std::array<std::size_t Statistics::*, 13> counts()
+  {
+    return {&Statistics::inputPoints, &Statistics::nonFinitePoints, &Statistics::duplicatesMerged,
+      &Statistics::closePointsSkipped, &Statistics::insertedPoints, &Statistics::tetrahedra,
+      &Statistics::walkSteps, &Statistics::cavityTetrahedra, &Statistics::deferredInsertions,
+      &Statistics::exactOrient, &Statistics::exactInSphere, &Statistics::symbolicTies,
+      &Statistics::integerExact};
+  }
+  static constexpr std::array<double Statistics::*, 6> seconds()
+  {
+    return {&Statistics::secondsSort, &Statistics::secondsLocate, &Statistics::secondsCavity,
+      &Statistics::secondsFill, &Statistics::secondsOutput, &Statistics::secondsTotal};
+  }
+
   /// Adds the figures of another part of the same work (a thread's, a batch's): counts and times
   /// are summed, maxWalkSteps is the larger.
   void add(const Statistics& other)
   {
-    for (auto field : {&Statistics::inputPoints, &Statistics::nonFinitePoints,
-           &Statistics::duplicatesMerged, &Statistics::closePointsSkipped,
-           &Statistics::insertedPoints, &Statistics::tetrahedra, &Statistics::walkSteps,
-           &Statistics::cavityTetrahedra, &Statistics::deferredInsertions, &Statistics::exactOrient,
-           &Statistics::exactInSphere, &Statistics::symbolicTies, &Statistics::integerExact})
+    for (auto field : counts())
       this->*field += other.*field;
     maxWalkSteps = std::max(maxWalkSteps, other.maxWalkSteps);
-    for (auto field :
-      {&Statistics::secondsSort, &Statistics::secondsLocate, &Statistics::secondsCavity,
-        &Statistics::secondsFill, &Statistics::secondsOutput, &Statistics::secondsTotal})
+    for (auto field : seconds())
       this->*field += other.*field;
   }
 
