@@ -74,6 +74,14 @@ bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
   return true;
 }
 
+Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3])
+{
+  bool exact[3] = {true, true, true};
+  checkShifts(xyz, count, lo, hi, exact);
+  const Frame frame = frameFor(lo, hi, exact);
+  return fitsFrame(frame, xyz, count) ? frame : identityFrame(lo, hi);
+}
+
 Frame frameOf(const double* xyz, std::size_t count)
 {
   Box box;
@@ -85,10 +93,7 @@ Frame frameOf(const double* xyz, std::size_t count)
       box.include(xyz + 3 * i);
       any = true;
     }
-  bool exact[3] = {true, true, true};
-  checkShifts(xyz, count, box.lo, box.hi, exact);
-  const Frame frame = frameFor(box.lo, box.hi, exact);
-  return fitsFrame(frame, xyz, count) ? frame : identityFrame(box.lo, box.hi);
+  return frameWithin(xyz, count, box.lo, box.hi);
 }
 
 Frame identityFrame(const double lo[3], const double hi[3])

@@ -26,6 +26,10 @@ inline bool mapsExactly(const Frame& frame, double x, int axis)
   return fromFrame(frame, toFrame(frame, x, axis), axis) == x;
 }
 
+/// The frame of `count` points whose finite ones lie within [lo, hi], their bounds: frameOf() for
+/// a caller that has the bounds already.
+Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3]);
+
 /// Whether vertex records of `count` points in `frame` give each finite one back bit for bit: every
 /// coordinate maps into the frame and back exactly (no underflow), and none is -0, which an exact
 /// duplicate at +0 would come back as.

@@ -128,6 +128,7 @@ struct IncrementalDelaunay::Impl
 {
   Options options;
   Frame frame;
+  bool frameGiven = true; // else made from the first batch's bounds (triangulate())
   Status status = Status::Ok;
   bool released = false;  // release() handed the records out: nothing is left to add to
   Statistics stats;       // the figures of every batch; the inserters' are added on output
@@ -240,6 +241,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     status = Status::Empty;
     return;
   }
+  if (!frameGiven)
+    frame = frameWithin(xyz, count, box.lo, box.hi);
   std::vector<std::uint16_t> key = keys(xyz, count, ids);
   InsertionPlan plan =
     planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
@@ -453,6 +456,15 @@ IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count,
 }
 
 IncrementalDelaunay::IncrementalDelaunay(
+  const double* xyz, std::size_t count, const Options& options)
+  : impl_(std::make_unique<Impl>())
+{
+  impl_->options = options;
+  impl_->frameGiven = false;
+  impl_->insertFirst(xyz, count);
+}
+
+IncrementalDelaunay::IncrementalDelaunay(
   Coordinates xyz, const Options& options, const Frame& frame, std::size_t room)
   : impl_(std::make_unique<Impl>())
 {
@@ -575,7 +587,7 @@ std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)
 {
   const auto start = Clock::now();
-  IncrementalDelaunay mesh(xyz, count, options, frameOf(xyz, count));
+  IncrementalDelaunay mesh(xyz, count, options);
   Triangulation out = mesh.release();
   out.stats.secondsTotal = secondsSince(start);
   return out;
