@@ -114,6 +114,25 @@ TEST(Triangulate, EveryBenchmarkPointSet)
   }
 }
 
+// The structured and degenerate surface samples at a larger size: exact ties everywhere
+// (cospherical rings and grid faces, coplanar layers), none on a small integer grid.
+TEST(Triangulate, StructuredSetsAtScale)
+{
+#ifdef NDEBUG
+  constexpr std::size_t kPoints = 100000;
+#else
+  constexpr std::size_t kPoints = 10000; // the sanitizers' build
+#endif
+  for (const char* kind :
+    {"boxboundary", "revolution", "extrusion", "planes", "latlong", "ellipsoid"})
+  {
+    SCOPED_TRACE(kind);
+    const Points p = fd3test::generate(kind, kPoints, 3);
+    EXPECT_GT(p.size() / 3, kPoints * 9 / 10);
+    triangulateAndCheck(p);
+  }
+}
+
 TEST(Triangulate, DuplicatesAreMergedAndCounted)
 {
   Points p = fd3test::uniformCube(1000, 5);

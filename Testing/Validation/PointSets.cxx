@@ -268,10 +268,116 @@ Points molecularShell(std::size_t n, std::uint64_t seed)
   return p;
 }
 
+Points boxBoundary(std::size_t n)
+{
+  // Nodes per edge in proportion to the sides 1, 0.8, 0.6, whose faces hold 3.76 side^2 of area.
+  const double k = std::sqrt(double(n) / 3.76);
+  const double side[3] = {1.0, 0.8, 0.6};
+  long m[3];
+  for (int a = 0; a < 3; ++a)
+    m[a] = std::max(2L, std::lround(k * side[a]) + 1);
+  auto at = [&](int a, long i) { return side[a] * double(i) / double(m[a] - 1); }; // as linspace
+  Points p;
+  for (long i = 0; i < m[0]; ++i)
+    for (long j = 0; j < m[1]; ++j)
+    {
+      const bool edge = i == 0 || i == m[0] - 1 || j == 0 || j == m[1] - 1;
+      for (long l = 0; l < m[2]; l += edge ? 1 : m[2] - 1)
+        p.insert(p.end(), {at(0, i), at(1, j), at(2, l)});
+    }
+  return p;
+}
+
+Points surfaceOfRevolution(std::size_t n)
+{
+  // A vase: rings at equally spaced heights, each of equally spaced angles (a revolved CAD part).
+  const long rings = std::max(3L, std::lround(std::sqrt(double(n) / 4)));
+  const long around = std::max(3L, static_cast<long>(n) / rings);
+  Points p;
+  p.reserve(3 * std::size_t(rings * around));
+  for (long k = 0; k < rings; ++k)
+  {
+    const double z = double(k) / double(rings - 1);
+    const double r = 0.5 + 0.15 * std::sin(3 * z) + 0.1 * z * z;
+    for (long j = 0; j < around; ++j)
+    {
+      const double t = 2 * M_PI * double(j) / double(around);
+      p.insert(p.end(), {r * std::cos(t), r * std::sin(t), z});
+    }
+  }
+  return p;
+}
+
+Points extrusion(std::size_t n)
+{
+  // A cam profile, equally spaced in angle, copied at equally spaced heights (an extruded part).
+  const long around = std::max(3L, std::lround(2 * std::sqrt(double(n))));
+  const long layers = std::max(2L, static_cast<long>(n) / around);
+  Points p;
+  p.reserve(3 * std::size_t(around * layers));
+  for (long k = 0; k < layers; ++k)
+  {
+    const double z = 0.5 * double(k) / double(layers - 1);
+    for (long j = 0; j < around; ++j)
+    {
+      const double t = 2 * M_PI * double(j) / double(around);
+      const double r = 1 + 0.3 * std::cos(3 * t);
+      p.insert(p.end(), {r * std::cos(t), r * std::sin(t), z});
+    }
+  }
+  return p;
+}
+
+Points parallelPlanes(std::size_t n, std::uint64_t seed)
+{
+  // Floors of a scanned building: uniform points on three planes.
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double heights[3] = {0.0, 0.37, 1.1};
+  Points p;
+  p.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    p.insert(p.end(), {u(rng), u(rng), heights[i % 3]});
+  return p;
+}
+
+Points latitudeLongitude(std::size_t n)
+{
+  // Rings of latitude, each with the same longitudes, and both poles once (a global grid).
+  const long latitudes = std::max(3L, std::lround(std::sqrt(double(n) / 2)));
+  const long longitudes = std::max(3L, static_cast<long>(n) / latitudes);
+  Points p = {0, 0, 1, 0, 0, -1};
+  for (long i = 1; i < latitudes; ++i)
+  {
+    const double theta = M_PI * double(i) / double(latitudes);
+    for (long j = 0; j < longitudes; ++j)
+    {
+      const double phi = 2 * M_PI * double(j) / double(longitudes);
+      p.insert(p.end(),
+        {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+    }
+  }
+  return p;
+}
+
+Points ellipsoidSurface(std::size_t n, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  Points p;
+  p.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::array<double, 3> d = randomDirection(rng);
+    p.insert(p.end(), {d[0], 0.7 * d[1], 0.4 * d[2]});
+  }
+  return p;
+}
+
 const std::vector<std::string>& pointSetNames()
 {
   static const std::vector<std::string> names = {"cube", "ball", "sphere", "lattice", "clusters",
-    "slab", "torus", "cylinder", "noisyshell", "scans", "terrain", "molshell"};
+    "slab", "torus", "cylinder", "noisyshell", "scans", "terrain", "molshell", "boxboundary",
+    "revolution", "extrusion", "planes", "latlong", "ellipsoid"};
   return names;
 }
 
@@ -297,6 +403,18 @@ Points generate(const std::string& kind, std::size_t n, std::uint64_t seed)
     return noisySphereShell(n, seed);
   if (kind == "scans")
     return overlappingScans(n, seed);
+  if (kind == "boxboundary")
+    return boxBoundary(n);
+  if (kind == "revolution")
+    return surfaceOfRevolution(n);
+  if (kind == "extrusion")
+    return extrusion(n);
+  if (kind == "planes")
+    return parallelPlanes(n, seed);
+  if (kind == "latlong")
+    return latitudeLongitude(n);
+  if (kind == "ellipsoid")
+    return ellipsoidSurface(n, seed);
   if (kind == "terrain")
     return lidarTerrain(n, seed);
   if (kind == "molshell")

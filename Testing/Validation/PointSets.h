@@ -47,6 +47,23 @@ Points joined(Points a, const Points& b);
 /// lattice (spacing 1, jitter +-0.15), so no two points are closer than 0.7.
 Points molecularShell(std::size_t n, std::uint64_t seed);
 
+/// Structured and degenerate surface samples, as CAD and CFD meshes give them: exactly cospherical
+/// and coplanar subsets everywhere (their coordinates come from linspace-like divisions, cos and
+/// sin, so they are not on a small integer grid). The boundary nodes of a structured grid on a
+/// 1 x 0.8 x 0.6 box, about n of them.
+Points boxBoundary(std::size_t n);
+/// A vase: rings at equally spaced heights, each of equally spaced angles.
+Points surfaceOfRevolution(std::size_t n);
+/// A cam profile of equally spaced angles, copied at equally spaced heights.
+Points extrusion(std::size_t n);
+/// Uniform points on three parallel planes.
+Points parallelPlanes(std::size_t n, std::uint64_t seed);
+/// A latitude-longitude grid on the unit sphere, with each pole once.
+Points latitudeLongitude(std::size_t n);
+/// A smooth convex surface: random points on the ellipsoid of semi-axes 1, 0.7, 0.4 (rounded to
+/// doubles, so a few lie just inside the hull).
+Points ellipsoidSurface(std::size_t n, std::uint64_t seed);
+
 /// For every point, the id of the first point at its position: exact duplicates map to one id, so
 /// that simplices compare equal whichever copy they use.
 std::vector<std::uint32_t> firstCopies(const Points& p);
