@@ -35,6 +35,9 @@ Int128 det3(const std::int64_t u[3], const std::int64_t v[3], const std::int64_t
 // higher-order terms.
 constexpr double kUnitRoundoff = filter::kEpsilon;
 constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
+// The same for the 2D incircle determinant: 11 u^2 for the 2x2 minors and the lifts, 36 u^2 for
+// the determinant; doubled.
+constexpr double kInCircleDoubleDouble = 2 * 36 * kUnitRoundoff * kUnitRoundoff;
 // Below this permanent the low parts could reach the subnormal range: left to the exact stage.
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
 
@@ -254,6 +257,19 @@ void Predicates::gridDifferences(
       out[i][k] = static_cast<std::int64_t>((x[i][k] - y[k]) * tuning_.inverseGridUnit);
 }
 
+namespace
+{
+/// The axis on which the four points have one coordinate, exactly: they lie in a plane
+/// perpendicular to it. -1 when there is none.
+int sharedAxis(const double* const p[4])
+{
+  for (int k = 0; k < 3; ++k)
+    if (p[0][k] == p[1][k] && p[0][k] == p[2][k] && p[0][k] == p[3][k])
+      return k;
+  return -1;
+}
+} // namespace
+
 Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3])
 {
   ExpansionArena& x = arena_;
@@ -267,6 +283,11 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
 int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;
+  // Structured samples (grid faces, layers, rings) are full of these, and the expansions would
+  // take a hundred times as long to find the zero.
+  const double* points[4] = {a, b, c, d};
+  if (sharedAxis(points) >= 0)
+    return 0;
   if (tuning_.anyMagnitude)
   {
     ++integerExactCalls;
@@ -304,8 +325,10 @@ int Predicates::inSphereDoubleDouble(
 {
   if (tuning_.inverseGridUnit > 0 || tuning_.anyMagnitude)
     return inSphereExact(a, b, c, d, e);
-  ++doubleDoubleInSphereCalls;
   const double* rows[4] = {a, b, c, d};
+  if (const int sign = inSphereOnAxisPlane(rows, e); sign != kUndecided)
+    return sign;
+  ++doubleDoubleInSphereCalls;
   DoubleDouble x[4][3];
   double m[4][3]; // |x|, for the permanent
   for (int r = 0; r < 4; ++r)
@@ -404,6 +427,89 @@ int Predicates::inSphereExact(
   const Expansion det = x.add(x.subtract(x.multiply(lift[1], m1), x.multiply(lift[0], m0)),
     x.subtract(x.multiply(lift[3], m3), x.multiply(lift[2], m2)));
   return -det.sign();
+}
+
+// Four of the five points in a plane x_k = v: expanding the homogeneous 5x5 form of the
+// determinant, det[(p, |p|^2, 1)] (which equals the 4x4 one relative to e), along column k after
+// moving the plane to v = 0 leaves (-1)^(r + k) w times the 4x4 homogeneous incircle determinant
+// of the four in the plane, r being the row of the fifth point and w its distance from the plane.
+// So the sign takes a comparison and an exact 2D incircle test, of degree 4 in 2 dimensions
+// where the 3D test has degree 5 in 3.
+int Predicates::inSphereOnAxisPlane(const double* const rows[4], const double* e)
+{
+  const double* five[5] = {rows[0], rows[1], rows[2], rows[3], e};
+  for (int off = 0; off < 5; ++off)
+  {
+    const double* plane[4];
+    for (int i = 0, j = 0; i < 5; ++i)
+      if (i != off)
+        plane[j++] = five[i];
+    const int k = sharedAxis(plane);
+    if (k < 0)
+      continue;
+    const int u = k == 0 ? 1 : 0, v = k == 2 ? 1 : 2;    // the other axes, in order
+    const int side = signOf(five[off][k] - plane[0][k]); // exact: a difference keeps its sign
+    return ((off + k) % 2 ? 1 : -1) * side * inCircle(plane, u, v);
+  }
+  return kUndecided;
+}
+
+// det[(q - s, |q - s|^2) for q in the first three] in the axes u < v, s the fourth point: the
+// homogeneous 4x4 determinant det[(q_u, q_v, q_u^2 + q_v^2, 1)] of the four. In floats first,
+// under Shewchuk's bound for incircle, (10 + 96 eps) eps times the permanent.
+int Predicates::inCircle(const double* const p[4], int u, int v)
+{
+  double fu[3], fv[3], fl[3], mu[3], mv[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    fu[i] = p[i][u] - p[3][u];
+    fv[i] = p[i][v] - p[3][v];
+    fl[i] = fu[i] * fu[i] + fv[i] * fv[i];
+    mu[i] = std::fabs(fu[i]);
+    mv[i] = std::fabs(fv[i]);
+  }
+  const double value = fl[0] * (fu[1] * fv[2] - fu[2] * fv[1]) -
+    fl[1] * (fu[0] * fv[2] - fu[2] * fv[0]) + fl[2] * (fu[0] * fv[1] - fu[1] * fv[0]);
+  const double permanent = fl[0] * (mu[1] * mv[2] + mu[2] * mv[1]) +
+    fl[1] * (mu[0] * mv[2] + mu[2] * mv[0]) + fl[2] * (mu[0] * mv[1] + mu[1] * mv[0]);
+  const double bound = filter::kInCircle * permanent;
+  if ((value > bound || -value > bound) && permanent > filter::kUnderflowGuard)
+    return signOf(value);
+  // Then in double-double, on the exact differences, as inSphereDoubleDouble().
+  DoubleDouble du[3], dv[3], lift[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    du[i] = DoubleDouble::difference(p[i][u], p[3][u]);
+    dv[i] = DoubleDouble::difference(p[i][v], p[3][v]);
+    lift[i] = du[i] * du[i] + dv[i] * dv[i];
+  }
+  auto minor2 = [&](int i, int j) { return du[i] * dv[j] - du[j] * dv[i]; };
+  const double refined =
+    (lift[0] * minor2(1, 2) - lift[1] * minor2(0, 2) + lift[2] * minor2(0, 1)).value();
+  const double refinedBound = kInCircleDoubleDouble * permanent;
+  if ((refined > refinedBound || -refined > refinedBound) && permanent > kDoubleDoubleSmallest)
+    return signOf(refined);
+  return inCircleExact(p, u, v);
+}
+
+int Predicates::inCircleExact(const double* const p[4], int u, int v)
+{
+  ExpansionArena& x = arena_;
+  x.reset();
+  Expansion du[3], dv[3], lift[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    du[i] = x.fromDifference(p[i][u], p[3][u]);
+    dv[i] = x.fromDifference(p[i][v], p[3][v]);
+    lift[i] = x.add(x.multiply(du[i], du[i]), x.multiply(dv[i], dv[i]));
+  }
+  auto minor2 = [&](int i, int j) {
+    return x.subtract(x.multiply(du[i], dv[j]), x.multiply(du[j], dv[i]));
+  };
+  const Expansion det =
+    x.add(x.subtract(x.multiply(lift[0], minor2(1, 2)), x.multiply(lift[1], minor2(0, 2))),
+      x.multiply(lift[2], minor2(0, 1)));
+  return det.sign();
 }
 
 bool Predicates::collinear(const double* a, const double* b, const double* c)

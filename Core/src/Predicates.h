@@ -53,6 +53,9 @@ constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
 // of that product of maxima.
 constexpr double kOrientSemiStatic = 1.02 * 6 * (7.0 + 56.0 * kEpsilon) * kEpsilon;
 constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * kEpsilon;
+// 2D incircle on the permanent itself, computed from the same rounded differences (5% for the
+// rounding of the permanent).
+constexpr double kInCircle = 1.05 * (10.0 + 96.0 * kEpsilon) * kEpsilon;
 // The lifts' filter: the permanent of insphere is sum_r L_r Q_r, L_r the lifts |r - e|^2 and
 // Q_r the permanent of the absolute 3x3 minor of the other rows; a nonnegative permanent is at most
 // the product of its row sums, each at most sqrt(3) times its row's length sqrt(L), so
@@ -169,6 +172,15 @@ private:
   int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
+  static constexpr int kUndecided = 2;
+  /// inSphereExact() where four of the five points share one coordinate exactly (a face of a
+  /// structured grid, a layer, a ring): its sign from the fifth point's side of their plane and an
+  /// exact incircle test in it. kUndecided when no four do.
+  int inSphereOnAxisPlane(const double* const rows[4], const double* e);
+  /// The sign of the homogeneous incircle determinant of p[0..3] in the axes u < v: in floats,
+  /// then double-double, then exactly (inCircleExact()).
+  int inCircle(const double* const p[4], int u, int v);
+  int inCircleExact(const double* const p[4], int u, int v);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
 
   bool liftsFilterProves(double det, const double lifts[4]) const;

@@ -398,6 +398,70 @@ TEST(Predicates, DoubleDoubleStageDecidesNearDegenerateInSpheres)
     << " went on to the exact stage";
 }
 
+// Four of the five points in a plane perpendicular to an axis (a face of a structured grid, a layer,
+// a ring): the sign then comes from the fifth point's side and an incircle test in the plane. It
+// must be the rationals' for every axis and every position of the point off the plane, on exact
+// ties (rectangles, and rings whose points swap coordinates), near ties (a rectangle one ulp off)
+// and clear cases.
+TEST(Predicates, AxisPlaneInSpheresAgreeWithRationals)
+{
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> uniform(-0.9, 0.9);
+  fd3::Predicates predicates;
+  int ties = 0, checked = 0;
+  for (int trial = 0; trial < 6000; ++trial)
+  {
+    const int axis = trial % 3, off = trial / 3 % 5, variant = trial / 15 % 4;
+    const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    double plane[4][2];
+    const double x0 = uniform(rng), y0 = uniform(rng), h = 0.01 * (1 + uniform(rng));
+    if (variant < 2) // a rectangle, exact or with one corner one ulp off
+    {
+      const double x1 = x0 + h / 3, y1 = y0 + h / 7;
+      const double corners[4][2] = {{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}};
+      std::memcpy(plane, corners, sizeof plane);
+      if (variant == 1)
+        plane[3][0] = std::nextafter(plane[3][0], 2.0);
+    }
+    else if (variant == 2) // a ring: (a, b), (-a, b), (a, -b), (b, a) have one norm exactly
+    {
+      const double t = uniform(rng), a = 0.5 * std::cos(t), b = 0.5 * std::sin(t);
+      const double ring[4][2] = {{a, b}, {-a, b}, {a, -b}, {b, a}};
+      std::memcpy(plane, ring, sizeof plane);
+    }
+    else
+      for (auto& q : plane)
+        q[0] = uniform(rng), q[1] = uniform(rng);
+    double p[5][3];
+    const double level = uniform(rng);
+    for (int i = 0, j = 0; i < 5; ++i)
+    {
+      if (i == off)
+      {
+        p[i][0] = uniform(rng), p[i][1] = uniform(rng), p[i][2] = uniform(rng);
+        continue;
+      }
+      p[i][axis] = level;
+      p[i][u] = plane[j][0];
+      p[i][v] = plane[j++][1];
+    }
+    if (exactOrient3d(p[0], p[1], p[2], p[3]) < 0)
+      std::swap(p[0], p[1]);
+    if (exactOrient3d(p[0], p[1], p[2], p[3]) == 0)
+      continue;
+    const int expected = exactInSphere(p[0], p[1], p[2], p[3], p[4]);
+    ASSERT_EQ(predicates.inSphere(p[0], p[1], p[2], p[3], p[4]), expected)
+      << "trial " << trial << ", axis " << axis << ", off " << off << ", variant " << variant;
+    ties += expected == 0;
+    ++checked;
+  }
+  EXPECT_GT(checked, 4000);
+  EXPECT_GT(ties, 500);
+  // And the four in the plane are coplanar, without the exact stage's expansions.
+  const double q[4][3] = {{0.1, 0.3, 0.7}, {0.2, 0.4, 0.7}, {-0.5, 0.3, 0.7}, {0.9, -0.1, 0.7}};
+  EXPECT_EQ(predicates.orient3d(q[0], q[1], q[2], q[3]), 0);
+}
+
 TEST(Predicates, ExactTiesOnIntegerLattice)
 {
   fd3::Predicates predicates;
