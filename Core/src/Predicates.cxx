@@ -268,6 +268,71 @@ int sharedAxis(const double* const p[4])
       return k;
   return -1;
 }
+/// Whether p and q differ in coordinate k alone.
+bool differOnlyIn(const double* p, const double* q, int k)
+{
+  return p[(k + 1) % 3] == q[(k + 1) % 3] && p[(k + 2) % 3] == q[(k + 2) % 3];
+}
+
+/// Whether the four points are the corners of a rectangle two of whose sides are parallel to an
+/// axis: two pairs that differ in coordinate k alone, at the same two values of it (the cells of
+/// an extruded profile or of a structured grid's face). Such points are coplanar and cocircular,
+/// so every insphere determinant of them and a fifth point is 0, and so is their orientation.
+bool formAxisRectangle(const double* const p[4])
+{
+  constexpr int kPairings[3][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}};
+  for (const auto& pairing : kPairings)
+  {
+    const double *a = p[pairing[0]], *a2 = p[pairing[1]], *b = p[pairing[2]], *b2 = p[pairing[3]];
+    for (int k = 0; k < 3; ++k)
+      if (differOnlyIn(a, a2, k) && differOnlyIn(b, b2, k) &&
+        ((a[k] == b[k] && a2[k] == b2[k]) || (a[k] == b2[k] && a2[k] == b[k])))
+        return true;
+  }
+  return false;
+}
+
+/// How many of the 10 pairs of five points share each coordinate, and how many share two, in one
+/// pass of comparisons: the structures below need several shared coordinates, so most calls stop
+/// here.
+struct SharedCoordinates
+{
+  explicit SharedCoordinates(const double* const five[5])
+  {
+    for (int i = 0; i < 5; ++i)
+      for (int j = i + 1; j < 5; ++j)
+      {
+        const int x = five[i][0] == five[j][0], y = five[i][1] == five[j][1],
+                  z = five[i][2] == five[j][2];
+        onAxis[0] += x;
+        onAxis[1] += y;
+        onAxis[2] += z;
+        onTwoAxes += x + y + z >= 2;
+      }
+  }
+  /// Four points in a plane x_k = v share x_k in all 6 of their pairs.
+  bool mayShareAxis() const { return onAxis[0] >= 6 || onAxis[1] >= 6 || onAxis[2] >= 6; }
+  /// An axis-parallel rectangle has 2 pairs of corners that share two coordinates.
+  bool mayFormRectangle() const { return onTwoAxes >= 2; }
+  int onAxis[3] = {0, 0, 0};
+  int onTwoAxes = 0;
+};
+
+/// Whether four of the five points form an axis-parallel rectangle (formAxisRectangle()): the
+/// structured samples' ties, settled without arithmetic.
+bool fourFormAxisRectangle(const double* const five[5])
+{
+  for (int off = 0; off < 5; ++off)
+  {
+    const double* four[4];
+    for (int i = 0, j = 0; i < 5; ++i)
+      if (i != off)
+        four[j++] = five[i];
+    if (formAxisRectangle(four))
+      return true;
+  }
+  return false;
+}
 } // namespace
 
 Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3])
@@ -286,7 +351,7 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
   // Structured samples (grid faces, layers, rings) are full of these, and the expansions would
   // take a hundred times as long to find the zero.
   const double* points[4] = {a, b, c, d};
-  if (sharedAxis(points) >= 0)
+  if (sharedAxis(points) >= 0 || formAxisRectangle(points))
     return 0;
   if (tuning_.anyMagnitude)
   {
@@ -323,11 +388,18 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
 int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
-  if (tuning_.inverseGridUnit > 0 || tuning_.anyMagnitude)
+  if (tuning_.inverseGridUnit > 0)
     return inSphereExact(a, b, c, d, e);
+  const double* five[5] = {a, b, c, d, e};
+  const SharedCoordinates shared(five);
+  if (shared.mayFormRectangle() && fourFormAxisRectangle(five))
+    return 0;
+  if (tuning_.anyMagnitude)
+    return inSphereExact(a, b, c, d, e);
+  if (shared.mayShareAxis())
+    if (const int sign = inSphereOnAxisPlane(five); sign != kUndecided)
+      return sign;
   const double* rows[4] = {a, b, c, d};
-  if (const int sign = inSphereOnAxisPlane(rows, e); sign != kUndecided)
-    return sign;
   ++doubleDoubleInSphereCalls;
   DoubleDouble x[4][3];
   double m[4][3]; // |x|, for the permanent
@@ -435,9 +507,8 @@ int Predicates::inSphereExact(
 // of the four in the plane, r being the row of the fifth point and w its distance from the plane.
 // So the sign takes a comparison and an exact 2D incircle test, of degree 4 in 2 dimensions
 // where the 3D test has degree 5 in 3.
-int Predicates::inSphereOnAxisPlane(const double* const rows[4], const double* e)
+int Predicates::inSphereOnAxisPlane(const double* const five[5])
 {
-  const double* five[5] = {rows[0], rows[1], rows[2], rows[3], e};
   for (int off = 0; off < 5; ++off)
   {
     const double* plane[4];
@@ -447,6 +518,8 @@ int Predicates::inSphereOnAxisPlane(const double* const rows[4], const double* e
     const int k = sharedAxis(plane);
     if (k < 0)
       continue;
+    if (formAxisRectangle(plane))
+      return 0;
     const int u = k == 0 ? 1 : 0, v = k == 2 ? 1 : 2;    // the other axes, in order
     const int side = signOf(five[off][k] - plane[0][k]); // exact: a difference keeps its sign
     return ((off + k) % 2 ? 1 : -1) * side * inCircle(plane, u, v);

@@ -173,10 +173,10 @@ private:
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
   static constexpr int kUndecided = 2;
-  /// inSphereExact() where four of the five points share one coordinate exactly (a face of a
-  /// structured grid, a layer, a ring): its sign from the fifth point's side of their plane and an
-  /// exact incircle test in it. kUndecided when no four do.
-  int inSphereOnAxisPlane(const double* const rows[4], const double* e);
+  /// inSphereExact() of the tetrahedron five[0..3] and five[4] where four of the five share one
+  /// coordinate exactly (a face of a structured grid, a layer, a ring): its sign from the fifth
+  /// point's side of their plane and an exact incircle test in it. kUndecided when no four do.
+  int inSphereOnAxisPlane(const double* const five[5]);
   /// The sign of the homogeneous incircle determinant of p[0..3] in the axes u < v: in floats,
   /// then double-double, then exactly (inCircleExact()).
   int inCircle(const double* const p[4], int u, int v);

@@ -462,6 +462,58 @@ TEST(Predicates, AxisPlaneInSpheresAgreeWithRationals)
   EXPECT_EQ(predicates.orient3d(q[0], q[1], q[2], q[3]), 0);
 }
 
+// Four of the five points the corners of a rectangle with two sides along an axis, in a plane of
+// any direction (an extruded profile's cells): a tie, settled without arithmetic, and a coplanar
+// four. A corner one ulp off, or one edge moved along the axis, is no tie, and the exact stage
+// decides it.
+TEST(Predicates, AxisRectangleTiesAgreeWithRationals)
+{
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> uniform(-0.9, 0.9);
+  fd3::Predicates predicates;
+  int ties = 0, checked = 0;
+  for (int trial = 0; trial < 3000; ++trial)
+  {
+    const int axis = trial % 3, off = trial / 3 % 5;
+    const bool nudged = trial / 15 % 2, staggered = trial / 30 % 3 == 0;
+    double corner[2][3], p[5][3];
+    for (auto& c : corner)
+      for (double& x : c)
+        x = uniform(rng);
+    const double low = uniform(rng), high = low + 0.01 * (1.5 + uniform(rng));
+    for (int i = 0, j = 0; i < 5; ++i)
+    {
+      if (i == off)
+      {
+        p[i][0] = uniform(rng), p[i][1] = uniform(rng), p[i][2] = uniform(rng);
+        continue;
+      }
+      std::copy_n(corner[j % 2], 3, p[i]);
+      // Staggered: the second edge moved along the axis, a trapezoid (coplanar, no tie).
+      p[i][axis] = (j < 2 ? low : high) + (staggered && j % 2 ? 0.003 : 0.0);
+      ++j;
+    }
+    if (nudged)
+      p[off == 4 ? 3 : 4][(axis + 1) % 3] =
+        std::nextafter(p[off == 4 ? 3 : 4][(axis + 1) % 3], 2.0);
+    const int o = exactOrient3d(p[0], p[1], p[2], p[3]);
+    if (o < 0)
+      std::swap(p[0], p[1]);
+    if (o == 0)
+    {
+      EXPECT_EQ(predicates.orient3d(p[0], p[1], p[2], p[3]), 0);
+      continue;
+    }
+    const int expected = exactInSphere(p[0], p[1], p[2], p[3], p[4]);
+    ASSERT_EQ(predicates.inSphere(p[0], p[1], p[2], p[3], p[4]), expected)
+      << "trial " << trial << ", axis " << axis << ", off " << off << ", nudged " << nudged;
+    ties += expected == 0;
+    ++checked;
+  }
+  EXPECT_GT(checked, 2000);
+  EXPECT_GT(ties, 500);
+}
+
 TEST(Predicates, ExactTiesOnIntegerLattice)
 {
   fd3::Predicates predicates;
