@@ -417,70 +417,152 @@ Method method(const std::string& name)
   return m;
 }
 
-int main(int argc, char* argv[])
+struct Settings
 {
   std::vector<std::string> kinds = fd3test::pointSetNames();
   std::vector<std::size_t> sizes = {10000, 100000, 1000000};
   std::vector<Method> methods;
-  for (const char* name : {"Core", "vtkFastDelaunay3D", "vtkDelaunay3D", "CGAL", "TetGen"})
-    methods.push_back(method(name));
   double vtkLimit = 60;
   std::size_t validateLimit = 200000;
   int repeat = 1;
   std::string markdownFile, csvFile;
   bool paperTable = false;
+};
+
+/// The settings of the command line; false (with a message) on an unknown option.
+bool parse(int argc, char* argv[], Settings& settings)
+{
+  for (const char* name : {"Core", "vtkFastDelaunay3D", "vtkDelaunay3D", "CGAL", "TetGen"})
+    settings.methods.push_back(method(name));
   for (int i = 1; i < argc; i += 2)
   {
     const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
     if (key == "--table1")
     {
-      paperTable = true;
+      settings.paperTable = true;
       --i;
     }
     else if (key == "--kinds")
-      kinds = split(value);
+      settings.kinds = split(value);
     else if (key == "--sizes")
     {
-      sizes.clear();
+      settings.sizes.clear();
       for (const std::string& s : split(value))
-        sizes.push_back(static_cast<std::size_t>(std::stod(s)));
+        settings.sizes.push_back(static_cast<std::size_t>(std::stod(s)));
     }
     else if (key == "--methods")
     {
-      methods.clear();
+      settings.methods.clear();
       for (const std::string& name : split(value))
-        methods.push_back(method(name));
+        settings.methods.push_back(method(name));
     }
     else if (key == "--vtk-limit")
-      vtkLimit = std::stod(value);
+      settings.vtkLimit = std::stod(value);
     else if (key == "--validate-limit")
-      validateLimit = static_cast<std::size_t>(std::stod(value));
+      settings.validateLimit = static_cast<std::size_t>(std::stod(value));
     else if (key == "--repeat")
-      repeat = std::max(1, std::stoi(value));
+      settings.repeat = std::max(1, std::stoi(value));
     else if (key == "--markdown")
-      markdownFile = value;
+      settings.markdownFile = value;
     else if (key == "--csv")
-      csvFile = value;
+      settings.csvFile = value;
     else
     {
       std::cerr << "unknown option " << key << "\n";
-      return 2;
+      return false;
     }
   }
+  return true;
+}
 
-  if (paperTable)
-    return table1(markdownFile);
+/// Every method on `p`, `repeat` times in turn, each one's fastest run kept (the validator runs
+/// on the first). vtkDelaunay3D is skipped where the last size's time per point predicts more
+/// than the limit.
+std::vector<Measurement> measureAll(
+  const Settings& settings, const fd3test::Points& p, double& vtkSecondsPerPoint)
+{
+  constexpr double kNoLimit = 1e9;
+  const std::size_t n = p.size() / 3;
+  std::vector<Measurement> rows(settings.methods.size());
+  for (int r = 0; r < settings.repeat; ++r)
+    for (std::size_t i = 0; i < settings.methods.size(); ++i)
+    {
+      const Method& method = settings.methods[i];
+      const std::size_t validate = r == 0 ? settings.validateLimit : 0;
+      Measurement m;
+      if (!method.run)
+        m.note = "not built";
+      else if (method.name != "vtkDelaunay3D")
+        m = measure([&] { return method.run(p, validate); }, kNoLimit);
+      else if (vtkSecondsPerPoint * n * 1.5 > settings.vtkLimit) // grows faster than linearly
+        m.note = "skipped (over " + std::to_string(int(settings.vtkLimit)) + " s)";
+      else
+      {
+        m = measure([&] { return method.run(p, validate); }, settings.vtkLimit);
+        vtkSecondsPerPoint = m.ran ? m.seconds / n : settings.vtkLimit; // a time-out stops larger
+      }
+      if (r == 0)
+        rows[i] = m;
+      else if (m.ran && (!rows[i].ran || m.seconds < rows[i].seconds))
+      {
+        m.valid = rows[i].valid;
+        rows[i] = m;
+      }
+    }
+  return rows;
+}
 
+/// The rows of one point set and size, as markdown, CSV and a progress line each.
+void report(const std::string& kind, std::size_t n, const std::vector<Method>& methods,
+  const std::vector<Measurement>& rows, std::ostream& md, std::ostream& csv)
+{
   auto column = [&](const char* name) {
     const auto it =
       std::find_if(methods.begin(), methods.end(), [&](const Method& m) { return m.name == name; });
     return it == methods.end() ? -1 : static_cast<int>(it - methods.begin());
   };
-  const int ratioColumns[3] = {column("Core"), column("vtkDelaunay3D"), column("CGAL")};
+  auto speedup = [&](const Measurement& m, int other) {
+    if (other < 0)
+      return std::string("-");
+    const Measurement& o = rows[other];
+    return (m.ran && o.ran) ? cell(m, "%.2fx", o.seconds / m.seconds) : std::string("-");
+  };
+  for (std::size_t i = 0; i < methods.size(); ++i)
+  {
+    const Measurement& m = rows[i];
+    const bool walks = m.walk > 0;
+    md << "| " << kind << " | " << n << " | " << methods[i].name << " | "
+       << cell(m, "%.3f", m.seconds) << " | " << cell(m, "%.3g", n / m.seconds) << " | "
+       << cell(m, "%.3g", m.tetrahedra / m.seconds) << " | " << cell(m, "%.0f", m.peakMiB) << " | "
+       << cell(m, "%.0f", m.peakMiB * 1048576.0 / n) << " | "
+       << (walks ? cell(m, "%.1f", m.walk) : "-") << " | "
+       << (walks ? cell(m, "%.0f", m.maxWalk) : "-") << " | " << speedup(m, column("Core")) << " | "
+       << speedup(m, column("vtkDelaunay3D")) << " | " << speedup(m, column("CGAL")) << " | "
+       << (m.valid == 1 ? "valid" : (m.valid == 0 ? "INVALID" : "-")) << " |\n";
+    csv << kind << ',' << n << ',' << methods[i].name << ',' << (m.ran ? m.seconds : -1) << ','
+        << m.tetrahedra << ',' << m.peakMiB << ',' << m.valid << ',' << m.conversionSeconds << ','
+        << m.walk << ',' << m.maxWalk << '\n';
+    std::cerr << kind << " " << n << " " << methods[i].name << ": "
+              << (m.ran ? std::to_string(m.seconds) + " s" : m.note)
+              << (walks ? ", walk " + std::to_string(m.walk) + " max " + std::to_string(m.maxWalk)
+                        : "")
+              << "\n";
+  }
+}
+
+int main(int argc, char* argv[])
+{
+  Settings settings;
+  if (!parse(argc, argv, settings))
+    return 2;
+  if (settings.paperTable)
+    return table1(settings.markdownFile);
+
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". "
-     << (repeat > 1 ? "Best of " + std::to_string(repeat) + " interleaved runs of every method. "
-                    : "")
+     << (settings.repeat > 1
+            ? "Best of " + std::to_string(settings.repeat) + " interleaved runs of every method. "
+            : "")
      << "Kernel single-threaded; peak memory is each run's own "
      << "(above its input). Walk: tetrahedra visited per point location, mean and max. Speed-up "
      << "columns: the other method's time over this one's.\n\n"
@@ -488,74 +570,20 @@ int main(int argc, char* argv[])
         "walk | vs Core | vs vtkDelaunay3D | vs CGAL | exact validity |\n"
      << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
   csv << "kind,n,method,seconds,tetrahedra,peak_mib,valid,conversion_seconds,walk,max_walk\n";
-  const double hugeLimit = 1e9;
-  for (const std::string& kind : kinds)
+  for (const std::string& kind : settings.kinds)
   {
     double vtkSecondsPerPoint = 0; // from the last vtkDelaunay3D run, to predict the next
-    for (std::size_t size : sizes)
+    for (std::size_t size : settings.sizes)
     {
       const fd3test::Points p = fd3test::generate(kind, size, 1);
-      const std::size_t n = p.size() / 3;
-      std::vector<Measurement> rows(methods.size());
-      for (int r = 0; r < repeat; ++r)
-        for (std::size_t i = 0; i < methods.size(); ++i)
-        {
-          const Method& method = methods[i];
-          const std::size_t validate = r == 0 ? validateLimit : 0;
-          Measurement m;
-          if (!method.run)
-            m.note = "not built";
-          else if (method.name != "vtkDelaunay3D")
-            m = measure([&] { return method.run(p, validate); }, hugeLimit);
-          else if (vtkSecondsPerPoint * n * 1.5 > vtkLimit) // it grows faster than linearly
-            m.note = "skipped (over " + std::to_string(int(vtkLimit)) + " s)";
-          else
-          {
-            m = measure([&] { return method.run(p, validate); }, vtkLimit);
-            vtkSecondsPerPoint = m.ran ? m.seconds / n : vtkLimit; // a time-out stops larger sizes
-          }
-          if (r == 0)
-            rows[i] = m;
-          else if (m.ran && (!rows[i].ran || m.seconds < rows[i].seconds))
-          {
-            m.valid = rows[i].valid;
-            rows[i] = m;
-          }
-        }
-      auto speedup = [&](const Measurement& m, int other) {
-        if (other < 0)
-          return std::string("-");
-        const Measurement& o = rows[other];
-        return (m.ran && o.ran) ? cell(m, "%.2fx", o.seconds / m.seconds) : std::string("-");
-      };
-      for (std::size_t i = 0; i < methods.size(); ++i)
-      {
-        const Measurement& m = rows[i];
-        const bool walks = m.walk > 0;
-        md << "| " << kind << " | " << n << " | " << methods[i].name << " | "
-           << cell(m, "%.3f", m.seconds) << " | " << cell(m, "%.3g", n / m.seconds) << " | "
-           << cell(m, "%.3g", m.tetrahedra / m.seconds) << " | " << cell(m, "%.0f", m.peakMiB)
-           << " | " << cell(m, "%.0f", m.peakMiB * 1048576.0 / n) << " | "
-           << (walks ? cell(m, "%.1f", m.walk) : "-") << " | "
-           << (walks ? cell(m, "%.0f", m.maxWalk) : "-") << " | " << speedup(m, ratioColumns[0])
-           << " | " << speedup(m, ratioColumns[1]) << " | " << speedup(m, ratioColumns[2]) << " | "
-           << (m.valid == 1 ? "valid" : (m.valid == 0 ? "INVALID" : "-")) << " |\n";
-        csv << kind << ',' << n << ',' << methods[i].name << ',' << (m.ran ? m.seconds : -1) << ','
-            << m.tetrahedra << ',' << m.peakMiB << ',' << m.valid << ',' << m.conversionSeconds
-            << ',' << m.walk << ',' << m.maxWalk << '\n';
-        std::cerr << kind << " " << n << " " << methods[i].name << ": "
-                  << (m.ran ? std::to_string(m.seconds) + " s" : m.note)
-                  << (walks
-                         ? ", walk " + std::to_string(m.walk) + " max " + std::to_string(m.maxWalk)
-                         : "")
-                  << "\n";
-      }
+      report(
+        kind, p.size() / 3, settings.methods, measureAll(settings, p, vtkSecondsPerPoint), md, csv);
     }
   }
   std::cout << md.str();
-  if (!markdownFile.empty())
-    std::ofstream(markdownFile) << md.str();
-  if (!csvFile.empty())
-    std::ofstream(csvFile) << csv.str();
+  if (!settings.markdownFile.empty())
+    std::ofstream(settings.markdownFile) << md.str();
+  if (!settings.csvFile.empty())
+    std::ofstream(settings.csvFile) << csv.str();
   return 0;
 }

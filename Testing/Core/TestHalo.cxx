@@ -54,27 +54,12 @@ struct Piece
   }
 };
 
-/// The tetrahedra (as input ids of first copies) that the pieces keep, all pieces together.
-std::vector<std::uint32_t> distributedTetrahedra(
-  const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount, std::size_t* haloSize)
+/// What each piece receives from the others (input ids): every piece's halo for every other box,
+/// or all its points where it has no tetrahedron yet.
+std::vector<std::vector<std::uint32_t>> exchangeHalos(
+  const std::vector<Piece>& pieces, const std::vector<fd3::Bounds>& boxes)
 {
-  const fd3::Frame frame = fd3test::frameOf(p);
-  std::vector<Piece> pieces(pieceCount);
-  for (std::uint32_t i = 0; i < pieceOf.size(); ++i)
-  {
-    pieces[pieceOf[i]].ids.push_back(i);
-  }
-  std::vector<fd3::Bounds> boxes;
-  for (Piece& piece : pieces)
-  {
-    piece.own = piece.ids.size();
-    std::vector<std::uint32_t> own;
-    own.swap(piece.ids);
-    piece.append(p, own);
-    piece.mesh = std::make_unique<fd3::IncrementalDelaunay>(
-      piece.xyz.data(), piece.own, fd3::Options(), frame);
-    boxes.push_back(boxOf(p, piece.ids));
-  }
+  const int pieceCount = static_cast<int>(pieces.size());
   std::vector<std::vector<std::uint32_t>> received(pieceCount);
   for (int from = 0; from < pieceCount; ++from)
   {
@@ -103,6 +88,31 @@ std::vector<std::uint32_t> distributedTetrahedra(
       }
     }
   }
+  return received;
+}
+
+/// The tetrahedra (as input ids of first copies) that the pieces keep, all pieces together.
+std::vector<std::uint32_t> distributedTetrahedra(
+  const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount, std::size_t* haloSize)
+{
+  const fd3::Frame frame = fd3test::frameOf(p);
+  std::vector<Piece> pieces(pieceCount);
+  for (std::uint32_t i = 0; i < pieceOf.size(); ++i)
+  {
+    pieces[pieceOf[i]].ids.push_back(i);
+  }
+  std::vector<fd3::Bounds> boxes;
+  for (Piece& piece : pieces)
+  {
+    piece.own = piece.ids.size();
+    std::vector<std::uint32_t> own;
+    own.swap(piece.ids);
+    piece.append(p, own);
+    piece.mesh = std::make_unique<fd3::IncrementalDelaunay>(
+      piece.xyz.data(), piece.own, fd3::Options(), frame);
+    boxes.push_back(boxOf(p, piece.ids));
+  }
+  const std::vector<std::vector<std::uint32_t>> received = exchangeHalos(pieces, boxes);
   const std::vector<std::uint32_t> copy = fd3test::firstCopies(p);
   std::vector<std::uint32_t> kept;
   *haloSize = 0;

@@ -59,6 +59,89 @@ std::vector<std::vector<std::uint32_t>> cellSet(vtkUnstructuredGrid* grid,
   std::sort(cells.begin(), cells.end());
   return cells;
 }
+
+/// The input, rebuilt in input order from the points each rank owns, with `toInput` (output id to
+/// input id); an error when a point is owned other than once, a ghost differs from its point, or
+/// a point has another's point data.
+std::string rebuildInput(
+  vtkUnstructuredGrid* pieces, fd3test::Points& input, std::vector<std::uint32_t>& toInput)
+{
+  auto* inputIds = vtkIdTypeArray::SafeDownCast(pieces->GetPointData()->GetArray("GlobalIds"));
+  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
+    pieces->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
+  if (!inputIds || !ghosts)
+    return "no GlobalIds or vtkGhostType point array";
+  const fd3test::Points xyz = fd3test::coordinates(pieces);
+  const vtkIdType n = pieces->GetNumberOfPoints();
+  vtkIdType inputCount = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+    inputCount += ghosts->GetValue(i) == 0;
+  input.assign(3 * inputCount, NAN);
+  std::vector<int> seen(inputCount, 0);
+  toInput.resize(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const vtkIdType id = inputIds->GetValue(i);
+    if (id < 0 || id >= inputCount)
+      return "input id out of range";
+    toInput[i] = static_cast<std::uint32_t>(id);
+    if (ghosts->GetValue(i) == 0)
+    {
+      ++seen[id];
+      std::copy_n(&xyz[3 * i], 3, &input[3 * id]);
+    }
+  }
+  for (vtkIdType id = 0; id < inputCount; ++id)
+    if (seen[id] != 1)
+      return "input point " + std::to_string(id) + " owned " + std::to_string(seen[id]) + " times";
+  for (vtkIdType i = 0; i < n; ++i)
+    if (!std::equal(&xyz[3 * i], &xyz[3 * i + 3], &input[3 * toInput[i]]))
+      return "a ghost point differs from the input point it repeats";
+  vtkDataArray* label = pieces->GetPointData()->GetArray("Label");
+  if (!label)
+    return "the input's point data is lost";
+  for (vtkIdType i = 0; i < n; ++i)
+    if (label->GetComponent(i, 0) != xyz[3 * i] / 4 + xyz[3 * i + 1] / 2 + xyz[3 * i + 2])
+      return "point " + std::to_string(i) + " has another point's data";
+  return "";
+}
+
+/// The figures of all ranks together, from the pieces' field data, against the one-process run's.
+std::string compareFigures(vtkUnstructuredGrid* pieces, vtkFastDelaunay3D* serial)
+{
+  const std::pair<const char*, vtkIdType> counts[] = {
+    {"NumberOfInsertedPoints", serial->GetNumberOfInsertedPoints()},
+    {"NumberOfDuplicatePoints", serial->GetNumberOfDuplicatePoints()},
+    {"NumberOfInvalidPoints", serial->GetNumberOfInvalidPoints()},
+    {"NumberOfTetrahedra", serial->GetNumberOfTetrahedra()}};
+  for (const auto& [name, expected] : counts)
+  {
+    vtkDataArray* figure = pieces->GetFieldData()->GetArray(name);
+    if (!figure || figure->GetComponent(0, 0) != double(expected))
+      return std::string(name) + " is " +
+        (figure ? std::to_string(figure->GetComponent(0, 0)) : "missing") +
+        ", the one-process run's " + std::to_string(expected);
+  }
+  return "";
+}
+
+/// The volume of the grid's tetrahedra (with an alpha, of its alpha shape's).
+double volume(vtkUnstructuredGrid* grid, const fd3test::Points& xyz)
+{
+  double total = 0;
+  vtkIdType size;
+  const vtkIdType* ids;
+  auto it = vtk::TakeSmartPointer(grid->GetCells()->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    it->GetCurrentCell(size, ids);
+    if (size == 4)
+      total += std::abs(fd3::sixVolume(
+                 &xyz[3 * ids[0]], &xyz[3 * ids[1]], &xyz[3 * ids[2]], &xyz[3 * ids[3]])) /
+        6;
+  }
+  return total;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -70,52 +153,17 @@ int main(int argc, char* argv[])
   reader->SetFileName(argv[1]);
   reader->Update();
   vtkUnstructuredGrid* pieces = reader->GetOutput();
-  auto* inputIds = vtkIdTypeArray::SafeDownCast(pieces->GetPointData()->GetArray("GlobalIds"));
-  auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
-    pieces->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
-  if (!inputIds || !ghosts)
-    return fail("no GlobalIds or vtkGhostType point array");
-  const fd3test::Points xyz = fd3test::coordinates(pieces);
-  const vtkIdType n = pieces->GetNumberOfPoints();
-
-  // The input, rebuilt in input order from the points each rank owns.
-  vtkIdType inputCount = 0;
-  for (vtkIdType i = 0; i < n; ++i)
-    inputCount += ghosts->GetValue(i) == 0;
-  fd3test::Points input(3 * inputCount, NAN);
-  std::vector<int> seen(inputCount, 0);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const vtkIdType id = inputIds->GetValue(i);
-    if (id < 0 || id >= inputCount)
-      return fail("input id out of range");
-    if (ghosts->GetValue(i) == 0)
-    {
-      ++seen[id];
-      std::copy_n(&xyz[3 * i], 3, &input[3 * id]);
-    }
-  }
-  for (vtkIdType id = 0; id < inputCount; ++id)
-    if (seen[id] != 1)
-      return fail(
-        "input point " + std::to_string(id) + " owned " + std::to_string(seen[id]) + " times");
-  for (vtkIdType i = 0; i < n; ++i)
-    if (!std::equal(&xyz[3 * i], &xyz[3 * i + 3], &input[3 * inputIds->GetValue(i)]))
-      return fail("a ghost point differs from the input point it repeats");
-  vtkDataArray* label = pieces->GetPointData()->GetArray("Label");
-  if (!label)
-    return fail("the input's point data is lost");
-  for (vtkIdType i = 0; i < n; ++i)
-    if (label->GetComponent(i, 0) != xyz[3 * i] / 4 + xyz[3 * i + 1] / 2 + xyz[3 * i + 2])
-      return fail("point " + std::to_string(i) + " has another point's data");
+  fd3test::Points input;
+  std::vector<std::uint32_t> toInput;
+  if (const std::string failure = rebuildInput(pieces, input, toInput); !failure.empty())
+    return fail(failure);
+  const std::size_t inputCount = input.size() / 3;
 
   vtkNew<vtkFastDelaunay3D> serial;
   serial->SetInputData(fd3test::toPolyData(input));
   serial->SetAlpha(alpha);
   serial->Update();
-  std::vector<std::uint32_t> toInput(n), identity(inputCount);
-  for (vtkIdType i = 0; i < n; ++i)
-    toInput[i] = static_cast<std::uint32_t>(inputIds->GetValue(i));
+  std::vector<std::uint32_t> identity(inputCount);
   std::iota(identity.begin(), identity.end(), 0u);
   const std::vector<std::uint32_t> firstCopy = fd3test::firstCopies(input);
   const auto cells = cellSet(pieces, firstCopy, toInput);
@@ -123,47 +171,24 @@ int main(int argc, char* argv[])
     return fail("the pieces' cells (" + std::to_string(cells.size()) +
       ") differ from the one-process run's (" +
       std::to_string(serial->GetOutput()->GetNumberOfCells()) + ")");
-  // The figures of all ranks together are the one-process run's.
-  const std::pair<const char*, vtkIdType> counts[] = {
-    {"NumberOfInsertedPoints", serial->GetNumberOfInsertedPoints()},
-    {"NumberOfDuplicatePoints", serial->GetNumberOfDuplicatePoints()},
-    {"NumberOfInvalidPoints", serial->GetNumberOfInvalidPoints()},
-    {"NumberOfTetrahedra", serial->GetNumberOfTetrahedra()}};
-  for (const auto& [name, expected] : counts)
-  {
-    vtkDataArray* figure = pieces->GetFieldData()->GetArray(name);
-    if (!figure || figure->GetComponent(0, 0) != double(expected))
-      return fail(std::string(name) + " is " +
-        (figure ? std::to_string(figure->GetComponent(0, 0)) : "missing") +
-        ", the one-process run's " + std::to_string(expected));
-  }
-  std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
-  for (auto& id : tets)
-    id = toInput[id];
+  if (const std::string failure = compareFigures(pieces, serial); !failure.empty())
+    return fail(failure);
   if (alpha == 0)
   {
+    std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
+    for (auto& id : tets)
+      id = toInput[id];
     const fd3test::ValidityReport report =
       fd3test::checkTriangulation(input.data(), inputCount, tets);
     if (!report.valid())
       return fail(report.summary());
   }
-  double hull = 0; // of the serial output's tetrahedra: with an alpha, of its alpha shape
-  vtkIdType size;
-  const vtkIdType* ids;
-  auto it = vtk::TakeSmartPointer(serial->GetOutput()->GetCells()->NewIterator());
-  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
-  {
-    it->GetCurrentCell(size, ids);
-    if (size == 4)
-      hull += std::abs(fd3::sixVolume(
-                &input[3 * ids[0]], &input[3 * ids[1]], &input[3 * ids[2]], &input[3 * ids[3]])) /
-        6;
-  }
+  const double hull = volume(serial->GetOutput(), input);
   const double integrated = std::atof(argv[2]);
   if (!(std::abs(integrated - hull) <= 1e-9 * hull))
     return fail("Integrate Variables gives " + std::string(argv[2]) + ", the hull's volume is " +
       std::to_string(hull));
   std::cout << "CheckDistributed: OK, " << cells.size() << " cells of " << inputCount << " points, "
-            << n - inputCount << " ghost points\n";
+            << pieces->GetNumberOfPoints() - vtkIdType(inputCount) << " ghost points\n";
   return 0;
 }
