@@ -8,20 +8,11 @@ import sys
 
 from paraview.simple import *
 
+from mpi_cloud import uniform_cloud
+
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
 count = 200000
-script = """
-import numpy as np
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
-from vtkmodules.numpy_interface import dataset_adapter as dsa
-from vtkmodules.vtkCommonCore import vtkPoints
-c = vtkMultiProcessController.GetGlobalController()
-rank, ranks = c.GetLocalProcessId(), c.GetNumberOfProcesses()
-points = vtkPoints()
-points.SetData(dsa.numpyTovtkDataArray(np.random.default_rng(3 + rank).random((%d // ranks, 3)), "Points"))
-self.GetOutput().SetPoints(points)
-""" % count
-cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
+cloud = uniform_cloud(count, 3)
 delaunay = FastDelaunay3D(Input=cloud)
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 filter = delaunay.GetClientSideObject()  # rank 0's
