@@ -268,6 +268,14 @@ int sharedAxis(const double* const p[4])
       return k;
   return -1;
 }
+/// The five points but five[off], in order.
+void allBut(const double* const five[5], int off, const double* four[4])
+{
+  for (int i = 0, j = 0; i < 5; ++i)
+    if (i != off)
+      four[j++] = five[i];
+}
+
 /// Whether p and q differ in coordinate k alone.
 bool differOnlyIn(const double* p, const double* q, int k)
 {
@@ -325,9 +333,7 @@ bool fourFormAxisRectangle(const double* const five[5])
   for (int off = 0; off < 5; ++off)
   {
     const double* four[4];
-    for (int i = 0, j = 0; i < 5; ++i)
-      if (i != off)
-        four[j++] = five[i];
+    allBut(five, off, four);
     if (formAxisRectangle(four))
       return true;
   }
@@ -512,9 +518,7 @@ int Predicates::inSphereOnAxisPlane(const double* const five[5])
   for (int off = 0; off < 5; ++off)
   {
     const double* plane[4];
-    for (int i = 0, j = 0; i < 5; ++i)
-      if (i != off)
-        plane[j++] = five[i];
+    allBut(five, off, plane);
     const int k = sharedAxis(plane);
     if (k < 0)
       continue;
