@@ -512,7 +512,7 @@ int Predicates::inSphereExact(
 // moving the plane to v = 0 leaves (-1)^(r + k) w times the 4x4 homogeneous incircle determinant
 // of the four in the plane, r being the row of the fifth point and w its distance from the plane.
 // So the sign takes a comparison and an exact 2D incircle test, of degree 4 in 2 dimensions
-// where the 3D test has degree 5 in 3.
+// where the 3D test has degree 5 in 3. The caller has settled the rectangles among them already.
 int Predicates::inSphereOnAxisPlane(const double* const five[5])
 {
   for (int off = 0; off < 5; ++off)
@@ -522,8 +522,6 @@ int Predicates::inSphereOnAxisPlane(const double* const five[5])
     const int k = sharedAxis(plane);
     if (k < 0)
       continue;
-    if (formAxisRectangle(plane))
-      return 0;
     const int u = k == 0 ? 1 : 0, v = k == 2 ? 1 : 2;    // the other axes, in order
     const int side = signOf(five[off][k] - plane[0][k]); // exact: a difference keeps its sign
     return ((off + k) % 2 ? 1 : -1) * side * inCircle(plane, u, v);
