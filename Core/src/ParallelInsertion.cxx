@@ -1,131 +1,183 @@
 // Parallel insertion of one BRIO round: its points are split by count into one box per thread (a
 // kd split), each thread inserts the points of its box, in curve order, changing only tetrahedra
 // whose four vertices are in its box (Region, in Inserter.h: no locks, no two threads ever touch
-// one tetrahedron). An insertion that would reach outside its box is put off. A second pass splits
-// the points put off along other axes, so that few of them lie near its cuts; what is left goes in
-// serially. Design read from HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code ours.
+// one tetrahedron). An insertion that would reach outside its box is put off. Later passes split
+// the points put off again, their cuts moved to where those points are sparse (away from the
+// cuts that put them off), until a pass no longer pays for its threads; what is left goes in
+// serially. Design read from HXT's partitioned insertion (Marot, Pellerin, Remacle 2019), which
+// retries with shifted partitions; code ours.
+//
+// The cut axes follow the mesh's tetrahedra: on a surface sample they are thin across the
+// surface's long directions (a cylinder's, across its axis), and a cut across the axes along
+// which they are thin crosses few of them. Volume data, whose tetrahedra are as wide every way,
+// is cut across its longest axes in turn.
 //
 // The output does not depend on the number of threads or on their timing: with exact predicates
 // and ties broken by an order of the points' coordinates alone (perturbationKey(), Predicates.h),
 // the Delaunay triangulation is unique, and every point is inserted in one pass or another.
+#include "ParallelInsertion.h"
+
+#include "Threads.h"
 #include "Triangulator.h"
 
 #include <algorithm>
-#include <chrono>
-#include <exception>
-#include <numeric>
-#include <system_error>
-#include <thread>
+#include <cmath>
+#include <limits>
 
 namespace fd3
 {
 namespace
 {
-/// Boxes for `parts` threads holding about as many of `vertices` each (recursive cuts at quantiles).
-/// Cut axes cycle through the set's axes from the longest. The points a pass puts off crowd around
-/// its cuts, so the next pass, cut across the longest axis of their box, cuts across those.
-class Partition
-{
-public:
-  Partition(const Mesh& mesh, std::vector<VertId> vertices, int parts)
-    : mesh_(mesh), ids_(std::move(vertices))
-  {
-    Box box = Box::around(mesh.point(ids_[0]));
-    for (VertId v : ids_)
-      box.include(mesh.point(v));
-    std::iota(axes_, axes_ + 3, 0);
-    std::sort(axes_, axes_ + 3, [&box](int a, int b) { return box.extent(a) > box.extent(b); });
-    split(0, ids_.size(), parts, 0, Region());
-  }
-  const std::vector<Region>& regions() const { return regions_; }
-
-private:
-  void split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region)
-  {
-    if (parts == 1)
-    {
-      regions_.push_back(region);
-      return;
-    }
-    const int axis = axes_[depth % 3];
-    const int left = parts / 2;
-    auto coordinate = [&](VertId v) { return mesh_.point(v)[axis]; };
-    const std::size_t cut = begin + (end - begin) * left / parts;
-    double at = cut < end ? 0.0 : region.hi[axis];
-    if (cut < end)
-    {
-      std::nth_element(ids_.begin() + begin, ids_.begin() + cut, ids_.begin() + end,
-        [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
-      at = coordinate(ids_[cut]);
-    }
-    const std::size_t middle =
-      static_cast<std::size_t>(std::partition(ids_.begin() + begin, ids_.begin() + end,
-                                 [&](VertId v) { return coordinate(v) < at; }) -
-        ids_.begin());
-    Region below = region, above = region;
-    below.hi[axis] = at;
-    above.lo[axis] = at;
-    split(begin, middle, left, depth + 1, below);
-    split(middle, end, parts - left, depth + 1, above);
-  }
-
-  const Mesh& mesh_;
-  std::vector<VertId> ids_;
-  int axes_[3];
-  std::vector<Region> regions_;
-};
+// The partition's cuts come from a sample of this many points per region (about 3% imbalance).
+constexpr std::size_t kSamplePerRegion = 1024;
+// Tetrahedra whose extents choose the cut axes.
+constexpr std::size_t kShapeSample = 2048;
 
 /// The least share of its points that a pass on `threads` threads must put in to be faster than
 /// inserting them all serially, if a put-off insertion costs half of one that goes in (it stops
 /// at the first tetrahedron outside its region, in the walk or the cavity). A pass with yield y
 /// costs y/threads + (1-y)/(2 threads) and leaves 1-y to the serial pass.
-double worthwhileYield(int threads)
+double worthwhileYield(std::size_t threads)
 {
-  return 0.5 / (threads - 1 + 0.5);
+  return 0.5 / (double(threads) - 1 + 0.5);
+}
+} // namespace
+
+Partition::Partition(
+  const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes,
+  bool avoidCrowds)
+  : mesh_(mesh)
+  , axes_(axes)
+  , avoidCrowds_(avoidCrowds)
+{
+  const std::size_t wanted = kSamplePerRegion * std::size_t(parts);
+  const std::size_t stride = std::max<std::size_t>(1, vertices.size() / wanted);
+  for (std::size_t i = 0; i < vertices.size(); i += stride)
+    sample_.push_back(vertices[i]);
+  split(0, sample_.size(), parts, 0, Region());
 }
 
-/// Threads that are joined however the scope is left: a std::thread destroyed while joinable
-/// terminates the process, which a failed start or an exception would otherwise cause.
-class JoinedThreads
+int Partition::regionOf(const double* p) const
 {
-public:
-  JoinedThreads() = default;
-  JoinedThreads(const JoinedThreads&) = delete;
-  JoinedThreads& operator=(const JoinedThreads&) = delete;
-  ~JoinedThreads() { joinAll(); }
-  /// Starts f(k) on a thread of its own; false when the system could not start one.
-  template <typename F>
-  bool start(F& f, std::size_t k)
-  {
-    try
-    {
-      threads_.emplace_back(f, k);
-      return true;
-    }
-    catch (const std::system_error&)
-    {
-      return false;
-    }
-  }
-  void joinAll()
-  {
-    for (std::thread& thread : threads_)
-      if (thread.joinable())
-        thread.join();
-  }
+  int node = 0;
+  while (nodes_[node].axis >= 0)
+    node = p[nodes_[node].axis] < nodes_[node].cut ? nodes_[node].below : nodes_[node].above;
+  return nodes_[node].below;
+}
 
-private:
-  std::vector<std::thread> threads_;
-};
-} // namespace
+int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region)
+{
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  if (parts == 1)
+  {
+    nodes_[index] = Node{-1, 0.0, static_cast<int>(regions_.size()), -1};
+    regions_.push_back(region);
+    return index;
+  }
+  const int axis = axes_[std::min<std::size_t>(depth, axes_.size() - 1)];
+  const int left = parts / 2;
+  const double at = cutAt(begin, end, axis, double(left) / parts, region);
+  const auto coordinate = [&](VertId v) { return mesh_.point(v)[axis]; };
+  const std::size_t middle = static_cast<std::size_t>(
+    std::partition(sample_.begin() + begin, sample_.begin() + end,
+      [&](VertId v) { return coordinate(v) < at; }) -
+    sample_.begin());
+  Region below = region, above = region;
+  below.hi[axis] = at;
+  above.lo[axis] = at;
+  const int first = split(begin, middle, left, depth + 1, below);
+  const int second = split(middle, end, parts - left, depth + 1, above);
+  nodes_[index] = Node{axis, at, first, second};
+  return index;
+}
+
+// Balanced: at the quantile. Avoiding crowds: where the points are sparsest, measured by the
+// stretch that the 1/64 of them on either side of a cut spans, among cuts that leave between 30%
+// and 70% of them below (as near the quantile as can be among equals).
+double Partition::cutAt(
+  std::size_t begin, std::size_t end, int axis, double fraction, const Region& region)
+{
+  const std::size_t count = end - begin;
+  if (count == 0)
+    return region.hi[axis];
+  const auto first = sample_.begin() + static_cast<std::ptrdiff_t>(begin);
+  const auto last = sample_.begin() + static_cast<std::ptrdiff_t>(end);
+  const auto below = [&](VertId a, VertId b) { return mesh_.point(a)[axis] < mesh_.point(b)[axis]; };
+  const std::size_t quantile = static_cast<std::size_t>(fraction * double(count));
+  const std::size_t side = std::max<std::size_t>(1, count / 64);
+  const std::size_t lo = std::max(side, count * 3 / 10), hi = std::min(count - 1 - side, count * 7 / 10);
+  if (!avoidCrowds_ || lo > hi)
+  {
+    std::nth_element(first, first + static_cast<std::ptrdiff_t>(quantile), last, below);
+    return mesh_.point(sample_[begin + quantile])[axis];
+  }
+  std::sort(first, last, below);
+  const auto x = [&](std::size_t i) { return mesh_.point(sample_[begin + i])[axis]; };
+  const auto span = [&](std::size_t i) { return x(i + side) - x(i - side); };
+  const auto distance = [&](std::size_t i) { return i > quantile ? i - quantile : quantile - i; };
+  std::size_t best = lo;
+  for (std::size_t i = lo; i <= hi; ++i)
+    if (span(i) > span(best) || (span(i) == span(best) && distance(i) < distance(best)))
+      best = i;
+  return 0.5 * (x(best) + x(best + 1));
+}
+
+std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) const
+{
+  Box box = Box::around(point(vertices[0]));
+  for (std::size_t i = 0; i < vertices.size(); i += std::max<std::size_t>(1, vertices.size() / 4096))
+    box.include(point(vertices[i]));
+  // Mean extent of the mesh's tetrahedra along each axis, over the tetrahedra of vertices
+  // inserted before the round (whose records are all current between passes).
+  double width[3] = {0, 0, 0};
+  const VertId inserted = *std::min_element(vertices.begin(), vertices.end());
+  for (VertId v = 0; v < inserted; v += std::max<VertId>(1, inserted / kShapeSample))
+  {
+    VertId tv[4];
+    mesh_.tets.vertices(mesh_.vertices[v].tet, tv);
+    if (tv[3] == kInfinite)
+      continue;
+    for (int a = 0; a < 3; ++a)
+    {
+      double lo = point(tv[0])[a], hi = lo;
+      for (int k = 1; k < 4; ++k)
+      {
+        lo = std::min(lo, point(tv[k])[a]);
+        hi = std::max(hi, point(tv[k])[a]);
+      }
+      width[a] += hi - lo;
+    }
+  }
+  // A cut across axis a crosses the tetrahedra within their width of it: a share of the points of
+  // about width/extent per cut. Each level doubles the pieces along the axis that adds the least.
+  double share[3], pieces[3] = {1, 1, 1};
+  for (int a = 0; a < 3; ++a)
+    share[a] = box.extent(a) > 0 ? (width[a] + 1e-300) / box.extent(a)
+                                 : std::numeric_limits<double>::infinity();
+  std::vector<int> axes;
+  for (int parts = 1; parts < team_.size(); parts *= 2)
+  {
+    int a = 0;
+    for (int b = 1; b < 3; ++b)
+      if (pieces[b] * share[b] < pieces[a] * share[a])
+        a = b;
+    axes.push_back(a);
+    pieces[a] *= 2;
+  }
+  return axes;
+}
 
 bool Triangulator::insertInParallel(
   std::vector<VertId> vertices, const std::function<bool(double)>& progress)
 {
-  const int threads = static_cast<int>(inserters_.size());
-  for (int pass = 0; pass < 2 && !vertices.empty() && !stop_; ++pass)
+  for (int pass = 0; pass < kMaxPasses && !stop_; ++pass)
   {
-    if (passYield_[pass] < worthwhileYield(threads))
+    const std::size_t parts = std::min<std::size_t>(
+      team_.size(), vertices.size() / std::max<std::size_t>(1, mesh_.options.pointsPerThread));
+    if (parts < 2)
+      break;
+    if (passYield_[pass] < worthwhileYield(parts))
     {
       // Tried again once the guess, doubled every round left out, says so: later rounds, denser,
       // may do better.
@@ -133,7 +185,9 @@ bool Triangulator::insertInParallel(
       break;
     }
     const std::size_t count = vertices.size();
-    vertices = runPass(vertices, Partition(mesh_, vertices, threads).regions(), progress);
+    const std::vector<int> axes = cutAxes(vertices);
+    vertices = runPass(
+      vertices, Partition(mesh_, vertices, static_cast<int>(parts), axes, pass > 0), pass, progress);
     passYield_[pass] = 1.0 - double(vertices.size()) / double(count);
   }
   std::sort(vertices.begin(), vertices.end()); // back to curve order
@@ -142,55 +196,62 @@ bool Triangulator::insertInParallel(
       vertices.size(), [&vertices](std::size_t i) { return vertices[i]; }, progress);
 }
 
-std::vector<std::vector<VertId>> Triangulator::shareOut(
-  const std::vector<VertId>& vertices, const std::vector<Region>& regions) const
+// Read only, while no thread writes: the start is a tetrahedron in conflict with the first point
+// of the share that has one in the region; the points before it are put off.
+void Triangulator::startInRegion(std::size_t k, const Region& region,
+  std::vector<VertId>& share, std::vector<VertId>& putOff)
 {
-  std::vector<std::vector<VertId>> share(regions.size());
-  for (VertId v : vertices)
-    for (std::size_t k = 0; k < regions.size(); ++k)
-      if (regions[k].contains(point(v)))
-      {
-        share[k].push_back(v);
-        break;
-      }
-  return share;
+  Inserter& inserter = *inserters_[k];
+  std::size_t first = 0;
+  for (; first < share.size(); ++first)
+  {
+    inserter.unrestricted();
+    const TetId start = inserter.locateForStart(share[first]);
+    inserter.restrictTo(region, start);
+    if (inserter.isOwned(start))
+      break;
+  }
+  putOff.assign(share.begin(), share.begin() + static_cast<std::ptrdiff_t>(first));
+  share.erase(share.begin(), share.begin() + static_cast<std::ptrdiff_t>(first));
 }
 
-// Before any thread runs, so that the search may read the whole mesh: the start is a tetrahedron
-// in conflict with the first point of the share that has one in the region; the points before it
-// are put off.
-void Triangulator::startInRegions(const std::vector<Region>& regions,
+// Each thread sorts a stretch of the points into regions; then each gathers its region's points
+// from every stretch, in curve order, and finds its start.
+void Triangulator::shareOut(const std::vector<VertId>& vertices, const Partition& partition,
   std::vector<std::vector<VertId>>& share, std::vector<std::vector<VertId>>& putOff)
 {
-  for (std::size_t k = 0; k < regions.size(); ++k)
-  {
-    Inserter& inserter = *inserters_[k];
-    std::size_t first = 0;
-    for (; first < share[k].size(); ++first)
-    {
-      inserter.unrestricted();
-      const TetId start = inserter.locateForStart(share[k][first]);
-      inserter.restrictTo(regions[k], start);
-      if (inserter.isOwned(start))
-        break;
-    }
-    putOff[k].assign(share[k].begin(), share[k].begin() + static_cast<std::ptrdiff_t>(first));
-    share[k].erase(share[k].begin(), share[k].begin() + static_cast<std::ptrdiff_t>(first));
-  }
+  const std::size_t parts = static_cast<std::size_t>(partition.parts());
+  std::vector<std::vector<std::vector<VertId>>> byStretch(
+    parts, std::vector<std::vector<VertId>>(parts));
+  records_.emplace_back();
+  ThreadedWork& record = records_.back();
+  record.phase = "regions";
+  team_.run(
+    parts,
+    [&](std::size_t k) {
+      for (std::size_t i = vertices.size() * k / parts; i < vertices.size() * (k + 1) / parts; ++i)
+        byStretch[k][partition.regionOf(point(vertices[i]))].push_back(vertices[i]);
+    },
+    record);
+  share.assign(parts, {});
+  putOff.assign(parts, {});
+  team_.run(
+    parts,
+    [&](std::size_t k) {
+      for (std::size_t c = 0; c < parts; ++c)
+        share[k].insert(share[k].end(), byStretch[c][k].begin(), byStretch[c][k].end());
+      startInRegion(k, partition.region(static_cast<int>(k)), share[k], putOff[k]);
+    },
+    record);
 }
 
 std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
-  const std::vector<Region>& regions, const std::function<bool(double)>& progress)
+  const Partition& partition, int pass, const std::function<bool(double)>& progress)
 {
-  const std::size_t threads = regions.size();
   makeRoomFor(vertices.size());
-  std::vector<std::vector<VertId>> share = shareOut(vertices, regions);
-  std::vector<std::vector<VertId>> putOff(threads);
-  startInRegions(regions, share, putOff);
-
+  std::vector<std::vector<VertId>> share, putOff;
+  shareOut(vertices, partition, share, putOff);
   passDone_ = 0;
-  std::vector<std::exception_ptr> failures(threads);
-  std::atomic<std::size_t> finished{0};
   auto work = [&](std::size_t k) {
     try
     {
@@ -213,44 +274,34 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
     }
     catch (...)
     {
-      failures[k] = std::current_exception();
       stop_ = true;
+      throw;
     }
-    finished.fetch_add(1);
   };
-  JoinedThreads helpers;
-  std::vector<std::size_t> unstarted; // regions no thread could be started for: this one takes them
-  for (std::size_t k = 1; k < threads; ++k)
-    if (!helpers.start(work, k))
-      unstarted.push_back(k);
-  work(0);
-  for (const std::size_t k : unstarted)
-    work(k);
   // This thread alone reports progress, also while the others finish; a callback that throws
-  // stops them, and the threads are joined before anything unwinds.
-  while (finished < threads)
-  {
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  // stops them.
+  auto poll = [&] {
     try
     {
       reportProgress(progress);
     }
     catch (...)
     {
-      if (!failures[0])
-        failures[0] = std::current_exception();
       stop_ = true;
+      throw;
     }
-  }
-  helpers.joinAll();
+  };
+  records_.emplace_back();
+  ThreadedWork& record = records_.back();
+  record.phase = kPassNames[pass];
+  record.points = vertices.size();
+  team_.run(share.size(), work, record, poll);
   done_ += passDone_;
   passDone_ = 0;
-  for (const std::exception_ptr& failure : failures)
-    if (failure)
-      std::rethrow_exception(failure);
   std::vector<VertId> left;
   for (const auto& list : putOff)
     left.insert(left.end(), list.begin(), list.end());
+  record.left = left.size();
   return left;
 }
 

@@ -4,8 +4,13 @@
 #ifndef fd3_Platform_h
 #define fd3_Platform_h
 
+#include <chrono>
 #include <cstdint>
 
+#if !defined(FD3_PORTABLE) && (defined(__unix__) || defined(__APPLE__))
+#include <time.h>
+#define FD3_HAVE_THREAD_CLOCK 1
+#endif
 #if !defined(FD3_PORTABLE) && defined(_MSC_VER)
 #include <intrin.h>
 #endif
@@ -46,6 +51,19 @@ inline void prefetch(const void* p)
   _mm_prefetch(static_cast<const char*>(p), _MM_HINT_T0);
 #else
   (void)p;
+#endif
+}
+
+/// CPU seconds the calling thread has used (its own clock, for the scaling model of the threaded
+/// work). The fallback is wall-clock time, which counts a thread's waits as well.
+inline double threadCpuSeconds()
+{
+#if defined(FD3_HAVE_THREAD_CLOCK)
+  timespec now;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+#else
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 #endif
 }
 

@@ -117,10 +117,12 @@ int threadCount(const Options& options)
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (options.volumeThreshold > 0)
     return 1; // which slivers the guard avoids depends on the order of insertion
+  if (options.threads <= 0)
+    return hardware;
   // Each thread has its own scratch and slot pool: beyond a few per hardware thread they only
-  // cost memory.
-  return options.threads > 0 ? std::min(options.threads, kThreadsPerHardwareThread * hardware)
-                             : hardware;
+  // cost memory. kMinThreadLimit stays open everywhere, so that any machine can run (and test)
+  // what a large one runs.
+  return std::min(options.threads, std::max(kThreadsPerHardwareThread * hardware, kMinThreadLimit));
 }
 } // namespace
 
@@ -137,6 +139,8 @@ struct IncrementalDelaunay::Impl
   // (point, point it was skipped for), then (duplicate, original): the order representatives
   // are resolved in.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped, duplicates;
+  std::unique_ptr<ThreadTeam> team;
+  std::vector<ThreadedWork> threadedWork; // every batch's
   std::unique_ptr<Triangulator> triangulator;
   // The input coordinates the mesh holds: those of the points from id heldFrom on. That is every
   // point until the mesh starts. After that, a mesh that reads its points holds none (the caller
@@ -270,8 +274,9 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   Box bounds;
   std::copy(frame.lo, frame.lo + 3, bounds.lo);
   std::copy(frame.hi, frame.hi + 3, bounds.hi);
+  team = std::make_unique<ThreadTeam>(threadCount(options));
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
-    toFrame(frame, bounds), options, threadCount(options), frame.identity);
+    toFrame(frame, bounds), options, *team, threadedWork, frame.identity);
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }
@@ -324,6 +329,7 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
   Triangulation out;
   out.status = status;
   out.stats = stats;
+  out.threadedWork = threadedWork;
   if (status != Status::Ok)
     return out;
   out.stats.add(triangulator->statistics()); // the inserters' figures: none of them are in stats

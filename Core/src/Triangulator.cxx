@@ -9,8 +9,10 @@
 namespace fd3
 {
 Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& bounds,
-  const Options& options, int threads, bool anyMagnitude)
-  : tuning_(options.randomSeed)
+  const Options& options, ThreadTeam& team, std::vector<ThreadedWork>& records, bool anyMagnitude)
+  : team_(team)
+  , records_(records)
+  , tuning_(options.randomSeed)
 {
   mesh_.vertices = std::move(vertices);
   mesh_.options = options;
@@ -20,7 +22,7 @@ Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& boun
   tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), bounds);
   if (anyMagnitude)
     tuning_.allowAnyMagnitude();
-  for (int t = 0; t < threads; ++t)
+  for (int t = 0; t < team.size(); ++t)
   {
     pools_.push_back(std::make_unique<SlotPool>());
     inserters_.push_back(std::make_unique<Inserter>(
@@ -70,9 +72,10 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
     const std::size_t last = std::min(r + 1 < roundStarts.size() ? roundStarts[r + 1] : end, end);
     if (first >= last)
       continue;
-    // Parallel passes pay for their threads and regions: small rounds go in serially.
+    // Parallel passes pay for their threads and regions: a pass takes a thread per
+    // pointsPerThread points, and rounds too small for two go in serially.
     bool ok = false;
-    if (parallel && last - first >= mesh_.options.pointsPerThread * inserters_.size())
+    if (parallel && last - first >= 2 * mesh_.options.pointsPerThread)
     {
       std::vector<VertId> round(last - first);
       std::iota(round.begin(), round.end(), static_cast<VertId>(first));

@@ -6,6 +6,8 @@
 
 #include "Geometry.h"
 #include "Inserter.h"
+#include "ParallelInsertion.h"
+#include "Threads.h"
 #include "fd3/Delaunay.h"
 
 #include <atomic>
@@ -22,10 +24,11 @@ class Triangulator
 public:
   /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
   /// `box`, which the grid covers; `bounds` holds every point the mesh will ever have (added ones
-  /// too) and sets the predicates' static bounds. `threads` inserters are made ready.
+  /// too) and sets the predicates' static bounds. An inserter is made ready for each thread of
+  /// `team`; every parallel pass is recorded in `records`.
   /// `anyMagnitude`: the points are not scaled into [-1, 1] (Predicates::allowAnyMagnitude()).
   Triangulator(VertexArray vertices, const Box& box, const Box& bounds, const Options& options,
-    int threads, bool anyMagnitude);
+    ThreadTeam& team, std::vector<ThreadedWork>& records, bool anyMagnitude);
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
@@ -82,20 +85,24 @@ private:
   template <typename VertexAt>
   bool insertSerially(
     std::size_t count, VertexAt vertexAt, const std::function<bool(double)>& progress);
-  /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, twice,
-  /// then serially what the regions could not take; a pass whose kind last yielded too little to
-  /// pay for itself is left out. ParallelInsertion.cxx.
+  /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, in
+  /// passes, then serially what the regions could not take; a pass whose kind last yielded too
+  /// little to pay for itself is left out. ParallelInsertion.cxx.
   bool insertInParallel(std::vector<VertId> vertices, const std::function<bool(double)>& progress);
-  /// Each region's points, in the order of `vertices` (the round's curve order).
-  std::vector<std::vector<VertId>> shareOut(
-    const std::vector<VertId>& vertices, const std::vector<Region>& regions) const;
-  /// Restricts each inserter to its region, from a start in it; the points of a share before the
-  /// first one that has a start go to putOff.
-  void startInRegions(const std::vector<Region>& regions, std::vector<std::vector<VertId>>& share,
-    std::vector<std::vector<VertId>>& putOff);
-  /// Inserts `vertices` in `regions`, one thread each; returns those that had to be put off.
-  std::vector<VertId> runPass(const std::vector<VertId>& vertices,
-    const std::vector<Region>& regions, const std::function<bool(double)>& progress);
+  /// The axis each level of a partition of `vertices` (a round's, or those a pass put off) cuts
+  /// across: from the mesh's tetrahedra and the points' box.
+  std::vector<int> cutAxes(const std::vector<VertId>& vertices) const;
+  /// Each region's points, in the order of `vertices` (the round's curve order), each inserter
+  /// restricted to its region from a start in it; the points of a share before the first one that
+  /// has a start go to putOff.
+  void shareOut(const std::vector<VertId>& vertices, const Partition& partition,
+    std::vector<std::vector<VertId>>& share, std::vector<std::vector<VertId>>& putOff);
+  void startInRegion(std::size_t k, const Region& region, std::vector<VertId>& share,
+    std::vector<VertId>& putOff);
+  /// Inserts `vertices` in the partition's regions, one thread each; returns those that had to be
+  /// put off.
+  std::vector<VertId> runPass(const std::vector<VertId>& vertices, const Partition& partition,
+    int pass, const std::function<bool(double)>& progress);
   /// Slots enough for vertices up to `end`, from the slots per vertex now and after an earlier
   /// round (`earlierDone` vertices, `earlierSlots` slots; 0 when none), with a margin.
   std::size_t predictedSlots(
@@ -104,18 +111,24 @@ private:
   void makeRoomFor(std::size_t count);
   bool reportProgress(const std::function<bool(double)>& progress);
 
+  static constexpr int kMaxPasses = 4;
+  static constexpr const char* kPassNames[kMaxPasses] = {
+    "insertion pass 1", "insertion pass 2", "insertion pass 3", "insertion pass 4"};
+
   Mesh mesh_;
+  ThreadTeam& team_;
+  std::vector<ThreadedWork>& records_;
   Predicates tuning_; // adapted to every vertex so far; the inserters take copies
   std::vector<std::unique_ptr<SlotPool>> pools_;
   std::vector<std::unique_ptr<Inserter>> inserters_;
   std::size_t done_ = 0; // vertices handled, for progress
   std::atomic<std::size_t> passDone_{0};
   std::atomic<bool> stop_{false};
-  // Share of its points that the last first pass and the last second pass put in: on some inputs
-  // (convex surface samples, whose hull faces run across the whole set) nearly every insertion
-  // reaches outside its region, and a pass that puts off nearly all of them only wastes time.
-  // A pass left out doubles its guess instead (one that put nothing in is not tried again).
-  double passYield_[2] = {1.0, 1.0};
+  // Share of its points that the last pass of each number put in: on some inputs (convex surface
+  // samples, whose hull faces run across the whole set) nearly every insertion reaches outside
+  // its region, and a pass that puts off nearly all of them only wastes time. A pass left out
+  // doubles its guess instead (one that put nothing in is not tried again).
+  double passYield_[kMaxPasses] = {1.0, 1.0, 1.0, 1.0};
 };
 
 template <typename VertexAt>

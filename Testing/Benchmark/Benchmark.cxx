@@ -12,9 +12,13 @@
 // Methods: Core, vtkFastDelaunay3D, vtkDelaunay3D, CGAL, TetGen; "-T" after Core,
 // vtkFastDelaunay3D or CGAL runs it on T threads (CGAL: its Parallel_tag triangulation with TBB).
 //   Benchmark --table1 [--markdown FILE]     the paper's Table 1 for this kernel
+//   Benchmark --scaling [--kinds ...] [--sizes N] [--threads 1,2,4,...] [--csv FILE]
+//             [--markdown FILE]                the scaling model of Core's threads (Scaling.cxx)
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
 // child resets it) and a crash or a time-out costs one row, not the run.
+#include "Measure.h"
+#include "Scaling.h"
 #include "VtkTestUtilities.h"
 #include "fd3/Delaunay.h"
 #include "vtkFastDelaunay3D.h"
@@ -57,20 +61,7 @@
 
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-struct Measurement
-{
-  bool ran = false;
-  double seconds = 0;
-  double tetrahedra = 0;
-  double peakMiB = 0;
-  double conversionSeconds = 0; // the filter's time outside the kernel (VTK arrays in and out)
-  double walk = 0;
-  double maxWalk = 0;
-  int valid = -1; // 1 valid, 0 invalid, -1 not checked
-  std::string note;
-};
+using namespace fd3bench;
 
 /// The exact validator's verdict on a tetrahedralization, when the run is small enough.
 template <typename Ids>
@@ -81,90 +72,6 @@ int validity(const fd3test::Points& p, const Ids& tets, std::size_t limit)
   return fd3test::checkTriangulation(p.data(), p.size() / 3, tets).valid() ? 1 : 0;
 }
 
-std::vector<std::string> split(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');)
-    out.push_back(item);
-  return out;
-}
-
-long statusKiB(const char* field)
-{
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind(field, 0) == 0)
-      return std::stol(line.substr(std::strlen(field)));
-  return 0;
-}
-
-long gBaseKiB = 0; // the child's resident memory before its work
-
-double peakSoFarMiB()
-{
-  return (statusKiB("VmHWM:") - gBaseKiB) / 1024.0;
-}
-
-/// Runs `work` in a child process; the child reports seconds, tetrahedra, validity, and its peak
-/// memory above what it inherited. Gives up after `limit` seconds.
-template <typename Work>
-Measurement measure(Work work, double limit)
-{
-  int fds[2];
-  if (pipe(fds) != 0)
-    return {};
-  const pid_t pid = fork();
-  if (pid == 0)
-  {
-    close(fds[0]);
-    malloc_trim(0); // pages the parent freed must not be reused unseen by the RSS counters
-    std::ofstream("/proc/self/clear_refs") << "5"; // reset VmHWM to the current RSS
-    gBaseKiB = statusKiB("VmRSS:");
-    Measurement m = work();
-    if (m.peakMiB == 0)
-      m.peakMiB = peakSoFarMiB();
-    char line[256];
-    const int n = std::snprintf(line, sizeof line, "%.6f %.0f %.1f %d %.6f %.4f %.0f", m.seconds,
-      m.tetrahedra, m.peakMiB, m.valid, m.conversionSeconds, m.walk, m.maxWalk);
-    if (write(fds[1], line, static_cast<std::size_t>(n)) < 0)
-      _exit(2);
-    _exit(0);
-  }
-  close(fds[1]);
-  Measurement m;
-  const auto start = Clock::now();
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0)
-  {
-    if (std::chrono::duration<double>(Clock::now() - start).count() > limit)
-    {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      close(fds[0]);
-      m.note = "timed out";
-      return m;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  char line[256] = {0};
-  const ssize_t got = read(fds[0], line, sizeof line - 1);
-  close(fds[0]);
-  if (got <= 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-  {
-    m.note = "failed";
-    return m;
-  }
-  std::sscanf(line, "%lf %lf %lf %d %lf %lf %lf", &m.seconds, &m.tetrahedra, &m.peakMiB, &m.valid,
-    &m.conversionSeconds, &m.walk, &m.maxWalk);
-  m.ran = true;
-  return m;
-}
-
-double since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 Measurement runCore(const fd3test::Points& p, std::size_t validateLimit, int threads)
 {
@@ -310,22 +217,6 @@ Measurement runTetgen(const fd3test::Points& p, std::size_t validateLimit)
 }
 #endif
 
-std::string machineName()
-{
-  std::string cpu = "unknown CPU";
-  std::ifstream info("/proc/cpuinfo");
-  for (std::string line; std::getline(info, line);)
-    if (line.rfind("model name", 0) == 0)
-    {
-      cpu = line.substr(line.find(':') + 2);
-      break;
-    }
-  std::ostringstream out;
-  out << cpu << ", " << std::thread::hardware_concurrency() << " threads, "
-      << (sysconf(_SC_PHYS_PAGES) * sysconf(_SC_PAGE_SIZE) >> 30) << " GiB";
-  return out.str();
-}
-
 std::string cell(const Measurement& m, const char* format, double value)
 {
   if (!m.ran)
@@ -427,6 +318,8 @@ struct Settings
   int repeat = 1;
   std::string markdownFile, csvFile;
   bool paperTable = false;
+  bool scaling = false;
+  std::vector<int> threads = {1, 2, 4, 8, 16, 32, 64};
 };
 
 /// The settings of the command line; false (with a message) on an unknown option.
@@ -437,10 +330,16 @@ bool parse(int argc, char* argv[], Settings& settings)
   for (int i = 1; i < argc; i += 2)
   {
     const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
-    if (key == "--table1")
+    if (key == "--table1" || key == "--scaling")
     {
-      settings.paperTable = true;
+      (key == "--table1" ? settings.paperTable : settings.scaling) = true;
       --i;
+    }
+    else if (key == "--threads")
+    {
+      settings.threads.clear();
+      for (const std::string& t : split(value))
+        settings.threads.push_back(std::stoi(t));
     }
     else if (key == "--kinds")
       settings.kinds = split(value);
@@ -557,6 +456,9 @@ int main(int argc, char* argv[])
     return 2;
   if (settings.paperTable)
     return table1(settings.markdownFile);
+  if (settings.scaling)
+    return scaling({settings.kinds, settings.sizes, settings.threads, settings.csvFile,
+      settings.markdownFile});
 
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". "

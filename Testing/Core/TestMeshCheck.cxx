@@ -28,8 +28,10 @@ std::unique_ptr<fd3::Triangulator> meshOf(const fd3test::Points& p)
     box.lo[a] = -1;
     box.hi[a] = 1;
   }
-  auto mesh =
-    std::make_unique<fd3::Triangulator>(std::move(vertices), box, box, fd3::Options(), 1, false);
+  static fd3::ThreadTeam oneThread(1);
+  static std::vector<fd3::ThreadedWork> noParallelWork;
+  auto mesh = std::make_unique<fd3::Triangulator>(
+    std::move(vertices), box, box, fd3::Options(), oneThread, noParallelWork, false);
   EXPECT_TRUE(mesh->insertAll({0}, nullptr));
   return mesh;
 }

@@ -41,8 +41,10 @@ enum class Status
   CheckFailed   ///< Options::checkMesh found a broken invariant (a bug): see checkReport
 };
 
-/// The most threads per hardware thread that Options::threads starts.
+/// The most threads per hardware thread that Options::threads starts, where that is more than
+/// kMinThreadLimit: any count up to that one starts on every machine.
 constexpr int kThreadsPerHardwareThread = 4;
+constexpr int kMinThreadLimit = 64;
 
 struct Options
 {
@@ -73,7 +75,8 @@ struct Options
   /// Threads that insert points; 0: all hardware threads. The output does not depend on it (ties
   /// are broken by a key fixed before insertion). A volume threshold makes the run serial: which
   /// slivers it avoids depends on the order of insertion. At most kThreadsPerHardwareThread per
-  /// hardware thread are started; larger values run as that many.
+  /// hardware thread, or kMinThreadLimit where that is more, are started; larger values run as
+  /// that many.
   int threads = 1;
   /// A BRIO round goes in parallel when it has at least this many points per thread (smaller
   /// ones do not repay the threads' start and the regions' borders).
@@ -152,6 +155,26 @@ using IdArray = std::vector<std::uint32_t, BulkAllocator<std::uint32_t>>;
 constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu; ///< a hull face in Triangulation::neighbors
 constexpr std::uint32_t kNoPoint = 0xFFFFFFFFu;    ///< a non-finite point's representative
 
+/// One stretch of work that ran on several threads at once (a parallel insertion pass, a phase
+/// on every thread), for a model of how the run scales: what each thread spent on it, by its own
+/// CPU clock. Work outside these ran on the calling thread alone.
+struct ThreadedWork
+{
+  const char* phase = "";            ///< "insertion pass 1", "insertion pass 2", ...
+  std::vector<double> threadSeconds; ///< each thread's CPU seconds in it; [0]: the calling thread
+  /// CPU seconds of the calling thread in it: its own part, and the part of any thread that the
+  /// system could not start, which the calling thread then ran.
+  double callerSeconds = 0;
+  std::size_t points = 0; ///< insertion passes: the points given to the pass
+  std::size_t left = 0;   ///< insertion passes: those it put off, to a later pass or the serial one
+
+  /// The longest thread's CPU seconds: what the stretch would take with a core per thread.
+  double longest() const
+  {
+    return threadSeconds.empty() ? 0.0 : *std::max_element(threadSeconds.begin(), threadSeconds.end());
+  }
+};
+
 struct Triangulation
 {
   Status status = Status::Ok;
@@ -169,6 +192,8 @@ struct Triangulation
   Statistics stats;
   /// With Status::CheckFailed: what Options::checkMesh found, a line per violation.
   std::string checkReport;
+  /// Every stretch of work that ran on several threads, in the order run (none with one thread).
+  std::vector<ThreadedWork> threadedWork;
 
   std::size_t numberOfTetrahedra() const { return tetrahedra.size() / 4; }
 };

@@ -1,0 +1,140 @@
+#include "Threads.h"
+
+#include "Platform.h"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <system_error>
+
+namespace fd3
+{
+
+ThreadTeam::ThreadTeam(int size)
+  : size_(std::max(size, 1))
+{
+}
+
+ThreadTeam::~ThreadTeam()
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& helper : helpers_)
+    helper.join();
+}
+
+void ThreadTeam::startHelpers()
+{
+  started_ = true;
+  for (int k = 1; k < size_; ++k)
+  {
+    try
+    {
+      helpers_.emplace_back(&ThreadTeam::serve, this, std::size_t(k));
+    }
+    catch (const std::system_error&)
+    {
+      return; // the calling thread runs the parts of the threads that could not start
+    }
+  }
+}
+
+void ThreadTeam::runPart(std::size_t k)
+{
+  const double start = threadCpuSeconds();
+  try
+  {
+    (*part_)(k);
+  }
+  catch (...)
+  {
+    failures_[k] = std::current_exception();
+  }
+  // Each part writes its own element: no two threads write one.
+  record_->threadSeconds[k] += threadCpuSeconds() - start;
+}
+
+void ThreadTeam::serve(std::size_t k)
+{
+  std::size_t seen = 0;
+  for (;;)
+  {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return quit_ || generation_ != seen; });
+      if (quit_)
+        return;
+      seen = generation_;
+      if (k >= parts_)
+        continue;
+    }
+    runPart(k);
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (++finished_ == parts_)
+      done_.notify_one();
+  }
+}
+
+void ThreadTeam::run(std::size_t parts, const std::function<void(std::size_t)>& part,
+  ThreadedWork& record, const std::function<void()>& poll)
+{
+  parts = std::min(std::max<std::size_t>(parts, 1), std::size_t(size_));
+  if (!started_ && parts > 1)
+    startHelpers();
+  record.threadSeconds.resize(std::max(record.threadSeconds.size(), parts), 0.0);
+  const std::size_t onHelpers = std::min(parts - 1, helpers_.size());
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    part_ = &part;
+    record_ = &record;
+    failures_.assign(parts + 1, nullptr);
+    parts_ = onHelpers + 1; // the parts the helpers run, and the calling thread's own
+    finished_ = 1;
+    ++generation_;
+  }
+  if (onHelpers > 0)
+    wake_.notify_all();
+  const double start = threadCpuSeconds();
+  runPart(0);
+  for (std::size_t k = onHelpers + 1; k < parts; ++k)
+    runPart(k);
+  record.callerSeconds += threadCpuSeconds() - start;
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (finished_ < parts_)
+  {
+    if (!poll || failures_[parts])
+    {
+      done_.wait(lock, [&] { return finished_ == parts_; });
+      break;
+    }
+    done_.wait_for(lock, std::chrono::milliseconds(5));
+    lock.unlock();
+    try
+    {
+      poll();
+    }
+    catch (...)
+    {
+      failures_[parts] = std::current_exception();
+    }
+    lock.lock();
+  }
+  for (const std::exception_ptr& failure : failures_)
+    if (failure)
+      std::rethrow_exception(failure);
+}
+
+void ThreadTeam::forRanges(std::size_t count, const char* phase,
+  std::vector<ThreadedWork>& records, const std::function<void(std::size_t, std::size_t)>& f)
+{
+  const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(size_, count / 4096));
+  records.emplace_back();
+  records.back().phase = phase;
+  run(
+    parts, [&](std::size_t k) { f(count * k / parts, count * (k + 1) / parts); }, records.back());
+}
+
+} // namespace fd3

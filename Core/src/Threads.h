@@ -1,0 +1,70 @@
+// The threads of one triangulation: a team started once and given one fork-join per phase or
+// insertion pass, each part's CPU time recorded (fd3::ThreadedWork) for the scaling model.
+// std::thread rather than a task scheduler: Core stays free of VTK, and its parallel work is a
+// few dozen fork-joins of equal parts, where a scheduler adds nothing but a dependency. The
+// threads live as long as the team: starting 63 threads for each of the insertion's passes would
+// cost the calling thread more than a pass takes on 64 cores.
+#ifndef fd3_Threads_h
+#define fd3_Threads_h
+
+#include "fd3/Delaunay.h"
+
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace fd3
+{
+
+class ThreadTeam
+{
+public:
+  /// A team of `size` threads, the calling one included; the others start on the first run().
+  explicit ThreadTeam(int size);
+  ThreadTeam(const ThreadTeam&) = delete;
+  ThreadTeam& operator=(const ThreadTeam&) = delete;
+  ~ThreadTeam();
+
+  int size() const { return size_; }
+
+  /// Runs part(k) for every k < parts (at most size()): k = 0 on the calling thread, the others on
+  /// the team's threads, or on the calling thread after its own part where the system could not
+  /// start them all. While others still run, the calling thread calls `poll` every few
+  /// milliseconds (progress). Each part's CPU time is added to record.threadSeconds[k]. The first
+  /// exception of a part or of `poll` is rethrown once every part has ended; parts are not
+  /// stopped by it (work that should stop early watches a flag that it and `poll` set).
+  void run(std::size_t parts, const std::function<void(std::size_t)>& part, ThreadedWork& record,
+    const std::function<void()>& poll = nullptr);
+
+  /// Splits [0, count) into parts() contiguous ranges and runs f(begin, end) on each, recorded as
+  /// a phase named `phase` in `records`.
+  void forRanges(std::size_t count, const char* phase, std::vector<ThreadedWork>& records,
+    const std::function<void(std::size_t, std::size_t)>& f);
+
+private:
+  void startHelpers();
+  void serve(std::size_t k);
+  void runPart(std::size_t k);
+
+  const int size_;
+  std::vector<std::thread> helpers_; // helpers_[k - 1] runs part k
+  bool started_ = false;
+
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  // The job, set under mutex_ by run() before `generation_` moves on.
+  std::size_t generation_ = 0;
+  std::size_t parts_ = 0;
+  std::size_t finished_ = 0;
+  bool quit_ = false;
+  const std::function<void(std::size_t)>* part_ = nullptr;
+  ThreadedWork* record_ = nullptr;
+  std::vector<std::exception_ptr> failures_;
+};
+
+} // namespace fd3
+
+#endif

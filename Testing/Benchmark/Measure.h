@@ -1,0 +1,168 @@
+// The benchmarks' measurement: each run in a forked child, so that its peak memory is its own
+// (VmHWM after the child resets it) and a crash or a time-out costs one row, not the run.
+#ifndef fd3_benchmark_Measure_h
+#define fd3_benchmark_Measure_h
+
+#include <malloc.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fd3bench
+{
+using Clock = std::chrono::steady_clock;
+
+struct Measurement
+{
+  bool ran = false;
+  double seconds = 0;
+  double tetrahedra = 0;
+  double peakMiB = 0;
+  double conversionSeconds = 0; // the filter's time outside the kernel (VTK arrays in and out)
+  double walk = 0;
+  double maxWalk = 0;
+  int valid = -1; // 1 valid, 0 invalid, -1 not checked
+  std::vector<double> figures; // more, as a benchmark defines them
+  std::string note;            // why it did not run; or, when it ran, a detail (one line)
+};
+
+inline double since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+inline long statusKiB(const char* field)
+{
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind(field, 0) == 0)
+      return std::stol(line.substr(std::strlen(field)));
+  return 0;
+}
+
+inline long gBaseKiB = 0; // the child's resident memory before its work
+
+inline double peakSoFarMiB()
+{
+  return (statusKiB("VmHWM:") - gBaseKiB) / 1024.0;
+}
+
+/// The measurement as one line: the fixed fields, the figures' count and figures, then the note.
+inline std::string serialize(const Measurement& m)
+{
+  std::ostringstream line;
+  line.precision(9);
+  line << m.seconds << ' ' << m.tetrahedra << ' ' << m.peakMiB << ' ' << m.valid << ' '
+       << m.conversionSeconds << ' ' << m.walk << ' ' << m.maxWalk << ' ' << m.figures.size();
+  for (const double f : m.figures)
+    line << ' ' << f;
+  line << ' ' << m.note;
+  return line.str();
+}
+
+inline Measurement deserialize(const std::string& text)
+{
+  Measurement m;
+  std::istringstream line(text);
+  std::size_t figures = 0;
+  line >> m.seconds >> m.tetrahedra >> m.peakMiB >> m.valid >> m.conversionSeconds >> m.walk >>
+    m.maxWalk >> figures;
+  m.figures.resize(line ? figures : 0);
+  for (double& f : m.figures)
+    line >> f;
+  m.ran = static_cast<bool>(line);
+  line.get();
+  std::getline(line, m.note);
+  return m;
+}
+
+/// Runs `work` in a child process; the child reports its Measurement, with its peak memory above
+/// what it inherited. Gives up after `limit` seconds.
+template <typename Work>
+Measurement measure(Work work, double limit)
+{
+  int fds[2];
+  if (pipe(fds) != 0)
+    return {};
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    close(fds[0]);
+    malloc_trim(0); // pages the parent freed must not be reused unseen by the RSS counters
+    std::ofstream("/proc/self/clear_refs") << "5"; // reset VmHWM to the current RSS
+    gBaseKiB = statusKiB("VmRSS:");
+    Measurement m = work();
+    if (m.peakMiB == 0)
+      m.peakMiB = peakSoFarMiB();
+    const std::string line = serialize(m);
+    if (write(fds[1], line.data(), line.size()) < 0)
+      _exit(2);
+    _exit(0);
+  }
+  close(fds[1]);
+  Measurement m;
+  const auto start = Clock::now();
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0)
+  {
+    if (since(start) > limit)
+    {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      close(fds[0]);
+      m.note = "timed out";
+      return m;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  std::string line;
+  char buffer[4096];
+  for (ssize_t got; (got = read(fds[0], buffer, sizeof buffer)) > 0;)
+    line.append(buffer, static_cast<std::size_t>(got));
+  close(fds[0]);
+  if (line.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  {
+    m.note = "failed";
+    return m;
+  }
+  return deserialize(line);
+}
+
+inline std::vector<std::string> split(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    out.push_back(item);
+  return out;
+}
+
+/// CPU model, hardware threads and memory.
+inline std::string machineName()
+{
+  std::string cpu = "unknown CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);)
+    if (line.rfind("model name", 0) == 0)
+    {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  std::ostringstream out;
+  out << cpu << ", " << std::thread::hardware_concurrency() << " threads, "
+      << (sysconf(_SC_PHYS_PAGES) * sysconf(_SC_PAGE_SIZE) >> 30) << " GiB";
+  return out.str();
+}
+
+} // namespace fd3bench
+
+#endif
