@@ -26,6 +26,44 @@ struct BoundaryFacet
 template <typename T>
 using ScratchVector = std::vector<T, BulkAllocator<T>>;
 
+/// The fill's local numbers of the boundary's vertices where their Vertex::tet may not hold them:
+/// in a locking pass, a vertex can be on the boundaries of two threads' cavities at once. Open
+/// addressing, sized for the boundary at hand and cleared for each fill.
+class LocalNumbers
+{
+public:
+  /// Empty, with room for `count` vertices.
+  void reset(std::size_t count)
+  {
+    std::size_t size = 16;
+    shift_ = 28;
+    for (; size < 2 * count; size *= 2)
+      --shift_;
+    keys_.assign(size, kNoVertex);
+    values_.resize(size);
+    mask_ = size - 1;
+  }
+  /// The entry of u, kNoTet when new.
+  TetId& slot(VertId u)
+  {
+    std::size_t i = static_cast<std::uint32_t>(u * 0x9E3779B1u) >> shift_; // Fibonacci hashing
+    while (keys_[i] != u && keys_[i] != kNoVertex)
+      i = (i + 1) & mask_;
+    if (keys_[i] == kNoVertex)
+    {
+      keys_[i] = u;
+      values_[i] = kNoTet;
+    }
+    return values_[i];
+  }
+
+private:
+  std::vector<VertId> keys_;
+  std::vector<TetId> values_;
+  std::size_t mask_ = 0;
+  int shift_ = 28;
+};
+
 struct Cavity
 {
   ScratchVector<TetId> tets; ///< in conflict with the new point: flagged kInCavity, to delete
@@ -45,6 +83,7 @@ struct Cavity
   std::vector<FaceCode> edgeFace;  ///< grown on demand, up to kMaxLocalVertices^2
   std::vector<std::pair<FaceCode, std::uint32_t>>
     interiorFaces; ///< face, entry of its reversed edge
+  LocalNumbers localNumbers; ///< in a locking pass, in place of Vertex::tet
 
   void clear()
   {

@@ -98,6 +98,11 @@ bool Inserter::digCavity(TetId base, VertId v)
       const int f = faces[k];
       const FaceCode across = tets_.neighbor(t, f);
       const TetId n = tetOf(across);
+      if (owners_ && !acquire(n))
+      {
+        owned = false; // another inserter's: not even its flags may be read
+        break;
+      }
       const std::uint32_t flag = tets_.flags(n);
       if (flag == kInCavity)
         continue;

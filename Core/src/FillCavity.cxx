@@ -37,6 +37,12 @@ bool Inserter::fillCavity(VertId v)
     undoCavity();
     return false;
   }
+  if (owners_)
+    for (const TetId t : created) // this pool's free slots, or new ones no one else can reach
+    {
+      owners_[t].store(me_, std::memory_order_relaxed);
+      held_.push_back(t);
+    }
   if (!createAndLink(v))
   {
     // More boundary vertices than the edge table takes: the new tetrahedra exist and are linked
@@ -46,8 +52,7 @@ bool Inserter::fillCavity(VertId v)
       VertId nv[4];
       tets_.vertices(created[i], nv);
       for (int k = 0; k < 4; ++k)
-        if (nv[k] != kInfinite)
-          mesh_.vertices[nv[k]].tet = created[i];
+        setVertexTet(nv[k], created[i]);
       for (int f = 0; f < 4; ++f)
         if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
           linkAroundEdge(i, f);
@@ -91,6 +96,8 @@ bool Inserter::createAndLink(VertId v)
   if (fits && cavity_.edgeFace.size() < std::size_t(width) * width)
     cavity_.edgeFace.resize(std::size_t(width) * width);
   cavity_.localVertex.resize(width + 3);
+  if (owners_)
+    cavity_.localNumbers.reset(width + 3);
   cavity_.localTet.resize(width + 3);
   cavity_.interiorFaces.resize(3 * facets);
   // Raw pointers: the stores through the vertex records would otherwise make the compiler reload
@@ -145,8 +152,8 @@ bool Inserter::createAndLink(VertId v)
   }
   // Each vertex gets one of its new tetrahedra in place of its number.
   for (std::uint32_t k = 0; k < count; ++k)
-    localNumberSlot(vertexOf[k]) = firstTet[k];
-  mesh_.vertices[v].tet = created[0];
+    setVertexTet(vertexOf[k], firstTet[k]);
+  setVertexTet(v, created[0]);
   ghostTet_ = kNoTet;
   if (!linked)
     return false;

@@ -80,8 +80,75 @@ void Inserter::unrestricted()
   restricted_ = false;
 }
 
+void Inserter::lockIn(OwnerTable* owners, std::size_t slots, std::uint8_t me)
+{
+  owners_ = owners;
+  ownerSlots_ = slots;
+  me_ = me;
+  restricted_ = false;
+}
+
+void Inserter::unlocked()
+{
+  owners_ = nullptr;
+  ownerSlots_ = 0;
+}
+
+bool Inserter::acquire(TetId t)
+{
+  if (t >= ownerSlots_)
+    return false; // a vertex's tetrahedron read while its first one was being made
+  std::uint8_t holder = owners_[t].load(std::memory_order_relaxed);
+  if (holder == me_)
+    return true;
+  if (holder != 0 ||
+    !owners_[t].compare_exchange_strong(
+      holder, me_, std::memory_order_acquire, std::memory_order_relaxed))
+    return false;
+  held_.push_back(t);
+  return true;
+}
+
+bool Inserter::mayEnter(TetId t)
+{
+  if (!owners_)
+    return isOwned(t);
+  const std::size_t before = held_.size();
+  if (!acquire(t))
+    return false;
+  const bool taken = held_.size() > before;
+  if (tets_.isDead(t)) // a start read from a vertex whose tetrahedra changed since
+  {
+    if (taken)
+    {
+      owners_[t].store(0, std::memory_order_release);
+      held_.pop_back();
+    }
+    return false;
+  }
+  // Hand over hand: the walk holds only the tetrahedron it is in. While it holds one, no other
+  // inserter can delete a neighbour of it (that would relink the held one), so the next is live.
+  if (taken && before > 0)
+  {
+    owners_[held_[before - 1]].store(0, std::memory_order_release);
+    held_[before - 1] = t;
+    held_.pop_back();
+  }
+  return true;
+}
+
+void Inserter::releaseHeld()
+{
+  for (const TetId t : held_)
+    if (!tets_.isDead(t))
+      owners_[t].store(0, std::memory_order_release);
+  held_.clear();
+}
+
 bool Inserter::mayTouch(TetId t) const
 {
+  if (owners_)
+    return isOwned(t);
   if (!restricted_)
     return true;
   VertId tv[4];
@@ -125,6 +192,14 @@ private:
 };
 } // namespace
 
+Inserter::Outcome Inserter::deferred()
+{
+  if (owners_)
+    releaseHeld();
+  ++stats_.deferredInsertions;
+  return Outcome::Deferred;
+}
+
 Inserter::Outcome Inserter::insert(VertId v)
 {
   PhaseClock clock(v % kSampling == 0);
@@ -142,16 +217,12 @@ Inserter::Outcome Inserter::insert(VertId v)
     // put-off points back, where most insertions reach outside their region.
     if (base != kNoTet)
       regionStart_ = base;
-    ++stats_.deferredInsertions;
-    return Outcome::Deferred;
+    return deferred();
   }
   correctCavity(v);
   clock.lap(stats_.secondsCavity);
   if (!fillCavity(v))
-  {
-    ++stats_.deferredInsertions;
-    return Outcome::Deferred;
-  }
+    return deferred();
   clock.lap(stats_.secondsFill);
   // Past about one test in nine that the static filter leaves to the lifts' filter (a cavity and
   // its boundary hold about 2.2 tests per deleted tetrahedron), its mispredicted branch costs more
@@ -159,6 +230,8 @@ Inserter::Outcome Inserter::insert(VertId v)
   if (!predicates_.prefersLiftsFilter() &&
     predicates_.liftsFilterRescues() > stats_.cavityTetrahedra / 4 + 4096)
     predicates_.preferLiftsFilter();
+  if (owners_)
+    releaseHeld();
   if (mesh_.grid.enabled())
     mesh_.grid.markInserted(point(v), v);
   lastInserted_ = v;

@@ -15,6 +15,7 @@
 #include "TetMesh.h"
 #include "fd3/Delaunay.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -51,6 +52,10 @@ struct Mesh
   const double* point(VertId v) const { return vertices[v].xyz; }
 };
 
+/// Which thread holds each tetrahedron during a locking pass: 0 for none, else the holder's
+/// number (an inserter's, from 1). One byte per slot, made for the pass.
+using OwnerTable = std::atomic<std::uint8_t>;
+
 /// The part of space where one inserter may change the mesh during a parallel pass: a half-open
 /// box. A tetrahedron is the inserter's when its four vertices are in it (the ghost vertex is in
 /// every region). An inserter reads only tetrahedra with three vertices or more in its region, and
@@ -81,6 +86,12 @@ public:
   /// which must be the region's; unrestricted() lifts it.
   void restrictTo(const Region& region, TetId start);
   void unrestricted();
+  /// For a locking pass: from now on, this inserter reads and writes a tetrahedron only once it
+  /// holds it in `owners` (`slots` of them) as number `me`; an insertion that meets one another
+  /// inserter holds is put off. Its pool's free slots are its own already (the pass marks them).
+  /// unlocked() ends it.
+  void lockIn(OwnerTable* owners, std::size_t slots, std::uint8_t me);
+  void unlocked();
 
   enum class Outcome
   {
@@ -101,7 +112,11 @@ public:
 
   /// A tetrahedron in conflict with vertex v, reading only (for the start of a parallel pass).
   TetId locateForStart(VertId v) { return locate(v); }
-  bool isOwned(TetId t) const { return !restricted_ || allVerticesInRegion(t); }
+  bool isOwned(TetId t) const
+  {
+    return owners_ ? owners_[t].load(std::memory_order_relaxed) == me_
+                   : !restricted_ || allVerticesInRegion(t);
+  }
   /// Whether the threading contract (TetMesh.h) lets this inserter read and write t now: always
   /// when unrestricted, else when three of t's vertices or more are in its region.
   bool mayTouch(TetId t) const;
@@ -119,8 +134,28 @@ private:
     return !restricted_ || u == kInfinite || region_.contains(point(u));
   }
   /// The field of u that holds its local number during a fill (its tet); kInfinite's is this
-  /// inserter's own.
-  TetId& localNumberSlot(VertId u) { return u == kInfinite ? ghostTet_ : mesh_.vertices[u].tet; }
+  /// inserter's own. In a locking pass, an entry of the cavity's own table.
+  TetId& localNumberSlot(VertId u)
+  {
+    if (owners_)
+      return cavity_.localNumbers.slot(u);
+    return u == kInfinite ? ghostTet_ : mesh_.vertices[u].tet;
+  }
+  void setVertexTet(VertId u, TetId t)
+  {
+    if (u != kInfinite)
+      relaxedStore(mesh_.vertices[u].tet, t);
+  }
+  /// In a locking pass: whether this inserter holds t now, taking it if no one does.
+  bool acquire(TetId t);
+  /// Whether the walk may go on into t: in a region, when t is the inserter's; in a locking pass,
+  /// when it could take t and t is live; the walk then lets go of the one it leaves.
+  bool mayEnter(TetId t);
+  /// Counts a put-off insertion, after whatever it did was undone.
+  Outcome deferred();
+  /// Lets go of the tetrahedra taken for the insertion that ended, except the slots it freed,
+  /// which its pool keeps.
+  void releaseHeld();
 
   // Locate.cxx
   TetId startTet(VertId v) const;
@@ -187,6 +222,12 @@ private:
   std::uint64_t rng_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
   std::uint32_t stamp_ = 0;
+  // A locking pass's: the table, this inserter's number in it, and what it holds for the insertion
+  // under way.
+  OwnerTable* owners_ = nullptr;
+  std::size_t ownerSlots_ = 0;
+  std::uint8_t me_ = 0;
+  std::vector<TetId> held_;
 };
 
 } // namespace fd3

@@ -1,7 +1,10 @@
 #include "InsertionOrder.h"
 
+#include "Threads.h"
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <unordered_map>
 #include <utility>
@@ -105,26 +108,41 @@ private:
 // Least-significant-digit radix sort (stable) of words holding a key in their high half and an id
 // in their low half, by the key's low `bits` bits: linear passes instead of std::sort's n log n
 // comparisons. One word per entry, not a key array and an id array, so that each pass scatters
-// one stream; the histograms of every pass are counted in one read.
-void radixSortByHighHalf(std::vector<std::uint64_t>& words, int bits)
+// one stream. With a team, each thread counts and scatters a stretch of the words.
+void radixSortByHighHalf(std::vector<std::uint64_t>& words, int bits, ThreadTeam* team)
 {
   constexpr int kDigit = 10;
-  constexpr std::uint64_t kBuckets = 1u << kDigit;
-  const int passes = (bits + kDigit - 1) / kDigit;
-  std::vector<std::uint32_t> count(passes * kBuckets, 0); // fewer than 2^32 points
-  for (const std::uint64_t w : words)
-    for (int pass = 0; pass < passes; ++pass)
-      ++count[pass * kBuckets + ((w >> (32 + kDigit * pass)) & (kBuckets - 1))];
-  std::vector<std::uint64_t> buffer(words.size());
-  for (int pass = 0; pass < passes; ++pass)
+  constexpr std::size_t kBuckets = std::size_t(1) << kDigit;
+  const std::size_t n = words.size();
+  const std::size_t parts = team ? team->partsFor(n) : 1;
+  ThreadedWork* record = team ? &team->newRecord("sort") : nullptr;
+  const auto forParts = [&](const std::function<void(std::size_t)>& f) {
+    if (team)
+      team->run(parts, f, *record);
+    else
+      f(0);
+  };
+  // count[k * kBuckets + b]: part k's words with digit b; then where the next of them goes.
+  std::vector<std::uint32_t> count(parts * kBuckets); // fewer than 2^32 points
+  std::vector<std::uint64_t> buffer(n);
+  for (int shift = 32; shift < 32 + bits; shift += kDigit)
   {
-    std::uint32_t* next = &count[pass * kBuckets];
-    std::uint32_t offset = 0;
-    for (std::uint64_t b = 0; b < kBuckets; ++b)
-      offset += std::exchange(next[b], offset);
-    const int shift = 32 + kDigit * pass;
-    for (const std::uint64_t w : words)
-      buffer[next[(w >> shift) & (kBuckets - 1)]++] = w;
+    const auto digit = [shift](std::uint64_t w) { return (w >> shift) & (kBuckets - 1); };
+    forParts([&](std::size_t k) {
+      std::uint32_t* mine = &count[k * kBuckets];
+      std::fill(mine, mine + kBuckets, 0u);
+      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+        ++mine[digit(words[i])];
+    });
+    std::uint32_t offset = 0; // by digit, then by part: stable
+    for (std::size_t b = 0; b < kBuckets; ++b)
+      for (std::size_t k = 0; k < parts; ++k)
+        offset += std::exchange(count[k * kBuckets + b], offset);
+    forParts([&](std::size_t k) {
+      std::uint32_t* next = &count[k * kBuckets];
+      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+        buffer[next[digit(words[i])]++] = words[i];
+    });
     words.swap(buffer);
   }
 }
@@ -210,8 +228,20 @@ private:
   bool empty_ = true;
 };
 
-void hilbertSort(
-  const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box, int depth)
+/// Runs f(begin, end) over [0, count): on the team's threads, a stretch each, or here.
+void forRanges(ThreadTeam* team, std::size_t count,
+  const std::function<void(std::size_t, std::size_t)>& f)
+{
+  if (team)
+    team->forRanges(
+      count, "sort", [&](std::size_t, std::size_t begin, std::size_t end) { f(begin, end); });
+  else
+    f(0, count);
+}
+
+/// With a team at the top level: the keys, the radix sort and the runs, each thread a stretch.
+void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box,
+  int depth, ThreadTeam* team)
 {
   if (count < 2)
     return;
@@ -223,69 +253,123 @@ void hilbertSort(
     return;
   }
   std::vector<std::uint64_t> entries(count); // curve key << 32 | id
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double* p = xyz + 3 * std::size_t(ids[i]);
-    const std::uint32_t key =
-      hilbertIndex(grid.cell(p[0], 0), grid.cell(p[1], 1), grid.cell(p[2], 2));
-    entries[i] = std::uint64_t(key) << 32 | ids[i];
-  }
-  radixSortByHighHalf(entries, 3 * kHilbertBits);
-  for (std::size_t i = 0; i < count; ++i)
-    ids[i] = static_cast<std::uint32_t>(entries[i]);
-  for (std::size_t begin = 0; begin < count;)
-  {
-    std::size_t end = begin + 1;
-    while (end < count && entries[end] >> 32 == entries[begin] >> 32)
-      ++end;
-    // The extreme points of the widest axis share no cell, so a run is shorter than count, unless
-    // halving subnormal coordinates made distinct ones equal: such a run is sorted as it is.
-    const bool refines = end - begin < count && depth < kMaxRefinements;
-    if (end - begin >= kRunWorthRefining && refines)
-      hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin), depth + 1);
-    else if (end - begin > 1)
-      sortRunAndMarkDuplicates(xyz, ids + begin, end - begin);
-    begin = end;
-  }
+  forRanges(team, count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const double* p = xyz + 3 * std::size_t(ids[i]);
+      const std::uint32_t key =
+        hilbertIndex(grid.cell(p[0], 0), grid.cell(p[1], 1), grid.cell(p[2], 2));
+      entries[i] = std::uint64_t(key) << 32 | ids[i];
+    }
+  });
+  radixSortByHighHalf(entries, 3 * kHilbertBits, team);
+  const auto cell = [&](std::size_t i) { return entries[i] >> 32; };
+  // Each stretch takes the runs that start in it.
+  forRanges(team, count, [&](std::size_t first, std::size_t last) {
+    std::size_t begin = first;
+    while (begin > 0 && begin < last && cell(begin) == cell(begin - 1))
+      ++begin;
+    while (begin < last)
+    {
+      std::size_t end = begin + 1;
+      while (end < count && cell(end) == cell(begin))
+        ++end;
+      for (std::size_t i = begin; i < end; ++i)
+        ids[i] = static_cast<std::uint32_t>(entries[i]);
+      // The extreme points of the widest axis share no cell, so a run is shorter than count,
+      // unless halving subnormal coordinates made distinct ones equal: such a run is sorted as
+      // it is.
+      const bool refines = end - begin < count && depth < kMaxRefinements;
+      if (end - begin >= kRunWorthRefining && refines)
+        hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin),
+          depth + 1, nullptr);
+      else if (end - begin > 1)
+        sortRunAndMarkDuplicates(xyz, ids + begin, end - begin);
+      begin = end;
+    }
+  });
 }
 
 /// Keeps the first of every run of equal points in `sorted` (the unmarked one) and lists the
-/// others, marked by hilbertSort, as its duplicates.
+/// others, marked by hilbertSort, as its duplicates. Each thread takes a stretch: it counts what
+/// it keeps, then writes it after what the stretches before it keep.
 void mergeDuplicates(std::vector<std::uint32_t>& sorted,
-  std::vector<std::pair<std::uint32_t, std::uint32_t>>& duplicates)
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>& duplicates, ThreadTeam& team)
 {
-  std::size_t kept = 0;
-  for (const std::uint32_t id : sorted)
-  {
-    if (id & kDuplicate)
-      duplicates.emplace_back(id & ~kDuplicate, sorted[kept - 1]);
-    else
-      sorted[kept++] = id;
-  }
-  sorted.resize(kept);
+  const std::size_t n = sorted.size(), parts = team.partsFor(n);
+  std::vector<std::size_t> offset(parts + 1, 0);
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(parts);
+  ThreadedWork& record = team.newRecord("sort");
+  team.run(
+    parts,
+    [&](std::size_t k) {
+      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+        offset[k + 1] += !(sorted[i] & kDuplicate);
+    },
+    record);
+  for (std::size_t k = 0; k < parts; ++k)
+    offset[k + 1] += offset[k];
+  std::vector<std::uint32_t> kept(offset[parts]);
+  team.run(
+    parts,
+    [&](std::size_t k) {
+      const std::size_t begin = n * k / parts, end = n * (k + 1) / parts;
+      std::size_t original = begin; // the last unmarked one at or before i
+      while (original > 0 && (sorted[original] & kDuplicate))
+        --original;
+      std::size_t next = offset[k];
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        if (sorted[i] & kDuplicate)
+          found[k].emplace_back(sorted[i] & ~kDuplicate, sorted[original]);
+        else
+          kept[next++] = sorted[original = i];
+      }
+    },
+    record);
+  for (const auto& part : found)
+    duplicates.insert(duplicates.end(), part.begin(), part.end());
+  sorted.swap(kept);
 }
 
 /// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
 /// each round keeps the curve order of `sorted` (a stable counting sort by round). A point's round
 /// comes from its key's level, which the coordinates decide: the same in every run.
 std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted,
-  const std::uint16_t* key, std::vector<std::size_t>& roundStarts)
+  const std::uint16_t* key, std::vector<std::size_t>& roundStarts, ThreadTeam& team)
 {
-  const int rounds = std::clamp(static_cast<int>(std::log2(double(sorted.size()) / 64.0)), 1, 16);
-  std::vector<std::uint8_t> roundOf(sorted.size());
-  std::vector<std::size_t> start(rounds + 1, 0);
-  for (std::size_t i = 0; i < sorted.size(); ++i)
-  {
-    const int level = 15 - (key[sorted[i]] >> 12);
-    roundOf[i] = static_cast<std::uint8_t>(rounds - 1 - std::min(level, rounds - 1));
-    ++start[roundOf[i] + 1];
-  }
+  const std::size_t n = sorted.size(), parts = team.partsFor(n);
+  const int rounds = std::clamp(static_cast<int>(std::log2(double(n) / 64.0)), 1, 16);
+  const auto roundOf = [&](std::uint32_t id) {
+    const int level = 15 - (key[id] >> 12);
+    return static_cast<std::size_t>(rounds - 1 - std::min(level, rounds - 1));
+  };
+  // count[k * rounds + r]: stretch k's points of round r; then where the next of them goes.
+  std::vector<std::size_t> count(parts * std::size_t(rounds), 0);
+  ThreadedWork& record = team.newRecord("sort");
+  team.run(
+    parts,
+    [&](std::size_t k) {
+      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+        ++count[k * rounds + roundOf(sorted[i])];
+    },
+    record);
+  roundStarts.assign(std::size_t(rounds), 0);
+  std::size_t offset = 0;
   for (int r = 0; r < rounds; ++r)
-    start[r + 1] += start[r];
-  roundStarts.assign(start.begin(), start.end() - 1);
-  std::vector<std::uint32_t> order(sorted.size());
-  for (std::size_t i = 0; i < sorted.size(); ++i)
-    order[start[roundOf[i]]++] = sorted[i];
+  {
+    roundStarts[std::size_t(r)] = offset;
+    for (std::size_t k = 0; k < parts; ++k)
+      offset += std::exchange(count[k * rounds + std::size_t(r)], offset);
+  }
+  std::vector<std::uint32_t> order(n);
+  team.run(
+    parts,
+    [&](std::size_t k) {
+      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+        order[count[k * rounds + roundOf(sorted[i])]++] = sorted[i];
+    },
+    record);
   return order;
 }
 } // namespace
@@ -297,16 +381,17 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
 }
 
 InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key,
-  std::vector<std::uint32_t> ids, const Box& box, InsertionOrder order, std::uint64_t seed)
+  std::vector<std::uint32_t> ids, const Box& box, InsertionOrder order, std::uint64_t seed,
+  ThreadTeam& team)
 {
   InsertionPlan plan;
-  hilbertSort(xyz, ids.data(), ids.size(), box, 0);
-  mergeDuplicates(ids, plan.duplicates);
+  hilbertSort(xyz, ids.data(), ids.size(), box, 0, &team);
+  mergeDuplicates(ids, plan.duplicates, team);
   std::mt19937_64 rng(seed);
   switch (order)
   {
     case InsertionOrder::Brio:
-      plan.order = brioRounds(ids, key, plan.roundStarts);
+      plan.order = brioRounds(ids, key, plan.roundStarts, team);
       break;
     case InsertionOrder::Input:
       std::sort(ids.begin(), ids.end());

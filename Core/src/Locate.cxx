@@ -44,7 +44,7 @@ TetId Inserter::startTet(VertId v) const
       distance2(point(near), point(v)) < distance2(point(start), point(v)))
       start = near;
   }
-  return mesh_.vertices[start].tet;
+  return relaxedLoad(mesh_.vertices[start].tet);
 }
 
 // In a region, the start must be the inserter's. The candidates are the region's tetrahedron near
@@ -70,7 +70,7 @@ TetId Inserter::regionStart(VertId v) const
   for (VertId u : tv)
     if (u != kInfinite && distance2(point(u), p) <= distance2(point(near), p))
       return regionStart_;
-  const TetId t = mesh_.vertices[near].tet;
+  const TetId t = relaxedLoad(mesh_.vertices[near].tet);
   for (int k = 1; k < 4; ++k)
     if (!inRegion(tets_.vertex(t, k)))
       return regionStart_;
@@ -93,11 +93,11 @@ TetId Inserter::walk(TetId t, VertId v)
   {
     if (++steps > kMaxSteps)
     {
-      // In a region the mesh around may change: the point goes to a later, serial pass.
-      t = restricted_ ? kNoTet : scanForBase(v, toFirstConflict);
+      // In a parallel pass the mesh around may change: the point goes to a later, serial pass.
+      t = restricted_ || owners_ ? kNoTet : scanForBase(v, toFirstConflict);
       break;
     }
-    if (!isOwned(t))
+    if (!mayEnter(t))
     {
       t = kNoTet;
       break;

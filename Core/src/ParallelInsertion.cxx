@@ -128,12 +128,15 @@ std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) cons
   Box box = Box::around(point(vertices[0]));
   for (std::size_t i = 0; i < vertices.size(); i += std::max<std::size_t>(1, vertices.size() / 4096))
     box.include(point(vertices[i]));
-  // Mean extent of the mesh's tetrahedra along each axis, over the tetrahedra of vertices
-  // inserted before the round (whose records are all current between passes).
+  // Mean extent of the mesh's tetrahedra along each axis, over the tetrahedra of vertices before
+  // the round (whose records are all current between passes; a point added as a duplicate of a
+  // vertex has none).
   double width[3] = {0, 0, 0};
   const VertId inserted = *std::min_element(vertices.begin(), vertices.end());
   for (VertId v = 0; v < inserted; v += std::max<VertId>(1, inserted / kShapeSample))
   {
+    if (mesh_.vertices[v].tet == kNoTet)
+      continue;
     VertId tv[4];
     mesh_.tets.vertices(mesh_.vertices[v].tet, tv);
     if (tv[3] == kInfinite)
@@ -191,6 +194,17 @@ bool Triangulator::insertInParallel(
     passYield_[pass] = 1.0 - double(vertices.size()) / double(count);
   }
   std::sort(vertices.begin(), vertices.end()); // back to curve order
+  if (!stop_ && vertices.size() >= 2 * mesh_.options.pointsPerThread)
+  {
+    if (lockingYield_ < worthwhileYield(team_.size()))
+      lockingYield_ *= 2;
+    else
+    {
+      const std::size_t count = vertices.size();
+      vertices = runLockingPass(vertices, progress);
+      lockingYield_ = 1.0 - double(vertices.size()) / double(count);
+    }
+  }
   return !stop_ &&
     insertSerially(
       vertices.size(), [&vertices](std::size_t i) { return vertices[i]; }, progress);
@@ -223,9 +237,7 @@ void Triangulator::shareOut(const std::vector<VertId>& vertices, const Partition
   const std::size_t parts = static_cast<std::size_t>(partition.parts());
   std::vector<std::vector<std::vector<VertId>>> byStretch(
     parts, std::vector<std::vector<VertId>>(parts));
-  records_.emplace_back();
-  ThreadedWork& record = records_.back();
-  record.phase = "regions";
+  ThreadedWork& record = team_.newRecord("regions");
   team_.run(
     parts,
     [&](std::size_t k) {
@@ -278,9 +290,93 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
       throw;
     }
   };
+  ThreadedWork& record = team_.newRecord(kPassNames[pass]);
+  record.points = vertices.size();
+  team_.run(share.size(), work, record, progressPoll(progress));
+  done_ += passDone_;
+  passDone_ = 0;
+  std::vector<VertId> left;
+  for (const auto& list : putOff)
+    left.insert(left.end(), list.begin(), list.end());
+  record.left = left.size();
+  return left;
+}
+
+void Triangulator::prepareOwners()
+{
+  const std::size_t slots = mesh_.tets.capacity();
+  if (ownerSlots_ < slots)
+  {
+    owners_.reset(new OwnerTable[slots]()); // every slot free
+    ownerSlots_ = slots;
+  }
+  for (std::size_t k = 0; k < pools_.size(); ++k)
+    for (const TetId t : pools_[k]->freeSlots())
+      owners_[t].store(static_cast<std::uint8_t>(k + 1), std::memory_order_relaxed);
+}
+
+// Each thread takes a stretch of the curve, which keeps the threads far apart and their
+// insertions' cavities apart but where two meet.
+std::vector<VertId> Triangulator::runLockingPass(
+  const std::vector<VertId>& vertices, const std::function<bool(double)>& progress)
+{
+  makeRoomFor(vertices.size());
+  prepareOwners();
+  const std::size_t parts = std::min<std::size_t>(
+    team_.size(), vertices.size() / std::max<std::size_t>(1, mesh_.options.pointsPerThread));
+  std::vector<std::vector<VertId>> putOff(parts);
+  passDone_ = 0;
+  auto work = [&](std::size_t k) {
+    Inserter& inserter = *inserters_[k];
+    inserter.lockIn(owners_.get(), ownerSlots_, static_cast<std::uint8_t>(k + 1));
+    try
+    {
+      const std::size_t begin = vertices.size() * k / parts, end = vertices.size() * (k + 1) / parts;
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        if ((i - begin) % 256 == 0 &&
+          (stop_ || (k == 0 && (i - begin) % kProgressInterval == 0 && !reportProgress(progress))))
+        {
+          putOff[k].insert(putOff[k].end(), vertices.begin() + static_cast<std::ptrdiff_t>(i),
+            vertices.begin() + static_cast<std::ptrdiff_t>(end));
+          break;
+        }
+        if (inserter.insert(vertices[i]) == Inserter::Outcome::Deferred)
+          putOff[k].push_back(vertices[i]);
+        else
+          passDone_.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    catch (...)
+    {
+      inserter.unlocked();
+      stop_ = true;
+      throw;
+    }
+    inserter.unlocked();
+  };
+  ThreadedWork& record = team_.newRecord("insertion locking pass");
+  record.points = vertices.size();
+  team_.run(parts, work, record, progressPoll(progress));
+  done_ += passDone_;
+  passDone_ = 0;
+  // Between passes every slot is free again: live ones were let go after each insertion, and the
+  // pools' free ones are marked for the next locking pass when it starts.
+  for (const auto& pool : pools_)
+    for (const TetId t : pool->freeSlots())
+      owners_[t].store(0, std::memory_order_relaxed);
+  std::vector<VertId> left;
+  for (const auto& list : putOff)
+    left.insert(left.end(), list.begin(), list.end());
+  record.left = left.size();
+  return left;
+}
+
+std::function<void()> Triangulator::progressPoll(const std::function<bool(double)>& progress)
+{
   // This thread alone reports progress, also while the others finish; a callback that throws
   // stops them.
-  auto poll = [&] {
+  return [this, &progress] {
     try
     {
       reportProgress(progress);
@@ -291,18 +387,6 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
       throw;
     }
   };
-  records_.emplace_back();
-  ThreadedWork& record = records_.back();
-  record.phase = kPassNames[pass];
-  record.points = vertices.size();
-  team_.run(share.size(), work, record, poll);
-  done_ += passDone_;
-  passDone_ = 0;
-  std::vector<VertId> left;
-  for (const auto& list : putOff)
-    left.insert(left.end(), list.begin(), list.end());
-  record.left = left.size();
-  return left;
 }
 
 } // namespace fd3

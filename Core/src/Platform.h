@@ -54,6 +54,26 @@ inline void prefetch(const void* p)
 #endif
 }
 
+/// A load and a store of a word that another thread may write or read at the same time (a
+/// vertex's tetrahedron during a locking pass): atomic, with no ordering. The fallback is a plain
+/// access, which aligned 32-bit words get on every processor the kernel runs on.
+inline std::uint32_t relaxedLoad(const std::uint32_t& word)
+{
+#if !defined(FD3_PORTABLE) && (defined(__GNUC__) || defined(__clang__))
+  return __atomic_load_n(&word, __ATOMIC_RELAXED);
+#else
+  return *static_cast<const volatile std::uint32_t*>(&word);
+#endif
+}
+inline void relaxedStore(std::uint32_t& word, std::uint32_t value)
+{
+#if !defined(FD3_PORTABLE) && (defined(__GNUC__) || defined(__clang__))
+  __atomic_store_n(&word, value, __ATOMIC_RELAXED);
+#else
+  *static_cast<volatile std::uint32_t*>(&word) = value;
+#endif
+}
+
 /// CPU seconds the calling thread has used (its own clock, for the scaling model of the threaded
 /// work). The fallback is wall-clock time, which counts a thread's waits as well.
 inline double threadCpuSeconds()

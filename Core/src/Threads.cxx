@@ -127,14 +127,25 @@ void ThreadTeam::run(std::size_t parts, const std::function<void(std::size_t)>& 
       std::rethrow_exception(failure);
 }
 
-void ThreadTeam::forRanges(std::size_t count, const char* phase,
-  std::vector<ThreadedWork>& records, const std::function<void(std::size_t, std::size_t)>& f)
+ThreadedWork& ThreadTeam::newRecord(const char* phase)
 {
-  const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(size_, count / 4096));
-  records.emplace_back();
-  records.back().phase = phase;
+  records_.emplace_back();
+  records_.back().phase = phase;
+  return records_.back();
+}
+
+std::size_t ThreadTeam::partsFor(std::size_t count) const
+{
+  return std::max<std::size_t>(1, std::min<std::size_t>(size_, count / kMinItemsPerPart));
+}
+
+void ThreadTeam::forRanges(std::size_t count, const char* phase,
+  const std::function<void(std::size_t, std::size_t, std::size_t)>& f)
+{
+  const std::size_t parts = partsFor(count);
   run(
-    parts, [&](std::size_t k) { f(count * k / parts, count * (k + 1) / parts); }, records.back());
+    parts, [&](std::size_t k) { f(k, count * k / parts, count * (k + 1) / parts); },
+    newRecord(phase));
 }
 
 } // namespace fd3

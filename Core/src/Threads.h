@@ -39,10 +39,18 @@ public:
   void run(std::size_t parts, const std::function<void(std::size_t)>& part, ThreadedWork& record,
     const std::function<void()>& poll = nullptr);
 
-  /// Splits [0, count) into parts() contiguous ranges and runs f(begin, end) on each, recorded as
-  /// a phase named `phase` in `records`.
-  void forRanges(std::size_t count, const char* phase, std::vector<ThreadedWork>& records,
-    const std::function<void(std::size_t, std::size_t)>& f);
+  /// A new record of threaded work, for run().
+  ThreadedWork& newRecord(const char* phase);
+  /// Every record so far, in the order made.
+  const std::vector<ThreadedWork>& records() const { return records_; }
+
+  /// The parts that `count` items make: one per thread, each of kMinItemsPerPart items or more.
+  std::size_t partsFor(std::size_t count) const;
+  /// Splits [0, count) into partsFor(count) contiguous ranges, in order, and runs f(k, begin, end)
+  /// on range k, recorded as a phase named `phase`.
+  void forRanges(std::size_t count, const char* phase,
+    const std::function<void(std::size_t, std::size_t, std::size_t)>& f);
+  static constexpr std::size_t kMinItemsPerPart = 4096;
 
 private:
   void startHelpers();
@@ -63,6 +71,7 @@ private:
   const std::function<void(std::size_t)>* part_ = nullptr;
   ThreadedWork* record_ = nullptr;
   std::vector<std::exception_ptr> failures_;
+  std::vector<ThreadedWork> records_;
 };
 
 } // namespace fd3

@@ -58,10 +58,19 @@ bool moveFirstTetrahedronToFront(
   std::uint32_t first[4];
   for (int k = 0; k < 4; ++k)
     first[k] = order[found[k]];
-  for (int k = 3; k >= 1; --k) // erase from the back so earlier positions stay valid
-    order.erase(order.begin() + static_cast<std::ptrdiff_t>(found[k]));
-  order.erase(order.begin());
-  order.insert(order.begin(), first, first + 4);
+  // Only the stretch up to the last one found moves: the others in it go back by as many places
+  // as found ones follow them, from the back.
+  std::size_t write = found[3];
+  for (std::size_t i = found[3] + 1, k = 3; i-- > 0;)
+  {
+    if (k < 4 && i == found[k])
+    {
+      --k; // wraps past 0 once all four are passed
+      continue;
+    }
+    order[write--] = order[i];
+  }
+  std::copy(first, first + 4, order.begin());
   return true;
 }
 
@@ -139,8 +148,7 @@ struct IncrementalDelaunay::Impl
   // (point, point it was skipped for), then (duplicate, original): the order representatives
   // are resolved in.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped, duplicates;
-  std::unique_ptr<ThreadTeam> team;
-  std::vector<ThreadedWork> threadedWork; // every batch's
+  std::unique_ptr<ThreadTeam> team; // records the threaded work of every batch
   std::unique_ptr<Triangulator> triangulator;
   // The input coordinates the mesh holds: those of the points from id heldFrom on. That is every
   // point until the mesh starts. After that, a mesh that reads its points holds none (the caller
@@ -179,24 +187,52 @@ private:
     std::size_t firstPoint, std::size_t extra);
 };
 
+// Each thread takes a stretch of the points: it counts the finite ones and their box, then writes
+// their ids after those of the stretches before it.
 std::vector<std::uint32_t> IncrementalDelaunay::Impl::finitePoints(
   const double* xyz, std::size_t count, Box& box)
 {
-  std::vector<std::uint32_t> ids;
-  ids.reserve(count);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    if (!isFinite(xyz + 3 * i))
-      continue;
-    if (ids.empty())
-      box = Box::around(xyz + 3 * i);
-    box.include(xyz + 3 * i);
-    ids.push_back(static_cast<std::uint32_t>(i));
-  }
-  stats.inputPoints += count;
-  stats.nonFinitePoints += count - ids.size();
   if (points + count >= kMaxVertices)
     throw std::length_error("fd3::triangulate: more than 2^30 points");
+  const std::size_t parts = team->partsFor(count);
+  std::vector<std::size_t> offset(parts + 1, 0);
+  std::vector<Box> boxes(parts);
+  ThreadedWork& record = team->newRecord("sort");
+  team->run(
+    parts,
+    [&](std::size_t k) {
+      for (std::size_t i = count * k / parts; i < count * (k + 1) / parts; ++i)
+        if (isFinite(xyz + 3 * i))
+        {
+          if (offset[k + 1]++ == 0)
+            boxes[k] = Box::around(xyz + 3 * i);
+          boxes[k].include(xyz + 3 * i);
+        }
+    },
+    record);
+  for (std::size_t k = 0; k < parts; ++k)
+  {
+    if (offset[k + 1] > 0)
+    {
+      if (offset[k] == 0)
+        box = boxes[k];
+      box.include(boxes[k].lo);
+      box.include(boxes[k].hi);
+    }
+    offset[k + 1] += offset[k];
+  }
+  std::vector<std::uint32_t> ids(offset[parts]);
+  team->run(
+    parts,
+    [&](std::size_t k) {
+      std::size_t next = offset[k];
+      for (std::size_t i = count * k / parts; i < count * (k + 1) / parts; ++i)
+        if (isFinite(xyz + 3 * i))
+          ids[next++] = static_cast<std::uint32_t>(i);
+    },
+    record);
+  stats.inputPoints += count;
+  stats.nonFinitePoints += count - ids.size();
   return ids;
 }
 
@@ -205,12 +241,14 @@ std::vector<std::uint16_t> IncrementalDelaunay::Impl::keys(
 {
   // From the coordinates in the frame, as the predicates compute them on a tie.
   std::vector<std::uint16_t> key(count);
-  for (const std::uint32_t id : ids)
-  {
-    double p[3];
-    toFrame(frame, xyz + 3 * std::size_t(id), p);
-    key[id] = perturbationKey(p, options.randomSeed);
-  }
+  team->forRanges(ids.size(), "sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      double p[3];
+      toFrame(frame, xyz + 3 * std::size_t(ids[i]), p);
+      key[ids[i]] = perturbationKey(p, options.randomSeed);
+    }
+  });
   return key;
 }
 
@@ -223,20 +261,24 @@ VertexArray IncrementalDelaunay::Impl::vertices(const double* xyz,
   VertexArray out;
   out.reserve(order.size() + extra);
   out.resize(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-  {
-    if (i + kAhead < order.size())
-      prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
-    toFrame(frame, xyz + 3 * std::size_t(order[i]), out[i].xyz);
-    out[i].tet = kNoTet;
-    out[i].point = static_cast<std::uint32_t>(firstPoint + order[i]);
-  }
+  team->forRanges(order.size(), "sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      if (i + kAhead < end)
+        prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
+      toFrame(frame, xyz + 3 * std::size_t(order[i]), out[i].xyz);
+      out[i].tet = kNoTet;
+      out[i].point = static_cast<std::uint32_t>(firstPoint + order[i]);
+    }
+  });
   return out;
 }
 
 void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count)
 {
   const auto start = Clock::now();
+  if (!team)
+    team = std::make_unique<ThreadTeam>(threadCount(options));
   Box box;
   std::vector<std::uint32_t> ids = finitePoints(xyz, count, box);
   points = count;
@@ -249,7 +291,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     frame = frameWithin(xyz, count, box.lo, box.hi);
   std::vector<std::uint16_t> key = keys(xyz, count, ids);
   InsertionPlan plan =
-    planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
+    planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
   stats.duplicatesMerged = plan.duplicates.size();
   duplicates = std::move(plan.duplicates);
   skipped = skipClosePoints(xyz, plan, options.tolerance);
@@ -274,9 +316,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   Box bounds;
   std::copy(frame.lo, frame.lo + 3, bounds.lo);
   std::copy(frame.hi, frame.hi + 3, bounds.hi);
-  team = std::make_unique<ThreadTeam>(threadCount(options));
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
-    toFrame(frame, bounds), options, *team, threadedWork, frame.identity);
+    toFrame(frame, bounds), options, *team, frame.identity);
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }
@@ -307,7 +348,7 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
   {
     std::vector<std::uint16_t> key = keys(xyz, count, ids);
     InsertionPlan plan =
-      planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed);
+      planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
     for (const auto& [copy, original] : plan.duplicates)
       duplicates.emplace_back(copy + points, original + points);
     stats.duplicatesMerged += plan.duplicates.size();
@@ -329,7 +370,8 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
   Triangulation out;
   out.status = status;
   out.stats = stats;
-  out.threadedWork = threadedWork;
+  if (team)
+    out.threadedWork = team->records();
   if (status != Status::Ok)
     return out;
   out.stats.add(triangulator->statistics()); // the inserters' figures: none of them are in stats

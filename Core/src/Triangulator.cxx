@@ -9,9 +9,8 @@
 namespace fd3
 {
 Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& bounds,
-  const Options& options, ThreadTeam& team, std::vector<ThreadedWork>& records, bool anyMagnitude)
+  const Options& options, ThreadTeam& team, bool anyMagnitude)
   : team_(team)
-  , records_(records)
   , tuning_(options.randomSeed)
 {
   mesh_.vertices = std::move(vertices);

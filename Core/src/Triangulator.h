@@ -25,10 +25,10 @@ public:
   /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
   /// `box`, which the grid covers; `bounds` holds every point the mesh will ever have (added ones
   /// too) and sets the predicates' static bounds. An inserter is made ready for each thread of
-  /// `team`; every parallel pass is recorded in `records`.
+  /// `team`, which records every parallel pass.
   /// `anyMagnitude`: the points are not scaled into [-1, 1] (Predicates::allowAnyMagnitude()).
   Triangulator(VertexArray vertices, const Box& box, const Box& bounds, const Options& options,
-    ThreadTeam& team, std::vector<ThreadedWork>& records, bool anyMagnitude);
+    ThreadTeam& team, bool anyMagnitude);
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
@@ -103,6 +103,15 @@ private:
   /// put off.
   std::vector<VertId> runPass(const std::vector<VertId>& vertices, const Partition& partition,
     int pass, const std::function<bool(double)>& progress);
+  /// Inserts `vertices` (in curve order), a stretch of them on each thread, each thread holding
+  /// the tetrahedra it reads and writes in the owner table; returns those put off because another
+  /// thread held a tetrahedron they needed. ParallelInsertion.cxx.
+  std::vector<VertId> runLockingPass(
+    const std::vector<VertId>& vertices, const std::function<bool(double)>& progress);
+  /// The owner table for every slot the mesh has room for, each pool's free slots marked its own.
+  void prepareOwners();
+  /// What the calling thread does while the others insert: report progress.
+  std::function<void()> progressPoll(const std::function<bool(double)>& progress);
   /// Slots enough for vertices up to `end`, from the slots per vertex now and after an earlier
   /// round (`earlierDone` vertices, `earlierSlots` slots; 0 when none), with a margin.
   std::size_t predictedSlots(
@@ -117,7 +126,6 @@ private:
 
   Mesh mesh_;
   ThreadTeam& team_;
-  std::vector<ThreadedWork>& records_;
   Predicates tuning_; // adapted to every vertex so far; the inserters take copies
   std::vector<std::unique_ptr<SlotPool>> pools_;
   std::vector<std::unique_ptr<Inserter>> inserters_;
@@ -129,6 +137,11 @@ private:
   // its region, and a pass that puts off nearly all of them only wastes time. A pass left out
   // doubles its guess instead (one that put nothing in is not tried again).
   double passYield_[kMaxPasses] = {1.0, 1.0, 1.0, 1.0};
+  double lockingYield_ = 1.0; // likewise, of the locking pass
+  // The locking pass's table, for every slot the records had room for when it was made. Every
+  // entry is 0 between passes.
+  std::unique_ptr<OwnerTable[]> owners_;
+  std::size_t ownerSlots_ = 0;
 };
 
 template <typename VertexAt>

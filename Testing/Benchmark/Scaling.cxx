@@ -54,23 +54,36 @@ enum Figure
   kFigures
 };
 
-/// The share of each insertion pass's points that it put off, summed over the rounds, as
-/// "pass 1 29.5%, pass 2 ...".
+/// The share of each kind of insertion pass's points that it put off, summed over the rounds, and
+/// the CPU time of every kind of threaded work, all threads': "pass 1 29.5% 0.81 s, ...".
 std::string passesLeft(const std::vector<fd3::ThreadedWork>& work)
 {
-  std::map<std::string, std::pair<double, double>> passes; // name: points, left
-  for (const fd3::ThreadedWork& w : work)
-    if (std::string(w.phase).rfind("insertion", 0) == 0)
-    {
-      passes[w.phase].first += double(w.points);
-      passes[w.phase].second += double(w.left);
-    }
-  std::string text;
-  for (const auto& [name, figures] : passes)
+  struct Sum
   {
-    char item[64];
-    std::snprintf(item, sizeof item, "%s%s %.1f%%", text.empty() ? "" : ", ",
-      name.substr(std::string("insertion ").size()).c_str(), 100.0 * figures.second / figures.first);
+    double points = 0, left = 0, seconds = 0;
+  };
+  std::map<std::string, Sum> phases;
+  for (const fd3::ThreadedWork& w : work)
+  {
+    Sum& sum = phases[w.phase];
+    sum.points += double(w.points);
+    sum.left += double(w.left);
+    sum.seconds += std::accumulate(w.threadSeconds.begin(), w.threadSeconds.end(), 0.0);
+  }
+  std::string text;
+  for (const auto& [name, sum] : phases)
+  {
+    const bool pass = name.rfind("insertion ", 0) == 0;
+    char item[96];
+    std::snprintf(item, sizeof item, "%s%s", text.empty() ? "" : ", ",
+      (pass ? name.substr(std::string("insertion ").size()) : name).c_str());
+    text += item;
+    if (pass)
+    {
+      std::snprintf(item, sizeof item, " %.1f%%", 100.0 * sum.left / sum.points);
+      text += item;
+    }
+    std::snprintf(item, sizeof item, " %.2f s", sum.seconds);
     text += item;
   }
   return text.empty() ? "serial" : text;

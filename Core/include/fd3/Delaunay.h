@@ -192,7 +192,8 @@ struct Triangulation
   Statistics stats;
   /// With Status::CheckFailed: what Options::checkMesh found, a line per violation.
   std::string checkReport;
-  /// Every stretch of work that ran on several threads, in the order run (none with one thread).
+  /// Every stretch of work split over the threads, in the order run (with one thread, the same
+  /// stretches, run on the calling thread).
   std::vector<ThreadedWork> threadedWork;
 
   std::size_t numberOfTetrahedra() const { return tetrahedra.size() / 4; }
