@@ -5,6 +5,7 @@
 #include "Expansion.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace fd3
@@ -74,12 +75,31 @@ bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
   return true;
 }
 
-Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3])
+Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3],
+  const Stretches& stretches)
 {
-  bool exact[3] = {true, true, true};
-  checkShifts(xyz, count, lo, hi, exact);
-  const Frame frame = frameFor(lo, hi, exact);
-  return fitsFrame(frame, xyz, count) ? frame : identityFrame(lo, hi);
+  const auto everyStretch = [&](const std::function<void(std::size_t, std::size_t)>& f) {
+    if (stretches)
+      stretches(count, f);
+    else
+      f(0, count);
+  };
+  std::atomic<bool> exact[3] = {true, true, true};
+  everyStretch([&](std::size_t begin, std::size_t end) {
+    bool mine[3] = {true, true, true};
+    checkShifts(xyz + 3 * begin, end - begin, lo, hi, mine);
+    for (int a = 0; a < 3; ++a)
+      if (!mine[a])
+        exact[a] = false;
+  });
+  const bool shifts[3] = {exact[0], exact[1], exact[2]};
+  const Frame frame = frameFor(lo, hi, shifts);
+  std::atomic<bool> fits{true};
+  everyStretch([&](std::size_t begin, std::size_t end) {
+    if (!fitsFrame(frame, xyz + 3 * begin, end - begin))
+      fits = false;
+  });
+  return fits ? frame : identityFrame(lo, hi);
 }
 
 Frame frameOf(const double* xyz, std::size_t count)

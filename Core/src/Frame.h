@@ -6,6 +6,8 @@
 #include "Geometry.h"
 #include "fd3/Distributed.h"
 
+#include <functional>
+
 namespace fd3
 {
 
@@ -26,9 +28,14 @@ inline bool mapsExactly(const Frame& frame, double x, int axis)
   return fromFrame(frame, toFrame(frame, x, axis), axis) == x;
 }
 
+/// Runs f(begin, end) on stretches that cover [0, count), in any order, at once or one by one.
+using Stretches =
+  std::function<void(std::size_t count, const std::function<void(std::size_t, std::size_t)>& f)>;
+
 /// The frame of `count` points whose finite ones lie within [lo, hi], their bounds: frameOf() for
-/// a caller that has the bounds already.
-Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3]);
+/// a caller that has the bounds already. Its passes over the points go by `stretches`, where given.
+Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3],
+  const Stretches& stretches = nullptr);
 
 /// Whether vertex records of `count` points in `frame` give each finite one back bit for bit: every
 /// coordinate maps into the frame and back exactly (no underflow), and none is -0, which an exact

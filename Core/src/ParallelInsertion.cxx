@@ -194,16 +194,19 @@ bool Triangulator::insertInParallel(
     passYield_[pass] = 1.0 - double(vertices.size()) / double(count);
   }
   std::sort(vertices.begin(), vertices.end()); // back to curve order
-  if (!stop_ && vertices.size() >= 2 * mesh_.options.pointsPerThread)
+  for (int pass = 0; pass < kLockingPasses && !stop_; ++pass)
   {
-    if (lockingYield_ < worthwhileYield(team_.size()))
-      lockingYield_ *= 2;
-    else
+    const std::size_t parts = std::min<std::size_t>(team_.size(), vertices.size() / kMinPointsPerThread);
+    if (parts < 2)
+      break;
+    if (lockingYield_[pass] < worthwhileYield(parts))
     {
-      const std::size_t count = vertices.size();
-      vertices = runLockingPass(vertices, progress);
-      lockingYield_ = 1.0 - double(vertices.size()) / double(count);
+      lockingYield_[pass] *= 2;
+      break;
     }
+    const std::size_t count = vertices.size();
+    vertices = runLockingPass(vertices, parts, pass, progress);
+    lockingYield_[pass] = 1.0 - double(vertices.size()) / double(count);
   }
   return !stop_ &&
     insertSerially(
@@ -317,13 +320,11 @@ void Triangulator::prepareOwners()
 
 // Each thread takes a stretch of the curve, which keeps the threads far apart and their
 // insertions' cavities apart but where two meet.
-std::vector<VertId> Triangulator::runLockingPass(
-  const std::vector<VertId>& vertices, const std::function<bool(double)>& progress)
+std::vector<VertId> Triangulator::runLockingPass(const std::vector<VertId>& vertices,
+  std::size_t parts, int pass, const std::function<bool(double)>& progress)
 {
   makeRoomFor(vertices.size());
   prepareOwners();
-  const std::size_t parts = std::min<std::size_t>(
-    team_.size(), vertices.size() / std::max<std::size_t>(1, mesh_.options.pointsPerThread));
   std::vector<std::vector<VertId>> putOff(parts);
   passDone_ = 0;
   auto work = [&](std::size_t k) {
@@ -355,7 +356,7 @@ std::vector<VertId> Triangulator::runLockingPass(
     }
     inserter.unlocked();
   };
-  ThreadedWork& record = team_.newRecord("insertion locking pass");
+  ThreadedWork& record = team_.newRecord(kLockingPassNames[pass]);
   record.points = vertices.size();
   team_.run(parts, work, record, progressPoll(progress));
   done_ += passDone_;

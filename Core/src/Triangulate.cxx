@@ -74,46 +74,94 @@ bool moveFirstTetrahedronToFront(
   return true;
 }
 
+/// Runs write(begin, end, at) on consecutive stretches of [first, last), one per thread of the
+/// team, after each has counted with count(begin, end) what it will write: `at` is where the
+/// stretch's output starts, `written` where the first one's does (then where the last one's
+/// ends); write returns where its own output ends. On one thread, nothing is counted.
+template <typename Count, typename Write>
+void countThenWrite(ThreadTeam& team, ThreadedWork& record, std::size_t first, std::size_t last,
+  std::size_t& written, Count count, Write write)
+{
+  const std::size_t n = last - first, parts = team.partsFor(n);
+  if (parts == 1)
+  {
+    team.run(1, [&](std::size_t) { written = write(first, last, written); }, record);
+    return;
+  }
+  std::vector<std::size_t> offset(parts + 1, 0);
+  const auto begin = [&](std::size_t k) { return first + n * k / parts; };
+  team.run(
+    parts, [&](std::size_t k) { offset[k + 1] = count(begin(k), begin(k + 1)); }, record);
+  offset[0] = written;
+  for (std::size_t k = 0; k < parts; ++k)
+    offset[k + 1] += offset[k];
+  team.run(
+    parts, [&](std::size_t k) { write(begin(k), begin(k + 1), offset[k]); }, record);
+  written = offset[parts];
+}
+
 /// The live finite tetrahedra of `records` (a mesh's, `slots` of them) with input point ids
-/// (`pointOf`, by vertex rank), compacted in place (tetrahedron k's vertices go to words 4k..4k+3
-/// of record t >= k, never ahead of what is still to be read), and, when asked for, their
-/// neighbours renumbered.
+/// (`pointOf`, by vertex rank), compacted in place, and, when asked for, their neighbours
+/// renumbered. Tetrahedron k's vertices go to words 4k..4k+3, inside record k/2 <= t/2 for its
+/// slot t: the slots of [a, 2a) write only into records below a, which the slots before a have
+/// been read from, so each such range is compacted on every thread at once, one after another.
 void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* pointOf,
-  bool withNeighbors, Triangulation& out)
+  bool withNeighbors, Triangulation& out, ThreadTeam& team)
 {
   constexpr std::uint32_t kDropped = 0xFFFFFFFFu; // dead or ghost: not in the output
   auto kept = [&](std::size_t t) {
     return (records[8 * t] >> kVertexIdBits) != kDead && records[8 * t + 3] != kInfinite;
   };
+  auto countKept = [&](std::size_t begin, std::size_t end) {
+    std::size_t count = 0;
+    for (std::size_t t = begin; t < end; ++t)
+      count += kept(t);
+    return count;
+  };
+  ThreadedWork& record = team.newRecord("output");
   if (withNeighbors)
   {
-    std::vector<std::uint32_t> newId(slots, kDropped);
-    std::uint32_t count = 0;
-    for (std::size_t t = 0; t < slots; ++t)
-      if (kept(t))
-        newId[t] = count++;
-    out.neighbors.resize(4 * std::size_t(count));
-    for (std::size_t t = 0; t < slots; ++t)
-      if (const std::uint32_t k = newId[t]; k != kDropped)
-        for (int f = 0; f < 4; ++f)
-        {
-          const FaceCode code = records[8 * t + 4 + f];
-          const std::uint32_t n = newId[tetOf(code)];
-          out.neighbors[4 * std::size_t(k) + f] =
-            n == kDropped ? kNoNeighbor : faceCode(n, faceOf(code));
-        }
+    std::vector<std::uint32_t> newId(slots);
+    std::size_t count = 0;
+    countThenWrite(team, record, 0, slots, count, countKept,
+      [&](std::size_t begin, std::size_t end, std::size_t next) {
+        for (std::size_t t = begin; t < end; ++t)
+          newId[t] = kept(t) ? static_cast<std::uint32_t>(next++) : kDropped;
+        return next;
+      });
+    out.neighbors.resize(4 * count);
+    const std::size_t parts = team.partsFor(slots);
+    team.run(
+      parts,
+      [&](std::size_t k) {
+        for (std::size_t t = slots * k / parts; t < slots * (k + 1) / parts; ++t)
+          if (const std::uint32_t id = newId[t]; id != kDropped)
+            for (int f = 0; f < 4; ++f)
+            {
+              const FaceCode code = records[8 * t + 4 + f];
+              const std::uint32_t n = newId[tetOf(code)];
+              out.neighbors[4 * std::size_t(id) + f] =
+                n == kDropped ? kNoNeighbor : faceCode(n, faceOf(code));
+            }
+      },
+      record);
   }
   std::size_t count = 0;
-  for (std::size_t t = 0; t < slots; ++t)
-  {
-    if (!kept(t))
-      continue;
-    const std::uint32_t v[4] = {records[8 * t] & (kMaxVertices - 1), records[8 * t + 1],
-      records[8 * t + 2], records[8 * t + 3]};
-    for (int i = 0; i < 4; ++i)
-      records[4 * count + i] = pointOf[v[i]];
-    ++count;
-  }
+  for (std::size_t a = 0, b = 1; a < slots; a = b, b = 2 * b)
+    countThenWrite(team, record, a, std::min(b, slots), count, countKept,
+      [&](std::size_t begin, std::size_t end, std::size_t next) {
+        for (std::size_t t = begin; t < end; ++t)
+        {
+          if (!kept(t))
+            continue;
+          const std::uint32_t v[4] = {records[8 * t] & (kMaxVertices - 1), records[8 * t + 1],
+            records[8 * t + 2], records[8 * t + 3]};
+          for (int i = 0; i < 4; ++i)
+            records[4 * next + i] = pointOf[v[i]];
+          ++next;
+        }
+        return next;
+      });
   records.resize(4 * count);
   // The compacted tetrahedra take half of the records' 32 bytes or less: the rest is given back
   // before the caller converts them (the VTK filter's peak).
@@ -288,7 +336,11 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     return;
   }
   if (!frameGiven)
-    frame = frameWithin(xyz, count, box.lo, box.hi);
+    frame = frameWithin(xyz, count, box.lo, box.hi,
+      [this](std::size_t n, const std::function<void(std::size_t, std::size_t)>& f) {
+        team->forRanges(
+          n, "sort", [&](std::size_t, std::size_t begin, std::size_t end) { f(begin, end); });
+      });
   std::vector<std::uint16_t> key = keys(xyz, count, ids);
   InsertionPlan plan =
     planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
@@ -370,8 +422,6 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
   Triangulation out;
   out.status = status;
   out.stats = stats;
-  if (team)
-    out.threadedWork = team->records();
   if (status != Status::Ok)
     return out;
   out.stats.add(triangulator->statistics()); // the inserters' figures: none of them are in stats
@@ -409,10 +459,16 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
       copiedIds.push_back(vertex.point);
     pointOf = copiedIds.data();
   }
-  extractOutput(std::move(records), slots, pointOf, options.computeNeighbors, out);
-  out.representative.assign(points, kNoPoint);
-  for (std::size_t v = 0; v < vertexCount; ++v)
-    out.representative[pointOf[v]] = pointOf[v];
+  extractOutput(std::move(records), slots, pointOf, options.computeNeighbors, out, *team);
+  out.representative.resize(points);
+  team->forRanges(points, "output", [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::fill(out.representative.begin() + static_cast<std::ptrdiff_t>(begin),
+      out.representative.begin() + static_cast<std::ptrdiff_t>(end), kNoPoint);
+  });
+  team->forRanges(vertexCount, "output", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+      out.representative[pointOf[v]] = pointOf[v];
+  });
   for (const auto& [point, near] : skipped)
     out.representative[point] = near;
   for (const auto& [copy, original] : repeated)
@@ -426,6 +482,7 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
   }
   out.stats.tetrahedra = out.numberOfTetrahedra();
   out.stats.secondsOutput = secondsSince(start);
+  out.threadedWork = team->records();
   return out;
 }
 

@@ -71,10 +71,9 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
     const std::size_t last = std::min(r + 1 < roundStarts.size() ? roundStarts[r + 1] : end, end);
     if (first >= last)
       continue;
-    // Parallel passes pay for their threads and regions: a pass takes a thread per
-    // pointsPerThread points, and rounds too small for two go in serially.
+    // Parallel passes pay for their threads: rounds too small for two go in serially.
     bool ok = false;
-    if (parallel && last - first >= 2 * mesh_.options.pointsPerThread)
+    if (parallel && last - first >= 2 * kMinPointsPerThread)
     {
       std::vector<VertId> round(last - first);
       std::iota(round.begin(), round.end(), static_cast<VertId>(first));
@@ -176,13 +175,25 @@ TetMesh& Triangulator::releaseWorkspace()
 
 const std::uint32_t* Triangulator::packPointIds()
 {
-  // Id i goes to bytes 4i..4i+3, which belong to vertex i/8 <= i: never to a record still to be
-  // read (vertex 0's id is read before its first coordinate is overwritten).
+  // Id i goes to bytes 4i..4i+3, inside vertex record i/8: the ids of vertices [a, 2a) go into
+  // records below a/4, which have been read, so each such range is packed on every thread at once,
+  // one after another (vertex 0's id is read before its first coordinate is overwritten).
   unsigned char* packed = reinterpret_cast<unsigned char*>(mesh_.vertices.data());
-  for (std::size_t i = 0; i < mesh_.vertices.size(); ++i)
+  const std::size_t n = mesh_.vertices.size();
+  ThreadedWork& record = team_.newRecord("output");
+  for (std::size_t a = 0, b = 1; a < n; a = b, b = 2 * b)
   {
-    const std::uint32_t point = mesh_.vertices[i].point;
-    std::memcpy(packed + sizeof(point) * i, &point, sizeof(point));
+    const std::size_t end = std::min(b, n), parts = team_.partsFor(end - a);
+    team_.run(
+      parts,
+      [&](std::size_t k) {
+        for (std::size_t i = a + (end - a) * k / parts; i < a + (end - a) * (k + 1) / parts; ++i)
+        {
+          const std::uint32_t point = mesh_.vertices[i].point;
+          std::memcpy(packed + sizeof(point) * i, &point, sizeof(point));
+        }
+      },
+      record);
   }
   return reinterpret_cast<const std::uint32_t*>(packed);
 }

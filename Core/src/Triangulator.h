@@ -103,11 +103,11 @@ private:
   /// put off.
   std::vector<VertId> runPass(const std::vector<VertId>& vertices, const Partition& partition,
     int pass, const std::function<bool(double)>& progress);
-  /// Inserts `vertices` (in curve order), a stretch of them on each thread, each thread holding
+  /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads, each holding
   /// the tetrahedra it reads and writes in the owner table; returns those put off because another
   /// thread held a tetrahedron they needed. ParallelInsertion.cxx.
-  std::vector<VertId> runLockingPass(
-    const std::vector<VertId>& vertices, const std::function<bool(double)>& progress);
+  std::vector<VertId> runLockingPass(const std::vector<VertId>& vertices, std::size_t parts,
+    int pass, const std::function<bool(double)>& progress);
   /// The owner table for every slot the mesh has room for, each pool's free slots marked its own.
   void prepareOwners();
   /// What the calling thread does while the others insert: report progress.
@@ -123,6 +123,13 @@ private:
   static constexpr int kMaxPasses = 4;
   static constexpr const char* kPassNames[kMaxPasses] = {
     "insertion pass 1", "insertion pass 2", "insertion pass 3", "insertion pass 4"};
+  static constexpr int kLockingPasses = 2;
+  static constexpr const char* kLockingPassNames[kLockingPasses] = {
+    "insertion locking pass 1", "insertion locking pass 2"};
+  // The fewest points a thread takes in a locking pass (and so the smallest round that goes in
+  // parallel, with two threads): its stretch of the curve, far from the others' where they are
+  // long, meets them at its ends.
+  static constexpr std::size_t kMinPointsPerThread = 256;
 
   Mesh mesh_;
   ThreadTeam& team_;
@@ -137,7 +144,7 @@ private:
   // its region, and a pass that puts off nearly all of them only wastes time. A pass left out
   // doubles its guess instead (one that put nothing in is not tried again).
   double passYield_[kMaxPasses] = {1.0, 1.0, 1.0, 1.0};
-  double lockingYield_ = 1.0; // likewise, of the locking pass
+  double lockingYield_[kLockingPasses] = {1.0, 1.0}; // likewise, of the locking passes
   // The locking pass's table, for every slot the records had room for when it was made. Every
   // entry is 0 between passes.
   std::unique_ptr<OwnerTable[]> owners_;

@@ -188,7 +188,7 @@ struct Triangulation
   /// For each input point: the input id of the vertex it was merged into (exact duplicate) or
   /// skipped for (closer than the tolerance); itself when it is a vertex; kNoPoint when not finite.
   /// Empty when the status is not Ok.
-  std::vector<std::uint32_t> representative;
+  IdArray representative;
   Statistics stats;
   /// With Status::CheckFailed: what Options::checkMesh found, a line per violation.
   std::string checkReport;
