@@ -42,7 +42,13 @@ bool Inserter::ghostInConflict(TetId ghost, VertId v)
   const int side = predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v));
   if (side != 0)
     return side > 0;
-  tets_.vertices(tetOf(tets_.neighbor(ghost, 3)), tv);
+  const TetId behind = tetOf(tets_.neighbor(ghost, 3));
+  if (owners_ && !acquire(behind))
+  {
+    lockLost_ = true; // another inserter's: the insertion is put off
+    return false;
+  }
+  tets_.vertices(behind, tv);
   return inSphereSoS(tv, v) > 0;
 }
 
@@ -55,8 +61,9 @@ void Inserter::undoCavity()
 }
 
 // Returns false, undoing everything, when the cavity reaches a tetrahedron that is not the
-// inserter's (in a region); the faces of the tetrahedron at hand are still tested, which reads
-// only its neighbours (three vertices in the region: no other inserter writes them).
+// inserter's: in a region, one with a vertex outside it (the faces of the tetrahedron at hand are
+// still tested, which reads only its neighbours: three vertices in the region, no other inserter
+// writes them); in a locking pass, one that another inserter holds (not read at all).
 //
 // No branch depends on a test's outcome, a coin toss to the predictor: the outcome only picks the
 // flag written and which list's count advances (the lists have room for every face of the
@@ -110,6 +117,11 @@ bool Inserter::digCavity(TetId base, VertId v)
       if (flag == 0)
       {
         inside = inConflict(n, v);
+        if (lockLost_)
+        {
+          owned = false;
+          break;
+        }
         assert(mayTouch(n));
         tets_.setFlags(n, inside ? kInCavity : kNotInCavity);
         tets[inCavity] = n;

@@ -79,10 +79,7 @@ Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], cons
   const Stretches& stretches)
 {
   const auto everyStretch = [&](const std::function<void(std::size_t, std::size_t)>& f) {
-    if (stretches)
-      stretches(count, f);
-    else
-      f(0, count);
+    forStretches(stretches, count, f);
   };
   std::atomic<bool> exact[3] = {true, true, true};
   everyStretch([&](std::size_t begin, std::size_t end) {

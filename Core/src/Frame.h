@@ -4,9 +4,8 @@
 #define fd3_Frame_h
 
 #include "Geometry.h"
+#include "Stretches.h"
 #include "fd3/Distributed.h"
-
-#include <functional>
 
 namespace fd3
 {
@@ -27,10 +26,6 @@ inline bool mapsExactly(const Frame& frame, double x, int axis)
 {
   return fromFrame(frame, toFrame(frame, x, axis), axis) == x;
 }
-
-/// Runs f(begin, end) on stretches that cover [0, count), in any order, at once or one by one.
-using Stretches =
-  std::function<void(std::size_t count, const std::function<void(std::size_t, std::size_t)>& f)>;
 
 /// The frame of `count` points whose finite ones lie within [lo, hi], their bounds: frameOf() for
 /// a caller that has the bounds already. Its passes over the points go by `stretches`, where given.

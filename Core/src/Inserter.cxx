@@ -194,6 +194,7 @@ private:
 
 Inserter::Outcome Inserter::deferred()
 {
+  lockLost_ = false;
   if (owners_)
     releaseHeld();
   ++stats_.deferredInsertions;

@@ -228,6 +228,9 @@ private:
   std::size_t ownerSlots_ = 0;
   std::uint8_t me_ = 0;
   std::vector<TetId> held_;
+  // Set when a test needed a tetrahedron another inserter holds (a ghost's verdict on its plane
+  // is the finite tetrahedron's behind it): the insertion under way is put off.
+  bool lockLost_ = false;
 };
 
 } // namespace fd3

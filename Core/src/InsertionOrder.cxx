@@ -13,6 +13,9 @@ namespace fd3
 {
 namespace
 {
+// The sort's scratch: written right after it is made, so never filled first.
+using Words = std::vector<std::uint64_t, BulkAllocator<std::uint64_t>>;
+
 // The smallest run of equal curve keys worth sorting again inside its own box (smaller runs are
 // ordered by their coordinates).
 constexpr std::size_t kRunWorthRefining = 8;
@@ -109,7 +112,7 @@ private:
 // in their low half, by the key's low `bits` bits: linear passes instead of std::sort's n log n
 // comparisons. One word per entry, not a key array and an id array, so that each pass scatters
 // one stream. With a team, each thread counts and scatters a stretch of the words.
-void radixSortByHighHalf(std::vector<std::uint64_t>& words, int bits, ThreadTeam* team)
+void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
 {
   constexpr int kDigit = 10;
   constexpr std::size_t kBuckets = std::size_t(1) << kDigit;
@@ -124,7 +127,7 @@ void radixSortByHighHalf(std::vector<std::uint64_t>& words, int bits, ThreadTeam
   };
   // count[k * kBuckets + b]: part k's words with digit b; then where the next of them goes.
   std::vector<std::uint32_t> count(parts * kBuckets); // fewer than 2^32 points
-  std::vector<std::uint64_t> buffer(n);
+  Words buffer(n);
   for (int shift = 32; shift < 32 + bits; shift += kDigit)
   {
     const auto digit = [shift](std::uint64_t w) { return (w >> shift) & (kBuckets - 1); };
@@ -252,7 +255,7 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
       ids[i] |= kDuplicate;
     return;
   }
-  std::vector<std::uint64_t> entries(count); // curve key << 32 | id
+  Words entries(count); // curve key << 32 | id
   forRanges(team, count, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -293,7 +296,7 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
 /// Keeps the first of every run of equal points in `sorted` (the unmarked one) and lists the
 /// others, marked by hilbertSort, as its duplicates. Each thread takes a stretch: it counts what
 /// it keeps, then writes it after what the stretches before it keep.
-void mergeDuplicates(std::vector<std::uint32_t>& sorted,
+void mergeDuplicates(IdArray& sorted,
   std::vector<std::pair<std::uint32_t, std::uint32_t>>& duplicates, ThreadTeam& team)
 {
   const std::size_t n = sorted.size(), parts = team.partsFor(n);
@@ -309,7 +312,7 @@ void mergeDuplicates(std::vector<std::uint32_t>& sorted,
     record);
   for (std::size_t k = 0; k < parts; ++k)
     offset[k + 1] += offset[k];
-  std::vector<std::uint32_t> kept(offset[parts]);
+  IdArray kept(offset[parts]);
   team.run(
     parts,
     [&](std::size_t k) {
@@ -335,7 +338,7 @@ void mergeDuplicates(std::vector<std::uint32_t>& sorted,
 /// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
 /// each round keeps the curve order of `sorted` (a stable counting sort by round). A point's round
 /// comes from its key's level, which the coordinates decide: the same in every run.
-std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted,
+IdArray brioRounds(const IdArray& sorted,
   const std::uint16_t* key, std::vector<std::size_t>& roundStarts, ThreadTeam& team)
 {
   const std::size_t n = sorted.size(), parts = team.partsFor(n);
@@ -362,7 +365,7 @@ std::vector<std::uint32_t> brioRounds(const std::vector<std::uint32_t>& sorted,
     for (std::size_t k = 0; k < parts; ++k)
       offset += std::exchange(count[k * rounds + std::size_t(r)], offset);
   }
-  std::vector<std::uint32_t> order(n);
+  IdArray order(n);
   team.run(
     parts,
     [&](std::size_t k) {
@@ -380,8 +383,7 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
   return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
 }
 
-InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key,
-  std::vector<std::uint32_t> ids, const Box& box, InsertionOrder order, std::uint64_t seed,
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids, const Box& box, InsertionOrder order, std::uint64_t seed,
   ThreadTeam& team)
 {
   InsertionPlan plan;
@@ -413,7 +415,7 @@ InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key,
 std::vector<std::pair<std::uint32_t, std::uint32_t>> skipClosePoints(
   const double* xyz, InsertionPlan& plan, double tolerance)
 {
-  std::vector<std::uint32_t>& order = plan.order;
+  IdArray& order = plan.order;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> skipped;
   if (!(tolerance > 0))
     return skipped;

@@ -28,7 +28,7 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z);
 struct InsertionPlan
 {
   /// Input ids of the distinct points, in the order of insertion.
-  std::vector<std::uint32_t> order;
+  IdArray order;
   /// (copy, original) input ids of the exact duplicates left out; the original is the copy with
   /// the smallest input id, whatever the order.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;
@@ -39,8 +39,7 @@ struct InsertionPlan
 /// Plans the insertion of the points `ids` (indices into xyz, all finite, within `box`); key[i] is
 /// point i's perturbationKey() (Predicates.h). On every thread of `team`; the plan is the same
 /// for any number of them.
-InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key,
-  std::vector<std::uint32_t> ids, const Box& box, InsertionOrder order, std::uint64_t seed,
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids, const Box& box, InsertionOrder order, std::uint64_t seed,
   ThreadTeam& team);
 
 /// Removes from the plan's order every point closer than `tolerance` to a point kept before it, and

@@ -106,6 +106,11 @@ TetId Inserter::walk(TetId t, VertId v)
     {
       if (toFirstConflict ? inConflict(t, v) : isBeyondHullFace(t, v))
         break;
+      if (lockLost_)
+      {
+        t = kNoTet;
+        break;
+      }
       // Continue from the finite tetrahedron behind the hull face.
       const FaceCode inside = tets_.neighbor(t, 3);
       t = tetOf(inside);

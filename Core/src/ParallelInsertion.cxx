@@ -1,16 +1,22 @@
-// Parallel insertion of one BRIO round: its points are split by count into one box per thread (a
-// kd split), each thread inserts the points of its box, in curve order, changing only tetrahedra
-// whose four vertices are in its box (Region, in Inserter.h: no locks, no two threads ever touch
-// one tetrahedron). An insertion that would reach outside its box is put off. Later passes split
-// the points put off again, their cuts moved to where those points are sparse (away from the
-// cuts that put them off), until a pass no longer pays for its threads; what is left goes in
-// serially. Design read from HXT's partitioned insertion (Marot, Pellerin, Remacle 2019), which
-// retries with shifted partitions; code ours.
+// Parallel insertion of one BRIO round, in up to three passes, then serially what they leave:
 //
-// The cut axes follow the mesh's tetrahedra: on a surface sample they are thin across the
-// surface's long directions (a cylinder's, across its axis), and a cut across the axes along
-// which they are thin crosses few of them. Volume data, whose tetrahedra are as wide every way,
-// is cut across its longest axes in turn.
+// * A region pass: the points are split by count into one box per thread (a kd split), and each
+//   thread inserts the points of its box, in curve order, changing only tetrahedra whose four
+//   vertices are in its box (Region, in Inserter.h: no locks, no two threads ever touch one
+//   tetrahedron). An insertion that would reach outside its box is put off. The cut axes follow
+//   the mesh's tetrahedra: on a surface sample they are thin across the surface's long directions,
+//   and a cut across the axes along which they are thin crosses few of them; volume data, whose
+//   tetrahedra are as wide every way, is cut across its longest axes in turn. Design read from
+//   HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code ours.
+// * Locking passes: each thread takes a stretch of the curve and holds every tetrahedron it reads
+//   or writes in an owner table (one byte per slot, compare-and-swap), hand over hand along its
+//   walk; an insertion that meets a tetrahedron another thread holds lets go of all and is put
+//   off. It needs no boxes, so it takes what reaches across any box: the points near the region
+//   pass's cuts, and the convex surface samples whose hull faces and inner tetrahedra reach across
+//   the whole set (a cylinder's hull has faces as long as the cylinder, and its inner tetrahedra
+//   span its width). Design read from geogram's parallel Delaunay (per-tetrahedron ownership,
+//   rollback, retry later); code ours. An owner check costs an atomic operation per tetrahedron,
+//   which the region pass saves, so the region pass goes first where it puts most points in.
 //
 // The output does not depend on the number of threads or on their timing: with exact predicates
 // and ties broken by an order of the points' coordinates alone (perturbationKey(), Predicates.h),
@@ -22,21 +28,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <limits>
 
 namespace fd3
 {
 namespace
 {
-// The partition's cuts come from a sample of this many points per region (about 3% imbalance).
-constexpr std::size_t kSamplePerRegion = 1024;
+// The partition's cuts come from a sample of this many points per region (about 4% imbalance).
+// A region pass pays for itself where it puts at least this share of its points in: the locking
+// passes after it take the rest at about 1.35 times the cost of an unlocked insertion, and a
+// put-off insertion costs about half of one that goes in, so with a yield y the region pass costs
+// y + (1 - y)(0.5 + 1.35) against 1.35 for locking passes alone.
+constexpr double kWorthwhileRegionYield = 0.6;
+constexpr std::size_t kSamplePerRegion = 512;
 // Tetrahedra whose extents choose the cut axes.
-constexpr std::size_t kShapeSample = 2048;
+constexpr std::size_t kShapeSample = 512;
+// Points whose box the cut axes are chosen in.
+constexpr std::size_t kBoxSample = 1024;
 
-/// The least share of its points that a pass on `threads` threads must put in to be faster than
-/// inserting them all serially, if a put-off insertion costs half of one that goes in (it stops
-/// at the first tetrahedron outside its region, in the walk or the cavity). A pass with yield y
-/// costs y/threads + (1-y)/(2 threads) and leaves 1-y to the serial pass.
+/// The least share of its points that a locking pass on `threads` threads must put in to be faster
+/// than inserting them all serially, if a put-off insertion costs half of one that goes in (it
+/// stops at the first tetrahedron held by another). A pass with yield y costs
+/// y/threads + (1-y)/(2 threads) and leaves 1-y to the serial pass.
 double worthwhileYield(std::size_t threads)
 {
   return 0.5 / (double(threads) - 1 + 0.5);
@@ -44,11 +59,9 @@ double worthwhileYield(std::size_t threads)
 } // namespace
 
 Partition::Partition(
-  const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes,
-  bool avoidCrowds)
+  const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes)
   : mesh_(mesh)
   , axes_(axes)
-  , avoidCrowds_(avoidCrowds)
 {
   const std::size_t wanted = kSamplePerRegion * std::size_t(parts);
   const std::size_t stride = std::max<std::size_t>(1, vertices.size() / wanted);
@@ -77,56 +90,31 @@ int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, c
   }
   const int axis = axes_[std::min<std::size_t>(depth, axes_.size() - 1)];
   const int left = parts / 2;
-  const double at = cutAt(begin, end, axis, double(left) / parts, region);
   const auto coordinate = [&](VertId v) { return mesh_.point(v)[axis]; };
+  const auto first = sample_.begin() + static_cast<std::ptrdiff_t>(begin);
+  const auto last = sample_.begin() + static_cast<std::ptrdiff_t>(end);
+  const auto cut = first + static_cast<std::ptrdiff_t>((end - begin) * left / parts);
+  double at = region.hi[axis]; // no sample point: all below
+  if (cut < last)
+  {
+    std::nth_element(first, cut, last, [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
+    at = coordinate(*cut);
+  }
   const std::size_t middle = static_cast<std::size_t>(
-    std::partition(sample_.begin() + begin, sample_.begin() + end,
-      [&](VertId v) { return coordinate(v) < at; }) -
-    sample_.begin());
+    std::partition(first, last, [&](VertId v) { return coordinate(v) < at; }) - sample_.begin());
   Region below = region, above = region;
   below.hi[axis] = at;
   above.lo[axis] = at;
-  const int first = split(begin, middle, left, depth + 1, below);
-  const int second = split(middle, end, parts - left, depth + 1, above);
-  nodes_[index] = Node{axis, at, first, second};
+  const int lower = split(begin, middle, left, depth + 1, below);
+  const int upper = split(middle, end, parts - left, depth + 1, above);
+  nodes_[index] = Node{axis, at, lower, upper};
   return index;
-}
-
-// Balanced: at the quantile. Avoiding crowds: where the points are sparsest, measured by the
-// stretch that the 1/64 of them on either side of a cut spans, among cuts that leave between 30%
-// and 70% of them below (as near the quantile as can be among equals).
-double Partition::cutAt(
-  std::size_t begin, std::size_t end, int axis, double fraction, const Region& region)
-{
-  const std::size_t count = end - begin;
-  if (count == 0)
-    return region.hi[axis];
-  const auto first = sample_.begin() + static_cast<std::ptrdiff_t>(begin);
-  const auto last = sample_.begin() + static_cast<std::ptrdiff_t>(end);
-  const auto below = [&](VertId a, VertId b) { return mesh_.point(a)[axis] < mesh_.point(b)[axis]; };
-  const std::size_t quantile = static_cast<std::size_t>(fraction * double(count));
-  const std::size_t side = std::max<std::size_t>(1, count / 64);
-  const std::size_t lo = std::max(side, count * 3 / 10), hi = std::min(count - 1 - side, count * 7 / 10);
-  if (!avoidCrowds_ || lo > hi)
-  {
-    std::nth_element(first, first + static_cast<std::ptrdiff_t>(quantile), last, below);
-    return mesh_.point(sample_[begin + quantile])[axis];
-  }
-  std::sort(first, last, below);
-  const auto x = [&](std::size_t i) { return mesh_.point(sample_[begin + i])[axis]; };
-  const auto span = [&](std::size_t i) { return x(i + side) - x(i - side); };
-  const auto distance = [&](std::size_t i) { return i > quantile ? i - quantile : quantile - i; };
-  std::size_t best = lo;
-  for (std::size_t i = lo; i <= hi; ++i)
-    if (span(i) > span(best) || (span(i) == span(best) && distance(i) < distance(best)))
-      best = i;
-  return 0.5 * (x(best) + x(best + 1));
 }
 
 std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) const
 {
   Box box = Box::around(point(vertices[0]));
-  for (std::size_t i = 0; i < vertices.size(); i += std::max<std::size_t>(1, vertices.size() / 4096))
+  for (std::size_t i = 0; i < vertices.size(); i += std::max<std::size_t>(1, vertices.size() / kBoxSample))
     box.include(point(vertices[i]));
   // Mean extent of the mesh's tetrahedra along each axis, over the tetrahedra of vertices before
   // the round (whose records are all current between passes; a point added as a duplicate of a
@@ -174,29 +162,28 @@ std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) cons
 bool Triangulator::insertInParallel(
   std::vector<VertId> vertices, const std::function<bool(double)>& progress)
 {
-  for (int pass = 0; pass < kMaxPasses && !stop_; ++pass)
+  const std::size_t regions = std::min<std::size_t>(
+    team_.size(), vertices.size() / std::max<std::size_t>(1, mesh_.options.pointsPerThread));
+  if (regions >= 2 && !stop_)
   {
-    const std::size_t parts = std::min<std::size_t>(
-      team_.size(), vertices.size() / std::max<std::size_t>(1, mesh_.options.pointsPerThread));
-    if (parts < 2)
-      break;
-    if (passYield_[pass] < worthwhileYield(parts))
+    // Tried again once the guess, up 10% a round, says so: later rounds, with more points per
+    // region, may do a little better; one far below never is (its rounds only grow).
+    if (regionYield_ < kWorthwhileRegionYield)
+      regionYield_ *= 1.1;
+    else
     {
-      // Tried again once the guess, doubled every round left out, says so: later rounds, denser,
-      // may do better.
-      passYield_[pass] *= 2;
-      break;
+      const std::size_t count = vertices.size();
+      const std::vector<int> axes = cutAxes(vertices);
+      vertices =
+        runRegionPass(vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes), progress);
+      regionYield_ = 1.0 - double(vertices.size()) / double(count);
+      std::sort(vertices.begin(), vertices.end()); // back to curve order
     }
-    const std::size_t count = vertices.size();
-    const std::vector<int> axes = cutAxes(vertices);
-    vertices = runPass(
-      vertices, Partition(mesh_, vertices, static_cast<int>(parts), axes, pass > 0), pass, progress);
-    passYield_[pass] = 1.0 - double(vertices.size()) / double(count);
   }
-  std::sort(vertices.begin(), vertices.end()); // back to curve order
   for (int pass = 0; pass < kLockingPasses && !stop_; ++pass)
   {
-    const std::size_t parts = std::min<std::size_t>(team_.size(), vertices.size() / kMinPointsPerThread);
+    const std::size_t parts =
+      std::min<std::size_t>(team_.size(), vertices.size() / kMinPointsPerThread);
     if (parts < 2)
       break;
     if (lockingYield_[pass] < worthwhileYield(parts))
@@ -260,8 +247,8 @@ void Triangulator::shareOut(const std::vector<VertId>& vertices, const Partition
     record);
 }
 
-std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
-  const Partition& partition, int pass, const std::function<bool(double)>& progress)
+std::vector<VertId> Triangulator::runRegionPass(const std::vector<VertId>& vertices,
+  const Partition& partition, const std::function<bool(double)>& progress)
 {
   makeRoomFor(vertices.size());
   std::vector<std::vector<VertId>> share, putOff;
@@ -293,7 +280,7 @@ std::vector<VertId> Triangulator::runPass(const std::vector<VertId>& vertices,
       throw;
     }
   };
-  ThreadedWork& record = team_.newRecord(kPassNames[pass]);
+  ThreadedWork& record = team_.newRecord("insertion region pass");
   record.points = vertices.size();
   team_.run(share.size(), work, record, progressPoll(progress));
   done_ += passDone_;
@@ -310,12 +297,16 @@ void Triangulator::prepareOwners()
   const std::size_t slots = mesh_.tets.capacity();
   if (ownerSlots_ < slots)
   {
-    owners_.reset(new OwnerTable[slots]()); // every slot free
+    // Every slot free; calloc's zeros cost nothing until a page is touched, by the thread that
+    // touches it.
+    owners_.reset(static_cast<OwnerTable*>(std::calloc(slots, sizeof(OwnerTable))));
+    if (!owners_)
+      throw std::bad_alloc();
     ownerSlots_ = slots;
   }
   for (std::size_t k = 0; k < pools_.size(); ++k)
     for (const TetId t : pools_[k]->freeSlots())
-      owners_[t].store(static_cast<std::uint8_t>(k + 1), std::memory_order_relaxed);
+      owners_.get()[t].store(static_cast<std::uint8_t>(k + 1), std::memory_order_relaxed);
 }
 
 // Each thread takes a stretch of the curve, which keeps the threads far apart and their
@@ -365,7 +356,7 @@ std::vector<VertId> Triangulator::runLockingPass(const std::vector<VertId>& vert
   // pools' free ones are marked for the next locking pass when it starts.
   for (const auto& pool : pools_)
     for (const TetId t : pool->freeSlots())
-      owners_[t].store(0, std::memory_order_relaxed);
+      owners_.get()[t].store(0, std::memory_order_relaxed);
   std::vector<VertId> left;
   for (const auto& list : putOff)
     left.insert(left.end(), list.begin(), list.end());

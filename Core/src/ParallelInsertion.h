@@ -11,15 +11,12 @@ namespace fd3
 {
 
 /// Boxes for `parts` threads holding about as many of a pass's points each: a kd split whose
-/// level d cuts across axes[d], with cuts from a sample of the points. Balanced cuts lie at
-/// quantiles; `avoidCrowds` moves each one, within an eighth of the points, to where they are
-/// sparsest: the points a pass put off crowd around its cuts, and the next pass cuts between
-/// those crowds.
+/// level d cuts across axes[d], at quantiles of a sample of the points.
 class Partition
 {
 public:
-  Partition(const Mesh& mesh, const std::vector<VertId>& vertices, int parts,
-    const std::vector<int>& axes, bool avoidCrowds);
+  Partition(
+    const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes);
   int parts() const { return static_cast<int>(regions_.size()); }
   const Region& region(int k) const { return regions_[static_cast<std::size_t>(k)]; }
   /// The region that holds p (as Region::contains() decides).
@@ -34,11 +31,9 @@ private:
     int above;
   };
   int split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region);
-  double cutAt(std::size_t begin, std::size_t end, int axis, double fraction, const Region& region);
 
   const Mesh& mesh_;
   const std::vector<int>& axes_;
-  const bool avoidCrowds_;
   std::vector<VertId> sample_;
   std::vector<Node> nodes_; // nodes_[0]: the root
   std::vector<Region> regions_;

@@ -33,6 +33,7 @@
 #define fd3_TetMesh_h
 
 #include "Platform.h"
+#include "Stretches.h"
 #include "fd3/Delaunay.h"
 
 #include <algorithm>
@@ -144,26 +145,29 @@ public:
   /// Makes room for `count` more slots than are handed out: records may move, so no pool may
   /// claim at the same time. Beyond the reserved capacity it grows by a quarter at least: the copy
   /// then peaks at 2.25 times the records, not 3 times as with doubling.
-  void makeRoom(std::size_t count)
+  void makeRoom(std::size_t count, const Stretches& copy = nullptr)
   {
     const std::size_t needed = slots() + count;
     // Face codes 4t+f are 32-bit: beyond 2^30 slots (about 150M points) they would wrap.
     if (needed > kMaxTetrahedra)
       throw std::length_error("fd3: more than 2^30 tetrahedra, beyond 32-bit face codes");
     if (needed > capacity())
-      reserve(std::max(needed, capacity() + capacity() / 4));
+      reserve(std::max(needed, capacity() + capacity() / 4), copy);
   }
   /// Memory for `count` slots in all (never less than there is). Not initialized: its pages cost
-  /// nothing until slots are written.
-  void reserve(std::size_t count)
+  /// nothing until slots are written. The records move in the stretches of `copy`, where given.
+  void reserve(std::size_t count, const Stretches& copy = nullptr)
   {
     if (count <= capacity())
       return;
     IdArray grown;
     grown.reserve(8 * count);
     grown.resize(8 * count);
-    std::copy(
-      records_.begin(), records_.begin() + 8 * static_cast<std::ptrdiff_t>(slots()), grown.begin());
+    forStretches(copy, slots(), [&](std::size_t begin, std::size_t end) {
+      std::copy(records_.begin() + 8 * static_cast<std::ptrdiff_t>(begin),
+        records_.begin() + 8 * static_cast<std::ptrdiff_t>(end),
+        grown.begin() + 8 * static_cast<std::ptrdiff_t>(begin));
+    });
     records_.swap(grown);
   }
   std::size_t capacity() const { return records_.size() / 8; }

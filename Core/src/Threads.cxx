@@ -148,4 +148,11 @@ void ThreadTeam::forRanges(std::size_t count, const char* phase,
     newRecord(phase));
 }
 
+Stretches ThreadTeam::stretches(const char* phase)
+{
+  return [this, phase](std::size_t count, const std::function<void(std::size_t, std::size_t)>& f) {
+    forRanges(count, phase, [&](std::size_t, std::size_t begin, std::size_t end) { f(begin, end); });
+  };
+}
+
 } // namespace fd3

@@ -7,6 +7,7 @@
 #ifndef fd3_Threads_h
 #define fd3_Threads_h
 
+#include "Stretches.h"
 #include "fd3/Delaunay.h"
 
 #include <condition_variable>
@@ -51,6 +52,8 @@ public:
   void forRanges(std::size_t count, const char* phase,
     const std::function<void(std::size_t, std::size_t, std::size_t)>& f);
   static constexpr std::size_t kMinItemsPerPart = 4096;
+  /// forRanges() as Stretches, recorded as `phase` (the team must outlive it).
+  Stretches stretches(const char* phase);
 
 private:
   void startHelpers();

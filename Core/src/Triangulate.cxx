@@ -22,6 +22,8 @@ namespace fd3
 namespace
 {
 using Clock = std::chrono::steady_clock;
+/// Perturbation keys by point id (only finite points' are written and read).
+using Keys = std::vector<std::uint16_t, BulkAllocator<std::uint16_t>>;
 
 double secondsSince(Clock::time_point start)
 {
@@ -30,8 +32,7 @@ double secondsSince(Clock::time_point start)
 
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
 /// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
-bool moveFirstTetrahedronToFront(
-  const double* xyz, const Frame& frame, std::vector<std::uint32_t>& order)
+bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, IdArray& order)
 {
   Predicates predicates;
   if (frame.identity)
@@ -225,19 +226,18 @@ private:
   /// The input coordinates of every vertex and exact duplicate, as the records give them back.
   void writeRecordedPoints(double* xyz) const;
   /// The finite ones of `count` points, as point ids, and their bounding box.
-  std::vector<std::uint32_t> finitePoints(const double* xyz, std::size_t count, Box& box);
+  IdArray finitePoints(const double* xyz, std::size_t count, Box& box);
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
-  std::vector<std::uint16_t> keys(
-    const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const;
+  Keys keys(const double* xyz, std::size_t count, const IdArray& ids) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
-  VertexArray vertices(const double* xyz, const std::vector<std::uint32_t>& order,
+  VertexArray vertices(const double* xyz, const IdArray& order,
     std::size_t firstPoint, std::size_t extra);
 };
 
 // Each thread takes a stretch of the points: it counts the finite ones and their box, then writes
 // their ids after those of the stretches before it.
-std::vector<std::uint32_t> IncrementalDelaunay::Impl::finitePoints(
+IdArray IncrementalDelaunay::Impl::finitePoints(
   const double* xyz, std::size_t count, Box& box)
 {
   if (points + count >= kMaxVertices)
@@ -269,7 +269,7 @@ std::vector<std::uint32_t> IncrementalDelaunay::Impl::finitePoints(
     }
     offset[k + 1] += offset[k];
   }
-  std::vector<std::uint32_t> ids(offset[parts]);
+  IdArray ids(offset[parts]);
   team->run(
     parts,
     [&](std::size_t k) {
@@ -284,11 +284,10 @@ std::vector<std::uint32_t> IncrementalDelaunay::Impl::finitePoints(
   return ids;
 }
 
-std::vector<std::uint16_t> IncrementalDelaunay::Impl::keys(
-  const double* xyz, std::size_t count, const std::vector<std::uint32_t>& ids) const
+Keys IncrementalDelaunay::Impl::keys(const double* xyz, std::size_t count, const IdArray& ids) const
 {
   // From the coordinates in the frame, as the predicates compute them on a tie.
-  std::vector<std::uint16_t> key(count);
+  Keys key(count);
   team->forRanges(ids.size(), "sort", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -300,8 +299,7 @@ std::vector<std::uint16_t> IncrementalDelaunay::Impl::keys(
   return key;
 }
 
-VertexArray IncrementalDelaunay::Impl::vertices(const double* xyz,
-  const std::vector<std::uint32_t>& order, std::size_t firstPoint, std::size_t extra)
+VertexArray IncrementalDelaunay::Impl::vertices(const double* xyz, const IdArray& order, std::size_t firstPoint, std::size_t extra)
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
@@ -328,7 +326,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   if (!team)
     team = std::make_unique<ThreadTeam>(threadCount(options));
   Box box;
-  std::vector<std::uint32_t> ids = finitePoints(xyz, count, box);
+  IdArray ids = finitePoints(xyz, count, box);
   points = count;
   if (ids.empty())
   {
@@ -336,12 +334,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     return;
   }
   if (!frameGiven)
-    frame = frameWithin(xyz, count, box.lo, box.hi,
-      [this](std::size_t n, const std::function<void(std::size_t, std::size_t)>& f) {
-        team->forRanges(
-          n, "sort", [&](std::size_t, std::size_t begin, std::size_t end) { f(begin, end); });
-      });
-  std::vector<std::uint16_t> key = keys(xyz, count, ids);
+    frame = frameWithin(xyz, count, box.lo, box.hi, team->stretches("sort"));
+  Keys key = keys(xyz, count, ids);
   InsertionPlan plan =
     planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
   stats.duplicatesMerged = plan.duplicates.size();
@@ -355,8 +349,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   }
   status = Status::Ok;
   VertexArray records = vertices(xyz, plan.order, 0, room);
-  std::vector<std::uint32_t>().swap(plan.order);
-  std::vector<std::uint16_t>().swap(key);
+  IdArray().swap(plan.order);
+  Keys().swap(key);
   if (takesPoints)
     freeRecoverablePoints(); // xyz, which may be `held`, is not read after this
   stats.secondsSort = secondsSince(start);
@@ -395,10 +389,10 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
     held.insert(held.end(), xyz, xyz + 3 * count);
   const auto start = Clock::now();
   Box box;
-  std::vector<std::uint32_t> ids = finitePoints(xyz, count, box);
+  IdArray ids = finitePoints(xyz, count, box);
   if (!ids.empty())
   {
-    std::vector<std::uint16_t> key = keys(xyz, count, ids);
+    Keys key = keys(xyz, count, ids);
     InsertionPlan plan =
       planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
     for (const auto& [copy, original] : plan.duplicates)

@@ -88,7 +88,7 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
       return false;
     if (!reserved && done_ >= reserveAt)
     {
-      mesh_.tets.reserve(predictedSlots(lastDone, lastSlots, end));
+      mesh_.tets.reserve(predictedSlots(lastDone, lastSlots, end), team_.stretches("records"));
       reserved = true;
     }
     lastDone = done_;
@@ -127,7 +127,8 @@ void Triangulator::makeRoomFor(std::size_t count)
   const double perVertex =
     std::max(7.0, double(mesh_.tets.slots() - free) / double(std::max<std::size_t>(done_, 1)));
   mesh_.tets.makeRoom(
-    static_cast<std::size_t>(1.25 * perVertex * double(count)) + 2048 * pools_.size() + 1024);
+    static_cast<std::size_t>(1.25 * perVertex * double(count)) + 2048 * pools_.size() + 1024,
+    team_.stretches("records"));
 }
 
 bool Triangulator::reportProgress(const std::function<bool(double)>& progress)

@@ -11,6 +11,7 @@
 #include "fd3/Delaunay.h"
 
 #include <atomic>
+#include <cstdlib>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -85,12 +86,12 @@ private:
   template <typename VertexAt>
   bool insertSerially(
     std::size_t count, VertexAt vertexAt, const std::function<bool(double)>& progress);
-  /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, in
-  /// passes, then serially what the regions could not take; a pass whose kind last yielded too
+  /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, then in
+  /// locking passes, then serially what those could not take; a pass whose kind last yielded too
   /// little to pay for itself is left out. ParallelInsertion.cxx.
   bool insertInParallel(std::vector<VertId> vertices, const std::function<bool(double)>& progress);
-  /// The axis each level of a partition of `vertices` (a round's, or those a pass put off) cuts
-  /// across: from the mesh's tetrahedra and the points' box.
+  /// The axis each level of a partition of `vertices` (a round's) cuts across: from the mesh's
+  /// tetrahedra and the points' box.
   std::vector<int> cutAxes(const std::vector<VertId>& vertices) const;
   /// Each region's points, in the order of `vertices` (the round's curve order), each inserter
   /// restricted to its region from a start in it; the points of a share before the first one that
@@ -101,8 +102,8 @@ private:
     std::vector<VertId>& putOff);
   /// Inserts `vertices` in the partition's regions, one thread each; returns those that had to be
   /// put off.
-  std::vector<VertId> runPass(const std::vector<VertId>& vertices, const Partition& partition,
-    int pass, const std::function<bool(double)>& progress);
+  std::vector<VertId> runRegionPass(const std::vector<VertId>& vertices,
+    const Partition& partition, const std::function<bool(double)>& progress);
   /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads, each holding
   /// the tetrahedra it reads and writes in the owner table; returns those put off because another
   /// thread held a tetrahedron they needed. ParallelInsertion.cxx.
@@ -120,9 +121,6 @@ private:
   void makeRoomFor(std::size_t count);
   bool reportProgress(const std::function<bool(double)>& progress);
 
-  static constexpr int kMaxPasses = 4;
-  static constexpr const char* kPassNames[kMaxPasses] = {
-    "insertion pass 1", "insertion pass 2", "insertion pass 3", "insertion pass 4"};
   static constexpr int kLockingPasses = 2;
   static constexpr const char* kLockingPassNames[kLockingPasses] = {
     "insertion locking pass 1", "insertion locking pass 2"};
@@ -139,15 +137,19 @@ private:
   std::size_t done_ = 0; // vertices handled, for progress
   std::atomic<std::size_t> passDone_{0};
   std::atomic<bool> stop_{false};
-  // Share of its points that the last pass of each number put in: on some inputs (convex surface
+  // Share of its points that the last pass of each kind put in: on some inputs (convex surface
   // samples, whose hull faces run across the whole set) nearly every insertion reaches outside
-  // its region, and a pass that puts off nearly all of them only wastes time. A pass left out
-  // doubles its guess instead (one that put nothing in is not tried again).
-  double passYield_[kMaxPasses] = {1.0, 1.0, 1.0, 1.0};
-  double lockingYield_[kLockingPasses] = {1.0, 1.0}; // likewise, of the locking passes
+  // its region, and a pass that puts off most of them only wastes time. A pass left out raises
+  // its guess instead (one that put nothing in is not tried again).
+  double regionYield_ = 1.0;
+  double lockingYield_[kLockingPasses] = {1.0, 1.0};
   // The locking pass's table, for every slot the records had room for when it was made. Every
   // entry is 0 between passes.
-  std::unique_ptr<OwnerTable[]> owners_;
+  struct Free
+  {
+    void operator()(OwnerTable* p) const { std::free(p); }
+  };
+  std::unique_ptr<OwnerTable, Free> owners_;
   std::size_t ownerSlots_ = 0;
 };
 

@@ -1,5 +1,6 @@
-// Multi-threaded insertion: the same tetrahedra for every thread count, exactly valid, on every
-// point set of the benchmark; progress from the calling thread only; abort and failures stop every
+// Multi-threaded insertion: the same tetrahedra for every thread count up to 64 (oversubscribed
+// here), exactly valid, on every point set of the benchmark; region passes where they pay, locking
+// passes where they do not; progress from the calling thread only; abort and failures stop every
 // thread and leave nothing behind. The thread sanitizer build runs these too.
 #include "ExactValidator.h"
 #include "PointSets.h"
@@ -7,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <stdexcept>
 #include <thread>
@@ -39,7 +41,7 @@ TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
     EXPECT_TRUE(report.valid()) << report.summary();
     const auto reference = fd3test::canonicalTetrahedra(serial.tetrahedra);
     std::size_t deferred = 0;
-    for (int threads : {2, 3, 4, 8})
+    for (int threads : {2, 3, 4, 8, 16, 64})
     {
       const fd3::Triangulation parallel = run(p, threads);
       ASSERT_EQ(parallel.status, fd3::Status::Ok) << threads << " threads";
@@ -49,7 +51,7 @@ TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
       EXPECT_EQ(parallel.stats.duplicatesMerged, serial.stats.duplicatesMerged);
       deferred += parallel.stats.deferredInsertions;
     }
-    EXPECT_GT(deferred, 0u) << "the regions' borders should have put some insertions off";
+    EXPECT_GT(deferred, 0u) << "the threads' borders should have put some insertions off";
   }
 }
 
@@ -69,19 +71,56 @@ TEST(Threads, WalksInARegionStartNearThePoint)
   }
 }
 
-// Points on a cylinder all lie on its hull, whose faces run its whole length: nearly every
-// insertion reaches outside any region. Passes that put off nearly all their points must stop
-// being tried (they put off each point twice before: 78,488 times for 40,000 points). The first
-// rounds are tried before their yield is known: about 1,200-1,500 put off whatever the size, 3%
-// of 40,000 points and 25% of the 6,000 of the thread sanitizer's run.
-TEST(Threads, PassesThatPutOffNearlyEveryPointAreLeftOut)
+/// The points each kind of insertion pass put in, summed over the rounds.
+std::size_t insertedBy(const fd3::Triangulation& r, const std::string& phase)
+{
+  std::size_t inserted = 0;
+  for (const fd3::ThreadedWork& w : r.threadedWork)
+    if (std::string(w.phase).rfind(phase, 0) == 0)
+      inserted += w.points - w.left;
+  return inserted;
+}
+
+// Points on a cylinder all lie on its hull, whose faces run its whole length, and its inner
+// tetrahedra span its width: nearly every insertion reaches outside any region. A region pass that
+// puts off most of its points must stop being tried (before, each point was put off twice: 78,488
+// times for 40,000 points), and the locking passes insert them instead. Uniform points go in
+// regions mostly, the locking passes taking what lies near the regions' borders.
+TEST(Threads, RegionPassesWhereTheyPayLockingPassesElsewhere)
 {
   const fd3test::Points p = fd3test::cylinderSurface(kPoints, 4);
-  const fd3::Triangulation parallel = run(p, 2);
-  ASSERT_EQ(parallel.status, fd3::Status::Ok);
-  EXPECT_LT(parallel.stats.deferredInsertions, kPoints / 2);
+  const fd3::Triangulation cylinder = run(p, 2);
+  ASSERT_EQ(cylinder.status, fd3::Status::Ok);
+  EXPECT_LT(cylinder.stats.deferredInsertions, kPoints / 2);
+  EXPECT_GT(insertedBy(cylinder, "insertion locking"), kPoints * 8 / 10);
   const fd3::Triangulation cube = run(fd3test::uniformCube(kPoints, 4), 2);
-  EXPECT_GT(cube.stats.deferredInsertions, 0u) << "passes on volume points must still be tried";
+  EXPECT_GT(insertedBy(cube, "insertion region"), kPoints * 8 / 10);
+  EXPECT_GT(insertedBy(cube, "insertion locking"), 0u);
+}
+
+// Every stretch of threaded work names its phase and each of its threads' CPU time, and the
+// insertion passes' points add up: no pass puts in more than it was given, and no thread stands
+// for more than the team's.
+TEST(Threads, ThreadedWorkIsRecorded)
+{
+  const fd3test::Points p = fd3test::uniformCube(kPoints, 5);
+  const fd3::Triangulation r = run(p, 4);
+  ASSERT_EQ(r.status, fd3::Status::Ok);
+  ASSERT_FALSE(r.threadedWork.empty());
+  for (const fd3::ThreadedWork& w : r.threadedWork)
+  {
+    EXPECT_GT(std::string(w.phase).size(), 0u);
+    EXPECT_GE(w.threadSeconds.size(), 1u);
+    EXPECT_LE(w.threadSeconds.size(), 4u);
+    EXPECT_LE(w.left, w.points);
+    for (const double seconds : w.threadSeconds)
+      EXPECT_GE(seconds, 0.0);
+  }
+  EXPECT_LE(insertedBy(r, "insertion"), r.stats.insertedPoints);
+  for (const char* phase : {"sort", "output", "insertion region", "insertion locking"})
+    EXPECT_TRUE(std::any_of(r.threadedWork.begin(), r.threadedWork.end(),
+      [&](const fd3::ThreadedWork& w) { return std::string(w.phase).rfind(phase, 0) == 0; }))
+      << phase;
 }
 
 TEST(Threads, ProgressComesFromTheCallingThreadOnly)
