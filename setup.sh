@@ -4,9 +4,11 @@
 #
 #   ./setup.sh          set up and build
 #   ./setup.sh demo     ... then tetrahedralize Data/points.vtp under pvbatch into output/
-#   ./setup.sh benchmark [sizes]   ... then benchmark Core, the filter, vtkDelaunay3D, CGAL and TetGen
-#                       (sizes default 10000,100000,1000000) into output/benchmark.{md,csv,png}
-#                       and the paper's Table 1 into output/table1.md
+#   ./setup.sh benchmark [sizes] [scaling size]   ... then benchmark Core, the filter,
+#                       vtkDelaunay3D, CGAL and TetGen (sizes default 10000,100000,1000000) into
+#                       output/benchmark.{md,csv,png}, the paper's Table 1 into output/table1.md,
+#                       and the threads' scaling model (1 to 64 threads, default 4000000 points)
+#                       into output/scaling.{md,csv}
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
 #   ./setup.sh sanitizers  ... then the same suite built with AddressSanitizer +
 #                       UndefinedBehaviorSanitizer (Debug: the kernel's own mesh check on; the
@@ -58,6 +60,9 @@ case "${1:-build}" in
         "$(echo "${2:-1000000}" | tr ',' '\n' | tail -1)" 2>&1 | grep '^mpi_benchmark'
     done | tee output/mpi-benchmark.txt
     build/bin/Benchmark --table1 --markdown output/table1.md
+    build/bin/Benchmark --scaling --sizes "${3:-4000000}" --threads 1,2,4,8,16,32,64 \
+      --kinds cube,ball,clusters,torus,cylinder,noisyshell,scans,terrain,molshell \
+      --markdown output/scaling.md --csv output/scaling.csv
     /usr/bin/python3 Testing/Benchmark/plot.py output/benchmark.csv output/benchmark.png \
       "$(sed -n 's/^Machine: \([^.]*\)\..*/\1/p' output/benchmark.md)" ;;
   test) (cd build && "${xvfb[@]}" ctest -j2 --output-on-failure) ;;

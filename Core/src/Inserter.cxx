@@ -210,6 +210,8 @@ Inserter::Outcome Inserter::insert(VertId v)
     if (const VertId repeated = repeatedVertex(base, v); repeated != kNoVertex)
     {
       duplicates_.emplace_back(v, repeated);
+      if (owners_)
+        releaseHeld();
       return Outcome::Duplicate;
     }
   if (base == kNoTet || !digCavity(base, v))

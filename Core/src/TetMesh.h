@@ -16,13 +16,19 @@
 //     other slot is live; flags are 0 between insertions.
 // Threads (the whole kernel's contract; debug builds assert it at every write, Inserter::mayTouch):
 //   * outside a parallel pass one thread, the caller's, reads and writes everything;
-//   * in a pass, inserter k runs on its own thread in region R_k (Region, Inserter.h), and reads
-//     and writes only the records of tetrahedra with three vertices or more in R_k (the ghost
-//     vertex is in every region). No tetrahedron has three vertices in each of two regions, so no
-//     record is touched by two threads; a cavity that would reach a tetrahedron with a vertex
-//     outside R_k is given up (the point is put off) before anything is written;
-//   * Vertex::tet (and the fill's local numbers in it) of a vertex in R_k: written by inserter k
+//   * in a region pass, inserter k runs on its own thread in region R_k (Region, Inserter.h), and
+//     reads and writes only the records of tetrahedra with three vertices or more in R_k (the
+//     ghost vertex is in every region). No tetrahedron has three vertices in each of two regions,
+//     so no record is touched by two threads; a cavity that would reach a tetrahedron with a
+//     vertex outside R_k is given up (the point is put off) before anything is written.
+//     Vertex::tet (and the fill's local numbers in it) of a vertex in R_k: written by inserter k
 //     only; the new point's own record likewise;
+//   * in a locking pass, inserter k reads or writes a record only while it holds the tetrahedron
+//     in the pass's owner table (OwnerTable, Inserter.h: taken by compare-and-swap, let go with a
+//     release store, so the next holder sees every write); slots it frees stay its own, for its
+//     pool. Vertex::tet may be written and read by several threads at once (relaxed atomics): it
+//     is always some slot, possibly one since freed, which a walk takes and checks before it
+//     reads it; the fill's local numbers go to a table of the inserter's own;
 //   * new slots come from the inserter's own SlotPool; the mesh hands out blocks through an atomic
 //     counter (claim()); makeRoom() and reserve() move the records and run between passes only;
 //   * the background grid's cells are relaxed atomics holding hints: any thread reads and writes
