@@ -107,7 +107,7 @@ bool Inserter::digCavity(TetId base, VertId v)
       const TetId n = tetOf(across);
       if (owners_ && !acquire(n))
       {
-        owned = false; // another inserter's: not even its flags may be read
+        lockLost_ = true; // another inserter's: not even its flags may be read
         break;
       }
       const std::uint32_t flag = tets_.flags(n);
@@ -116,12 +116,7 @@ bool Inserter::digCavity(TetId base, VertId v)
       bool inside = false;
       if (flag == 0)
       {
-        inside = inConflict(n, v);
-        if (lockLost_)
-        {
-          owned = false;
-          break;
-        }
+        inside = inConflict(n, v) && !lockLost_;
         assert(mayTouch(n));
         tets_.setFlags(n, inside ? kInCavity : kNotInCavity);
         tets[inCavity] = n;
@@ -142,13 +137,13 @@ bool Inserter::digCavity(TetId base, VertId v)
       boundary[facets].face = f;
       facets += !inside;
     }
-    if (!owned)
+    if (!owned || lockLost_)
       break;
   }
   cavity_.tets.resize(inCavity);
   cavity_.rejected.resize(kept);
   cavity_.boundary.resize(facets);
-  if (!owned)
+  if (!owned || lockLost_)
   {
     undoCavity();
     return false;
