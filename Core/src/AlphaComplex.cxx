@@ -2,92 +2,181 @@
 // tetrahedra first, then the lower-dimensional simplices that no kept simplex already covers.
 // Unlike vtkDelaunay3D, whose bounding octahedron makes the hull faces it reports depend on cell
 // numbering, every hull face is a candidate triangle here: the hull is exact.
+//
+// Each kind of simplex is found on every thread, a stretch of tetrahedra each, and listed in the
+// order of a scan of the tetrahedra: a face by the lower-numbered of its two tetrahedra that are
+// not kept, an edge by the lowest-numbered tetrahedron around it that is not kept. Whether an edge
+// is covered (by a kept tetrahedron or a listed triangle) is read from the tetrahedra around it,
+// turning about it through the neighbours: no shared set of edges, so no thread waits for another.
+#include "Threads.h"
 #include "TetMesh.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Measures.h"
 
+#include <atomic>
 #include <cmath>
-#include <unordered_set>
+#include <memory>
 
 namespace fd3
 {
 namespace
 {
-std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b)
-{
-  return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
-}
-
 constexpr int kEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+
+class AlphaBuilder
+{
+public:
+  AlphaBuilder(const double* xyz, std::size_t count, const Triangulation& triangulation,
+    double alpha, ThreadTeam& team)
+    : xyz_(xyz)
+    , count_(count)
+    , t_(triangulation)
+    , alpha2_(alpha * alpha)
+    , tets_(triangulation.numberOfTetrahedra())
+    , team_(team)
+    , kept_(tets_)
+    , used_(new std::atomic<std::uint8_t>[count]())
+  {
+  }
+
+  AlphaComplex build()
+  {
+    AlphaComplex complex;
+    team_.forRanges(tets_, "alpha", [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t)
+        kept_[t] = tetrahedronCircumradius2(p(vertex(t, 0)), p(vertex(t, 1)), p(vertex(t, 2)),
+                     p(vertex(t, 3))) <= alpha2_;
+    });
+    complex.tetrahedra = collect<IdArray>(tets_, [&](std::size_t t, auto& out) {
+      if (!kept_[t])
+        return;
+      out.push_back(static_cast<std::uint32_t>(t));
+      for (int i = 0; i < 4; ++i)
+        markUsed(vertex(t, i));
+    });
+    complex.triangles = collect<std::vector<std::uint32_t>>(tets_, [&](std::size_t t, auto& out) {
+      for (int f = 0; f < 4 && !kept_[t]; ++f)
+        if (listsFace(t, f))
+          for (int k = 0; k < 3; ++k)
+            out.push_back(markUsed(vertex(t, kFaceVertices[f][k])));
+    });
+    complex.lines = collect<std::vector<std::uint32_t>>(tets_, [&](std::size_t t, auto& out) {
+      for (int e = 0; e < 6 && !kept_[t]; ++e)
+        if (listsEdge(t, kEdges[e][0], kEdges[e][1]))
+          for (int k = 0; k < 2; ++k)
+            out.push_back(markUsed(vertex(t, kEdges[e][k])));
+    });
+    complex.vertices = collect<std::vector<std::uint32_t>>(count_, [&](std::size_t i, auto& out) {
+      if (!used_[i].load(std::memory_order_relaxed) && isFinite(p(std::uint32_t(i))))
+        out.push_back(static_cast<std::uint32_t>(i));
+    });
+    return complex;
+  }
+
+private:
+  const double* p(std::uint32_t id) const { return xyz_ + 3 * std::size_t(id); }
+  std::uint32_t vertex(std::size_t t, int i) const { return t_.tetrahedra[4 * t + i]; }
+  std::uint32_t markUsed(std::uint32_t id)
+  {
+    used_[id].store(1, std::memory_order_relaxed);
+    return id;
+  }
+
+  /// Each thread lists what emit(i, out) gives for its stretch of [0, n); the lists are joined in
+  /// order.
+  template <typename List, typename Emit>
+  List collect(std::size_t n, Emit emit)
+  {
+    std::vector<std::vector<std::uint32_t>> parts(team_.partsFor(n));
+    team_.forRanges(n, "alpha", [&](std::size_t k, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        emit(i, parts[k]);
+    });
+    List all;
+    for (const auto& part : parts)
+      all.insert(all.end(), part.begin(), part.end());
+    return all;
+  }
+
+  /// Whether face f of t (not kept) is a triangle of the complex and t lists it: the other side is
+  /// the hull or a tetrahedron not kept, and of two such, the lower-numbered one lists it.
+  bool listsFace(std::size_t t, int f) const
+  {
+    const std::uint32_t across = t_.neighbors[4 * t + f];
+    if (across != kNoNeighbor && (kept_[tetOf(across)] || tetOf(across) < t))
+      return false;
+    return isTriangle(t, f);
+  }
+
+  /// Whether face f of t, whose sides are not kept, is small enough to be a triangle.
+  bool isTriangle(std::size_t t, int f) const
+  {
+    const int* q = kFaceVertices[f];
+    return triangleCircumradius2(p(vertex(t, q[0])), p(vertex(t, q[1])), p(vertex(t, q[2]))) <=
+      alpha2_;
+  }
+
+  /// Whether the edge of t (not kept) on its vertices i and j is a line of the complex and t lists
+  /// it: short enough, covered by no kept tetrahedron and no triangle around it, and t the
+  /// lowest-numbered tetrahedron around it. Turns about the edge one way, then, where the hull
+  /// opens it, the other way.
+  bool listsEdge(std::size_t t, int i, int j) const
+  {
+    if (distance2(p(vertex(t, i)), p(vertex(t, j))) * 0.25 > alpha2_)
+      return false;
+    const std::uint32_t a = vertex(t, i), b = vertex(t, j);
+    // The two faces of t on the edge are those opposite its two other vertices.
+    int others[2], n = 0;
+    for (int k = 0; k < 4; ++k)
+      if (k != i && k != j)
+        others[n++] = k;
+    for (const int start : others)
+    {
+      std::size_t tet = t;
+      int face = start;
+      for (;;)
+      {
+        // The face of `tet` opposite vertex `face` holds the edge; `tet` is not kept.
+        const std::uint32_t across = t_.neighbors[4 * tet + face];
+        if (across == kNoNeighbor)
+        {
+          if (isTriangle(tet, face))
+            return false;
+          break; // the hull: the other way round from t
+        }
+        const std::size_t next = tetOf(across);
+        if (kept_[next] || next < t || isTriangle(tet, face))
+          return false;
+        if (next == t)
+          return true; // all the way round
+        // In `next`, the face entered is opposite faceOf(across); leave by the other face on the
+        // edge: opposite the vertex that is neither a, b nor that one.
+        int leave = 0;
+        while (leave == faceOf(across) || vertex(next, leave) == a || vertex(next, leave) == b)
+          ++leave;
+        tet = next;
+        face = leave;
+      }
+    }
+    return true;
+  }
+
+  const double* xyz_;
+  std::size_t count_;
+  const Triangulation& t_;
+  double alpha2_;
+  std::size_t tets_;
+  ThreadTeam& team_;
+  std::vector<std::uint8_t> kept_; // each written by one thread, read after the fork-join
+  std::unique_ptr<std::atomic<std::uint8_t>[]> used_; // several threads may mark one point
+};
 } // namespace
 
-AlphaComplex alphaComplex(
-  const double* xyz, std::size_t count, const Triangulation& triangulation, double alpha)
+AlphaComplex alphaComplex(const double* xyz, std::size_t count, const Triangulation& triangulation,
+  double alpha, int threads)
 {
-  AlphaComplex complex;
-  const double alpha2 = alpha * alpha;
-  const std::size_t tets = triangulation.numberOfTetrahedra();
-  const std::uint32_t* tv = triangulation.tetrahedra.data();
-  auto p = [&](std::uint32_t id) { return xyz + 3 * std::size_t(id); };
-
-  std::vector<bool> kept(tets), used(count);
-  std::unordered_set<std::uint64_t> coveredEdges;
-  auto cover = [&](const std::uint32_t* ids, int n) {
-    for (int i = 0; i < n; ++i)
-      used[ids[i]] = true;
-    for (int i = 0; i < n && n > 1; ++i)
-      coveredEdges.insert(edgeKey(ids[i], ids[(i + 1) % n]));
-  };
-
-  for (std::size_t t = 0; t < tets; ++t)
-  {
-    const std::uint32_t* v = tv + 4 * t;
-    if (tetrahedronCircumradius2(p(v[0]), p(v[1]), p(v[2]), p(v[3])) > alpha2)
-      continue;
-    kept[t] = true;
-    complex.tetrahedra.push_back(static_cast<std::uint32_t>(t));
-    cover(v, 4);
-    for (const auto& e : kEdges)
-      coveredEdges.insert(edgeKey(v[e[0]], v[e[1]]));
-  }
-  // Faces of discarded tetrahedra not shared with a kept one, each once.
-  for (std::size_t t = 0; t < tets; ++t)
-  {
-    if (kept[t])
-      continue;
-    for (int f = 0; f < 4; ++f)
-    {
-      const std::uint32_t across = triangulation.neighbors[4 * t + f];
-      if (across != kNoNeighbor && (kept[across >> 2] || (across >> 2) < t))
-        continue;
-      const std::uint32_t face[3] = {tv[4 * t + kFaceVertices[f][0]],
-        tv[4 * t + kFaceVertices[f][1]], tv[4 * t + kFaceVertices[f][2]]};
-      if (triangleCircumradius2(p(face[0]), p(face[1]), p(face[2])) <= alpha2)
-      {
-        complex.triangles.insert(complex.triangles.end(), face, face + 3);
-        cover(face, 3);
-      }
-    }
-  }
-  for (std::size_t t = 0; t < tets; ++t)
-  {
-    if (kept[t])
-      continue;
-    for (const auto& e : kEdges)
-    {
-      const std::uint32_t edge[2] = {tv[4 * t + e[0]], tv[4 * t + e[1]]};
-      if (coveredEdges.count(edgeKey(edge[0], edge[1])) == 0 &&
-        distance2(p(edge[0]), p(edge[1])) * 0.25 <= alpha2)
-      {
-        complex.lines.insert(complex.lines.end(), edge, edge + 2);
-        cover(edge, 2);
-      }
-    }
-  }
-  for (std::size_t i = 0; i < count; ++i)
-    if (!used[i] && isFinite(p(i)))
-      complex.vertices.push_back(static_cast<std::uint32_t>(i));
-  return complex;
+  ThreadTeam team(boundedThreads(threads));
+  return AlphaBuilder(xyz, count, triangulation, alpha, team).build();
 }
 
 } // namespace fd3

@@ -6,7 +6,8 @@
 namespace fd3
 {
 
-void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCell)
+void BackgroundGrid::build(
+  std::size_t count, const Box& box, double pointsPerCell, const Stretches& fill)
 {
   cells_.reset();
   cellCount_ = 0;
@@ -44,8 +45,10 @@ void BackgroundGrid::build(std::size_t count, const Box& box, double pointsPerCe
   }
   cellCount_ = std::size_t(dims_[0]) * dims_[1] * dims_[2];
   cells_.reset(new std::atomic<std::uint32_t>[cellCount_]);
-  for (std::size_t i = 0; i < cellCount_; ++i)
-    cells_[i].store(kEmpty, std::memory_order_relaxed);
+  forStretches(fill, cellCount_, [this](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      cells_[i].store(kEmpty, std::memory_order_relaxed);
+  });
 }
 
 void BackgroundGrid::cellCoordinates(const double* p, int ijk[3]) const

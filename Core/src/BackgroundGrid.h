@@ -6,6 +6,7 @@
 #define fd3_BackgroundGrid_h
 
 #include "Geometry.h"
+#include "Stretches.h"
 
 #include <algorithm>
 #include <atomic>
@@ -21,8 +22,9 @@ public:
   static constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
 
   /// Sizes the grid over `box` for about `pointsPerCell` of the `count` points per cell; 0
-  /// disables it.
-  void build(std::size_t count, const Box& box, double pointsPerCell);
+  /// disables it. The cells are emptied in the stretches of `fill`, where given.
+  void build(
+    std::size_t count, const Box& box, double pointsPerCell, const Stretches& fill = nullptr);
   bool enabled() const { return cellCount_ > 0; }
 
   void markInserted(const double* p, std::uint32_t vertex)

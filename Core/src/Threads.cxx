@@ -10,6 +10,14 @@
 namespace fd3
 {
 
+int boundedThreads(int requested)
+{
+  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (requested <= 0)
+    return hardware;
+  return std::min(requested, std::max(kThreadsPerHardwareThread * hardware, kMinThreadLimit));
+}
+
 ThreadTeam::ThreadTeam(int size)
   : size_(std::max(size, 1))
 {

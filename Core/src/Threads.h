@@ -20,6 +20,12 @@
 namespace fd3
 {
 
+/// The threads a request for `requested` starts: all hardware threads for 0 or less; else at most
+/// kThreadsPerHardwareThread per hardware thread, or kMinThreadLimit where that is more (each
+/// thread has its own scratch: beyond a few per hardware thread they only cost memory, and
+/// kMinThreadLimit lets any machine run, and test, what a large one runs).
+int boundedThreads(int requested);
+
 class ThreadTeam
 {
 public:

@@ -172,15 +172,9 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
 
 int threadCount(const Options& options)
 {
-  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (options.volumeThreshold > 0)
     return 1; // which slivers the guard avoids depends on the order of insertion
-  if (options.threads <= 0)
-    return hardware;
-  // Each thread has its own scratch and slot pool: beyond a few per hardware thread they only
-  // cost memory. kMinThreadLimit stays open everywhere, so that any machine can run (and test)
-  // what a large one runs.
-  return std::min(options.threads, std::max(kThreadsPerHardwareThread * hardware, kMinThreadLimit));
+  return boundedThreads(options.threads);
 }
 } // namespace
 

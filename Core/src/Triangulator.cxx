@@ -17,7 +17,7 @@ Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& boun
   mesh_.options = options;
   const std::size_t n = vertexCount();
   mesh_.tets.reserve(7 * n + 64); // uniform points make 6.7 per vertex; insertAll() corrects it
-  mesh_.grid.build(n, box, options.pointsPerCell);
+  mesh_.grid.build(n, box, options.pointsPerCell, team.stretches("grid"));
   tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), bounds);
   if (anyMagnitude)
     tuning_.allowAnyMagnitude();

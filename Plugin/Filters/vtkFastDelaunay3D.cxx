@@ -531,14 +531,19 @@ fd3::Options vtkFastDelaunay3D::KernelOptions(double diagonal)
       break;
   }
   options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
-  options.threads =
-    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.threads = this->ThreadCount();
   options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
   options.progress = [this](double fraction) {
     this->UpdateProgress(fraction);
     return !this->CheckAbort();
   };
   return options;
+}
+
+int vtkFastDelaunay3D::ThreadCount() const
+{
+  return this->NumberOfThreads > 0 ? this->NumberOfThreads
+                                   : vtkSMPTools::GetEstimatedNumberOfThreads();
 }
 
 void vtkFastDelaunay3D::RecordFigures(const fd3::Statistics& stats)
@@ -598,7 +603,8 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
     return;
   }
   const std::uint32_t* tets = result.tetrahedra.data();
-  fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha);
+  fd3::AlphaComplex shape =
+    fd3::alphaComplex(xyz, count, result, this->Alpha, this->ThreadCount());
   if (keep)
   {
     KeepCells(shape.tetrahedra, 1, [&](const std::uint32_t* t) { return keep(tets + 4 * *t, 4); });

@@ -303,6 +303,8 @@ protected:
   using CellFilter = std::function<bool(const std::uint32_t* ids, int size)>;
 
   fd3::Options KernelOptions(double diagonal);
+  /// NumberOfThreads, or VTK's SMP setting for 0.
+  int ThreadCount() const;
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);

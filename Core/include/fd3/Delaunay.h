@@ -210,9 +210,10 @@ struct AlphaComplex
   std::vector<std::uint32_t> vertices;  ///< point ids (finite points only)
 };
 
-/// Requires `triangulation` to hold neighbours (Options::computeNeighbors).
-AlphaComplex alphaComplex(
-  const double* xyz, std::size_t count, const Triangulation& triangulation, double alpha);
+/// Requires `triangulation` to hold neighbours (Options::computeNeighbors). On `threads` threads
+/// (0: all hardware threads; bounded as Options::threads), with the same result for any count.
+AlphaComplex alphaComplex(const double* xyz, std::size_t count, const Triangulation& triangulation,
+  double alpha, int threads = 1);
 
 /// Delaunay tetrahedralization of `count` points given as x,y,z triples. Throws std::length_error
 /// beyond 2^30 points or 2^30 tetrahedra (32-bit ids; about 150M uniform points), std::bad_alloc
