@@ -121,9 +121,9 @@ private:
   void makeRoomFor(std::size_t count);
   bool reportProgress(const std::function<bool(double)>& progress);
 
-  static constexpr int kLockingPasses = 2;
-  static constexpr const char* kLockingPassNames[kLockingPasses] = {
-    "insertion locking pass 1", "insertion locking pass 2"};
+  static constexpr int kLockingPasses = 4;
+  static constexpr const char* kLockingPassNames[kLockingPasses] = {"insertion locking pass 1",
+    "insertion locking pass 2", "insertion locking pass 3", "insertion locking pass 4"};
   // The fewest points a thread takes in a locking pass (and so the smallest round that goes in
   // parallel, with two threads): its stretch of the curve, far from the others' where they are
   // long, meets them at its ends.
@@ -142,7 +142,7 @@ private:
   // its region, and a pass that puts off most of them only wastes time. A pass left out raises
   // its guess instead (one that put nothing in is not tried again).
   double regionYield_ = 1.0;
-  double lockingYield_[kLockingPasses] = {1.0, 1.0};
+  double lockingYield_[kLockingPasses] = {1.0, 1.0, 1.0, 1.0};
   // The locking pass's table, for every slot the records had room for when it was made. Every
   // entry is 0 between passes.
   struct Free

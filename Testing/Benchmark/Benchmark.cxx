@@ -482,10 +482,6 @@ int main(int argc, char* argv[])
         kind, p.size() / 3, settings.methods, measureAll(settings, p, vtkSecondsPerPoint), md, csv);
     }
   }
-  std::cout << md.str();
-  if (!settings.markdownFile.empty())
-    std::ofstream(settings.markdownFile) << md.str();
-  if (!settings.csvFile.empty())
-    std::ofstream(settings.csvFile) << csv.str();
+  writeReport(md, csv, settings.markdownFile, settings.csvFile);
   return 0;
 }

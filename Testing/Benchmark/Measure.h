@@ -137,6 +137,17 @@ Measurement measure(Work work, double limit)
   return deserialize(line);
 }
 
+/// Prints the markdown table and writes it and the CSV to their files, where named.
+inline void writeReport(const std::ostringstream& md, const std::ostringstream& csv,
+  const std::string& markdownFile, const std::string& csvFile)
+{
+  std::fwrite(md.str().data(), 1, md.str().size(), stdout);
+  if (!markdownFile.empty())
+    std::ofstream(markdownFile) << md.str();
+  if (!csvFile.empty())
+    std::ofstream(csvFile) << csv.str();
+}
+
 inline std::vector<std::string> split(const std::string& s)
 {
   std::vector<std::string> out;

@@ -184,11 +184,7 @@ int scaling(const ScalingSettings& settings)
         row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, 1e9),
           oneThreadModel, md, csv);
     }
-  std::cout << md.str();
-  if (!settings.markdownFile.empty())
-    std::ofstream(settings.markdownFile) << md.str();
-  if (!settings.csvFile.empty())
-    std::ofstream(settings.csvFile) << csv.str();
+  writeReport(md, csv, settings.markdownFile, settings.csvFile);
   return 0;
 }
 
