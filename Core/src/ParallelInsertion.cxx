@@ -36,12 +36,12 @@ namespace fd3
 {
 namespace
 {
-// The partition's cuts come from a sample of this many points per region (about 4% imbalance).
 // A region pass pays for itself where it puts at least this share of its points in: the locking
 // passes after it take the rest at about 1.35 times the cost of an unlocked insertion, and a
 // put-off insertion costs about half of one that goes in, so with a yield y the region pass costs
 // y + (1 - y)(0.5 + 1.35) against 1.35 for locking passes alone.
 constexpr double kWorthwhileRegionYield = 0.6;
+// The partition's cuts come from a sample of this many points per region (about 4% imbalance).
 constexpr std::size_t kSamplePerRegion = 512;
 // Tetrahedra whose extents choose the cut axes.
 constexpr std::size_t kShapeSample = 512;
@@ -181,8 +181,8 @@ bool Triangulator::insertInParallel(
     }
   }
   // Each locking pass takes half the threads of the one before: what a pass put off lies where
-  // threads met, and fewer, longer stretches meet less (clustered points, whose cavities reach
-  // across the empty space between clusters, put off 15% in a first pass on 16 threads).
+  // threads met, and fewer, longer stretches meet less (clustered points put off many, their
+  // cavities reaching across the empty space between clusters).
   for (int pass = 0; pass < kLockingPasses && !stop_; ++pass)
   {
     const std::size_t parts = std::min<std::size_t>(
