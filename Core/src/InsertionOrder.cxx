@@ -299,28 +299,22 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
 void mergeDuplicates(IdArray& sorted,
   std::vector<std::pair<std::uint32_t, std::uint32_t>>& duplicates, ThreadTeam& team)
 {
-  const std::size_t n = sorted.size(), parts = team.partsFor(n);
-  std::vector<std::size_t> offset(parts + 1, 0);
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(parts);
-  ThreadedWork& record = team.newRecord("sort");
-  team.run(
-    parts,
-    [&](std::size_t k) {
-      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
-        offset[k + 1] += !(sorted[i] & kDuplicate);
+  const std::size_t n = sorted.size();
+  IdArray kept(n); // cut to those kept
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(team.partsFor(n));
+  std::size_t written = 0;
+  team.countThenWrite(
+    team.newRecord("sort"), 0, n, written,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t count = 0;
+      for (std::size_t i = begin; i < end; ++i)
+        count += !(sorted[i] & kDuplicate);
+      return count;
     },
-    record);
-  for (std::size_t k = 0; k < parts; ++k)
-    offset[k + 1] += offset[k];
-  IdArray kept(offset[parts]);
-  team.run(
-    parts,
-    [&](std::size_t k) {
-      const std::size_t begin = n * k / parts, end = n * (k + 1) / parts;
+    [&](std::size_t k, std::size_t begin, std::size_t end, std::size_t next) {
       std::size_t original = begin; // the last unmarked one at or before i
       while (original > 0 && (sorted[original] & kDuplicate))
         --original;
-      std::size_t next = offset[k];
       for (std::size_t i = begin; i < end; ++i)
       {
         if (sorted[i] & kDuplicate)
@@ -328,8 +322,9 @@ void mergeDuplicates(IdArray& sorted,
         else
           kept[next++] = sorted[original = i];
       }
-    },
-    record);
+      return next;
+    });
+  kept.resize(written);
   for (const auto& part : found)
     duplicates.insert(duplicates.end(), part.begin(), part.end());
   sorted.swap(kept);

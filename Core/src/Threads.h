@@ -58,6 +58,14 @@ public:
   void forRanges(std::size_t count, const char* phase,
     const std::function<void(std::size_t, std::size_t, std::size_t)>& f);
   static constexpr std::size_t kMinItemsPerPart = 4096;
+  /// Runs write(k, begin, end, at) on stretch k of partsFor(last - first) consecutive stretches of
+  /// [first, last), after each has counted with count(begin, end) what it will write: `at` is
+  /// where stretch k's output starts, `written` where the first one's does (on return, where the
+  /// last one's ends); write returns where its own output ends. With one stretch nothing is
+  /// counted. Recorded in `record`.
+  template <typename Count, typename Write>
+  void countThenWrite(ThreadedWork& record, std::size_t first, std::size_t last,
+    std::size_t& written, Count count, Write write);
   /// forRanges() as Stretches, recorded as `phase` (the team must outlive it).
   Stretches stretches(const char* phase);
 
@@ -82,6 +90,26 @@ private:
   std::vector<std::exception_ptr> failures_;
   std::vector<ThreadedWork> records_;
 };
+
+template <typename Count, typename Write>
+void ThreadTeam::countThenWrite(ThreadedWork& record, std::size_t first, std::size_t last,
+  std::size_t& written, Count count, Write write)
+{
+  const std::size_t n = last - first, parts = partsFor(n);
+  if (parts == 1)
+  {
+    run(1, [&](std::size_t) { written = write(0, first, last, written); }, record);
+    return;
+  }
+  std::vector<std::size_t> offset(parts + 1, 0);
+  const auto begin = [&](std::size_t k) { return first + n * k / parts; };
+  run(parts, [&](std::size_t k) { offset[k + 1] = count(begin(k), begin(k + 1)); }, record);
+  offset[0] = written;
+  for (std::size_t k = 0; k < parts; ++k)
+    offset[k + 1] += offset[k];
+  run(parts, [&](std::size_t k) { write(k, begin(k), begin(k + 1), offset[k]); }, record);
+  written = offset[parts];
+}
 
 } // namespace fd3
 

@@ -75,32 +75,6 @@ bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, IdArray&
   return true;
 }
 
-/// Runs write(begin, end, at) on consecutive stretches of [first, last), one per thread of the
-/// team, after each has counted with count(begin, end) what it will write: `at` is where the
-/// stretch's output starts, `written` where the first one's does (then where the last one's
-/// ends); write returns where its own output ends. On one thread, nothing is counted.
-template <typename Count, typename Write>
-void countThenWrite(ThreadTeam& team, ThreadedWork& record, std::size_t first, std::size_t last,
-  std::size_t& written, Count count, Write write)
-{
-  const std::size_t n = last - first, parts = team.partsFor(n);
-  if (parts == 1)
-  {
-    team.run(1, [&](std::size_t) { written = write(first, last, written); }, record);
-    return;
-  }
-  std::vector<std::size_t> offset(parts + 1, 0);
-  const auto begin = [&](std::size_t k) { return first + n * k / parts; };
-  team.run(
-    parts, [&](std::size_t k) { offset[k + 1] = count(begin(k), begin(k + 1)); }, record);
-  offset[0] = written;
-  for (std::size_t k = 0; k < parts; ++k)
-    offset[k + 1] += offset[k];
-  team.run(
-    parts, [&](std::size_t k) { write(begin(k), begin(k + 1), offset[k]); }, record);
-  written = offset[parts];
-}
-
 /// The live finite tetrahedra of `records` (a mesh's, `slots` of them) with input point ids
 /// (`pointOf`, by vertex rank), compacted in place, and, when asked for, their neighbours
 /// renumbered. Tetrahedron k's vertices go to words 4k..4k+3, inside record k/2 <= t/2 for its
@@ -124,8 +98,8 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
   {
     std::vector<std::uint32_t> newId(slots);
     std::size_t count = 0;
-    countThenWrite(team, record, 0, slots, count, countKept,
-      [&](std::size_t begin, std::size_t end, std::size_t next) {
+    team.countThenWrite(record, 0, slots, count, countKept,
+      [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
         for (std::size_t t = begin; t < end; ++t)
           newId[t] = kept(t) ? static_cast<std::uint32_t>(next++) : kDropped;
         return next;
@@ -149,8 +123,8 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
   }
   std::size_t count = 0;
   for (std::size_t a = 0, b = 1; a < slots; a = b, b = 2 * b)
-    countThenWrite(team, record, a, std::min(b, slots), count, countKept,
-      [&](std::size_t begin, std::size_t end, std::size_t next) {
+    team.countThenWrite(record, a, std::min(b, slots), count, countKept,
+      [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
         for (std::size_t t = begin; t < end; ++t)
         {
           if (!kept(t))
@@ -229,50 +203,48 @@ private:
     std::size_t firstPoint, std::size_t extra);
 };
 
-// Each thread takes a stretch of the points: it counts the finite ones and their box, then writes
-// their ids after those of the stretches before it.
-IdArray IncrementalDelaunay::Impl::finitePoints(
-  const double* xyz, std::size_t count, Box& box)
+// Each thread takes a stretch of the points: it counts the finite ones, then writes their ids after
+// those of the stretches before it, and their box.
+IdArray IncrementalDelaunay::Impl::finitePoints(const double* xyz, std::size_t count, Box& box)
 {
   if (points + count >= kMaxVertices)
     throw std::length_error("fd3::triangulate: more than 2^30 points");
-  const std::size_t parts = team->partsFor(count);
-  std::vector<std::size_t> offset(parts + 1, 0);
-  std::vector<Box> boxes(parts);
-  ThreadedWork& record = team->newRecord("sort");
-  team->run(
-    parts,
-    [&](std::size_t k) {
-      for (std::size_t i = count * k / parts; i < count * (k + 1) / parts; ++i)
-        if (isFinite(xyz + 3 * i))
-        {
-          if (offset[k + 1]++ == 0)
-            boxes[k] = Box::around(xyz + 3 * i);
-          boxes[k].include(xyz + 3 * i);
-        }
+  IdArray ids(count); // as many as can be finite; cut to those that are
+  std::vector<Box> boxes(team->partsFor(count));
+  std::vector<char> any(boxes.size(), 0); // not vector<bool>: each stretch writes its own
+  const auto finite = [&](std::size_t i) { return isFinite(xyz + 3 * i); };
+  std::size_t written = 0;
+  team->countThenWrite(
+    team->newRecord("sort"), 0, count, written,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t n = 0;
+      for (std::size_t i = begin; i < end; ++i)
+        n += finite(i);
+      return n;
     },
-    record);
-  for (std::size_t k = 0; k < parts; ++k)
-  {
-    if (offset[k + 1] > 0)
+    [&](std::size_t k, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (finite(i))
+        {
+          if (!any[k])
+            boxes[k] = Box::around(xyz + 3 * i);
+          any[k] = 1;
+          boxes[k].include(xyz + 3 * i);
+          ids[next++] = static_cast<std::uint32_t>(i);
+        }
+      return next;
+    });
+  ids.resize(written);
+  bool first = true;
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+    if (any[k])
     {
-      if (offset[k] == 0)
+      if (first)
         box = boxes[k];
       box.include(boxes[k].lo);
       box.include(boxes[k].hi);
+      first = false;
     }
-    offset[k + 1] += offset[k];
-  }
-  IdArray ids(offset[parts]);
-  team->run(
-    parts,
-    [&](std::size_t k) {
-      std::size_t next = offset[k];
-      for (std::size_t i = count * k / parts; i < count * (k + 1) / parts; ++i)
-        if (isFinite(xyz + 3 * i))
-          ids[next++] = static_cast<std::uint32_t>(i);
-    },
-    record);
   stats.inputPoints += count;
   stats.nonFinitePoints += count - ids.size();
   return ids;
