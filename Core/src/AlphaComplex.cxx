@@ -8,8 +8,8 @@
 // not kept, an edge by the lowest-numbered tetrahedron around it that is not kept. Whether an edge
 // is covered (by a kept tetrahedron or a listed triangle) is read from the tetrahedra around it,
 // turning about it through the neighbours: no shared set of edges, so no thread waits for another.
-#include "Threads.h"
 #include "TetMesh.h"
+#include "Threads.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Measures.h"
 
@@ -28,24 +28,18 @@ class AlphaBuilder
 public:
   AlphaBuilder(const double* xyz, std::size_t count, const Triangulation& triangulation,
     double alpha, ThreadTeam& team)
-    : xyz_(xyz)
-    , count_(count)
-    , t_(triangulation)
-    , alpha2_(alpha * alpha)
-    , tets_(triangulation.numberOfTetrahedra())
-    , team_(team)
-    , kept_(tets_)
-    , used_(new std::atomic<std::uint8_t>[count]())
-  {
-  }
+    : xyz_(xyz), count_(count), t_(triangulation), alpha2_(alpha * alpha),
+      tets_(triangulation.numberOfTetrahedra()), team_(team), kept_(tets_),
+      used_(new std::atomic<std::uint8_t>[count]())
+  {}
 
   AlphaComplex build()
   {
     AlphaComplex complex;
     team_.forRanges(tets_, "alpha", [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t)
-        kept_[t] = tetrahedronCircumradius2(p(vertex(t, 0)), p(vertex(t, 1)), p(vertex(t, 2)),
-                     p(vertex(t, 3))) <= alpha2_;
+        kept_[t] = tetrahedronCircumradius2(
+                     p(vertex(t, 0)), p(vertex(t, 1)), p(vertex(t, 2)), p(vertex(t, 3))) <= alpha2_;
     });
     complex.tetrahedra = collect<IdArray>(tets_, [&](std::size_t t, auto& out) {
       if (!kept_[t])

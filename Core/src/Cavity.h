@@ -82,7 +82,7 @@ struct Cavity
   std::vector<TetId> localTet;     ///< a new tetrahedron of each local number
   std::vector<FaceCode> edgeFace;  ///< grown on demand, up to kMaxLocalVertices^2
   std::vector<std::pair<FaceCode, std::uint32_t>>
-    interiorFaces; ///< face, entry of its reversed edge
+    interiorFaces;           ///< face, entry of its reversed edge
   LocalNumbers localNumbers; ///< in a locking pass, in place of Vertex::tet
 
   void clear()

@@ -232,8 +232,8 @@ private:
 };
 
 /// Runs f(begin, end) over [0, count): on the team's threads, a stretch each, or here.
-void forRanges(ThreadTeam* team, std::size_t count,
-  const std::function<void(std::size_t, std::size_t)>& f)
+void forRanges(
+  ThreadTeam* team, std::size_t count, const std::function<void(std::size_t, std::size_t)>& f)
 {
   if (team)
     team->forRanges(
@@ -333,8 +333,8 @@ void mergeDuplicates(IdArray& sorted,
 /// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
 /// each round keeps the curve order of `sorted` (a stable counting sort by round). A point's round
 /// comes from its key's level, which the coordinates decide: the same in every run.
-IdArray brioRounds(const IdArray& sorted,
-  const std::uint16_t* key, std::vector<std::size_t>& roundStarts, ThreadTeam& team)
+IdArray brioRounds(const IdArray& sorted, const std::uint16_t* key,
+  std::vector<std::size_t>& roundStarts, ThreadTeam& team)
 {
   const std::size_t n = sorted.size(), parts = team.partsFor(n);
   const int rounds = std::clamp(static_cast<int>(std::log2(double(n) / 64.0)), 1, 16);
@@ -378,8 +378,8 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
   return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
 }
 
-InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids, const Box& box, InsertionOrder order, std::uint64_t seed,
-  ThreadTeam& team)
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids,
+  const Box& box, InsertionOrder order, std::uint64_t seed, ThreadTeam& team)
 {
   InsertionPlan plan;
   hilbertSort(xyz, ids.data(), ids.size(), box, 0, &team);

@@ -39,8 +39,8 @@ struct InsertionPlan
 /// Plans the insertion of the points `ids` (indices into xyz, all finite, within `box`); key[i] is
 /// point i's perturbationKey() (Predicates.h). On every thread of `team`; the plan is the same
 /// for any number of them.
-InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids, const Box& box, InsertionOrder order, std::uint64_t seed,
-  ThreadTeam& team);
+InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids,
+  const Box& box, InsertionOrder order, std::uint64_t seed, ThreadTeam& team);
 
 /// Removes from the plan's order every point closer than `tolerance` to a point kept before it, and
 /// returns (removed, kept) input id pairs: what inserting them one by one and skipping those within

@@ -29,8 +29,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <new>
 #include <limits>
+#include <new>
 
 namespace fd3
 {
@@ -60,8 +60,7 @@ double worthwhileYield(std::size_t threads)
 
 Partition::Partition(
   const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes)
-  : mesh_(mesh)
-  , axes_(axes)
+  : mesh_(mesh), axes_(axes)
 {
   const std::size_t wanted = kSamplePerRegion * std::size_t(parts);
   const std::size_t stride = std::max<std::size_t>(1, vertices.size() / wanted);
@@ -97,7 +96,8 @@ int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, c
   double at = region.hi[axis]; // no sample point: all below
   if (cut < last)
   {
-    std::nth_element(first, cut, last, [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
+    std::nth_element(
+      first, cut, last, [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
     at = coordinate(*cut);
   }
   const std::size_t middle = static_cast<std::size_t>(
@@ -114,7 +114,8 @@ int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, c
 std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) const
 {
   Box box = Box::around(point(vertices[0]));
-  for (std::size_t i = 0; i < vertices.size(); i += std::max<std::size_t>(1, vertices.size() / kBoxSample))
+  for (std::size_t i = 0; i < vertices.size();
+       i += std::max<std::size_t>(1, vertices.size() / kBoxSample))
     box.include(point(vertices[i]));
   // Mean extent of the mesh's tetrahedra along each axis, over the tetrahedra of vertices before
   // the round (whose records are all current between passes; a point added as a duplicate of a
@@ -174,8 +175,8 @@ bool Triangulator::insertInParallel(
     {
       const std::size_t count = vertices.size();
       const std::vector<int> axes = cutAxes(vertices);
-      vertices =
-        runRegionPass(vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes), progress);
+      vertices = runRegionPass(
+        vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes), progress);
       regionYield_ = 1.0 - double(vertices.size()) / double(count);
       std::sort(vertices.begin(), vertices.end()); // back to curve order
     }
@@ -205,8 +206,8 @@ bool Triangulator::insertInParallel(
 
 // Read only, while no thread writes: the start is a tetrahedron in conflict with the first point
 // of the share that has one in the region; the points before it are put off.
-void Triangulator::startInRegion(std::size_t k, const Region& region,
-  std::vector<VertId>& share, std::vector<VertId>& putOff)
+void Triangulator::startInRegion(
+  std::size_t k, const Region& region, std::vector<VertId>& share, std::vector<VertId>& putOff)
 {
   Inserter& inserter = *inserters_[k];
   std::size_t first = 0;
@@ -326,7 +327,8 @@ std::vector<VertId> Triangulator::runLockingPass(const std::vector<VertId>& vert
     inserter.lockIn(owners_.get(), ownerSlots_, static_cast<std::uint8_t>(k + 1));
     try
     {
-      const std::size_t begin = vertices.size() * k / parts, end = vertices.size() * (k + 1) / parts;
+      const std::size_t begin = vertices.size() * k / parts,
+                        end = vertices.size() * (k + 1) / parts;
       for (std::size_t i = begin; i < end; ++i)
       {
         if ((i - begin) % 256 == 0 &&

@@ -25,7 +25,7 @@ public:
 private:
   struct Node
   {
-    int axis;  ///< < 0 for a leaf
+    int axis; ///< < 0 for a leaf
     double cut;
     int below; ///< a leaf's region
     int above;

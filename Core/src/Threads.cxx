@@ -18,10 +18,7 @@ int boundedThreads(int requested)
   return std::min(requested, std::max(kThreadsPerHardwareThread * hardware, kMinThreadLimit));
 }
 
-ThreadTeam::ThreadTeam(int size)
-  : size_(std::max(size, 1))
-{
-}
+ThreadTeam::ThreadTeam(int size) : size_(std::max(size, 1)) {}
 
 ThreadTeam::~ThreadTeam()
 {
@@ -159,7 +156,8 @@ void ThreadTeam::forRanges(std::size_t count, const char* phase,
 Stretches ThreadTeam::stretches(const char* phase)
 {
   return [this, phase](std::size_t count, const std::function<void(std::size_t, std::size_t)>& f) {
-    forRanges(count, phase, [&](std::size_t, std::size_t begin, std::size_t end) { f(begin, end); });
+    forRanges(
+      count, phase, [&](std::size_t, std::size_t begin, std::size_t end) { f(begin, end); });
   };
 }
 

@@ -98,16 +98,19 @@ void ThreadTeam::countThenWrite(ThreadedWork& record, std::size_t first, std::si
   const std::size_t n = last - first, parts = partsFor(n);
   if (parts == 1)
   {
-    run(1, [&](std::size_t) { written = write(0, first, last, written); }, record);
+    run(
+      1, [&](std::size_t) { written = write(0, first, last, written); }, record);
     return;
   }
   std::vector<std::size_t> offset(parts + 1, 0);
   const auto begin = [&](std::size_t k) { return first + n * k / parts; };
-  run(parts, [&](std::size_t k) { offset[k + 1] = count(begin(k), begin(k + 1)); }, record);
+  run(
+    parts, [&](std::size_t k) { offset[k + 1] = count(begin(k), begin(k + 1)); }, record);
   offset[0] = written;
   for (std::size_t k = 0; k < parts; ++k)
     offset[k + 1] += offset[k];
-  run(parts, [&](std::size_t k) { write(k, begin(k), begin(k + 1), offset[k]); }, record);
+  run(
+    parts, [&](std::size_t k) { write(k, begin(k), begin(k + 1), offset[k]); }, record);
   written = offset[parts];
 }
 

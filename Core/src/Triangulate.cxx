@@ -199,8 +199,8 @@ private:
   Keys keys(const double* xyz, std::size_t count, const IdArray& ids) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
-  VertexArray vertices(const double* xyz, const IdArray& order,
-    std::size_t firstPoint, std::size_t extra);
+  VertexArray vertices(
+    const double* xyz, const IdArray& order, std::size_t firstPoint, std::size_t extra);
 };
 
 // Each thread takes a stretch of the points: it counts the finite ones, then writes their ids after
@@ -265,7 +265,8 @@ Keys IncrementalDelaunay::Impl::keys(const double* xyz, std::size_t count, const
   return key;
 }
 
-VertexArray IncrementalDelaunay::Impl::vertices(const double* xyz, const IdArray& order, std::size_t firstPoint, std::size_t extra)
+VertexArray IncrementalDelaunay::Impl::vertices(
+  const double* xyz, const IdArray& order, std::size_t firstPoint, std::size_t extra)
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.

@@ -10,8 +10,7 @@ namespace fd3
 {
 Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& bounds,
   const Options& options, ThreadTeam& team, bool anyMagnitude)
-  : team_(team)
-  , tuning_(options.randomSeed)
+  : team_(team), tuning_(options.randomSeed)
 {
   mesh_.vertices = std::move(vertices);
   mesh_.options = options;

@@ -11,8 +11,8 @@
 #include "fd3/Delaunay.h"
 
 #include <atomic>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -98,12 +98,12 @@ private:
   /// has a start go to putOff.
   void shareOut(const std::vector<VertId>& vertices, const Partition& partition,
     std::vector<std::vector<VertId>>& share, std::vector<std::vector<VertId>>& putOff);
-  void startInRegion(std::size_t k, const Region& region, std::vector<VertId>& share,
-    std::vector<VertId>& putOff);
+  void startInRegion(
+    std::size_t k, const Region& region, std::vector<VertId>& share, std::vector<VertId>& putOff);
   /// Inserts `vertices` in the partition's regions, one thread each; returns those that had to be
   /// put off.
-  std::vector<VertId> runRegionPass(const std::vector<VertId>& vertices,
-    const Partition& partition, const std::function<bool(double)>& progress);
+  std::vector<VertId> runRegionPass(const std::vector<VertId>& vertices, const Partition& partition,
+    const std::function<bool(double)>& progress);
   /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads, each holding
   /// the tetrahedra it reads and writes in the owner table; returns those put off because another
   /// thread held a tetrahedron they needed. ParallelInsertion.cxx.

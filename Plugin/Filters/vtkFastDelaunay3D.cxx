@@ -603,8 +603,7 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
     return;
   }
   const std::uint32_t* tets = result.tetrahedra.data();
-  fd3::AlphaComplex shape =
-    fd3::alphaComplex(xyz, count, result, this->Alpha, this->ThreadCount());
+  fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha, this->ThreadCount());
   if (keep)
   {
     KeepCells(shape.tetrahedra, 1, [&](const std::uint32_t* t) { return keep(tets + 4 * *t, 4); });

@@ -72,7 +72,6 @@ int validity(const fd3test::Points& p, const Ids& tets, std::size_t limit)
   return fd3test::checkTriangulation(p.data(), p.size() / 3, tets).valid() ? 1 : 0;
 }
 
-
 Measurement runCore(const fd3test::Points& p, std::size_t validateLimit, int threads)
 {
   Measurement m;
@@ -457,8 +456,8 @@ int main(int argc, char* argv[])
   if (settings.paperTable)
     return table1(settings.markdownFile);
   if (settings.scaling)
-    return scaling({settings.kinds, settings.sizes, settings.threads, settings.csvFile,
-      settings.markdownFile});
+    return scaling(
+      {settings.kinds, settings.sizes, settings.threads, settings.csvFile, settings.markdownFile});
 
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". "

@@ -30,7 +30,7 @@ struct Measurement
   double conversionSeconds = 0; // the filter's time outside the kernel (VTK arrays in and out)
   double walk = 0;
   double maxWalk = 0;
-  int valid = -1; // 1 valid, 0 invalid, -1 not checked
+  int valid = -1;              // 1 valid, 0 invalid, -1 not checked
   std::vector<double> figures; // more, as a benchmark defines them
   std::string note;            // why it did not run; or, when it ran, a detail (one line)
 };

@@ -106,7 +106,8 @@ Measurement runModel(const fd3test::Points& p, int threads)
   {
     serial -= w.callerSeconds;
     longest += w.longest();
-    helpers += std::accumulate(w.threadSeconds.begin(), w.threadSeconds.end(), 0.0) - w.callerSeconds;
+    helpers +=
+      std::accumulate(w.threadSeconds.begin(), w.threadSeconds.end(), 0.0) - w.callerSeconds;
     inParallel += double(w.points - w.left);
   }
   m.figures.resize(kFigures);
@@ -161,8 +162,8 @@ void row(const std::string& kind, std::size_t n, int threads, const Measurement&
     m.figures[kThreadCpuSeconds], m.figures[kProcessCpuSeconds], m.peakMiB);
   csv << line;
   std::cerr << kind << " " << n << " T=" << threads << ": " << m.seconds << " s, model " << model
-            << " s, speed-up " << speedup << ", serial " << 100 * serialFraction << "%, "
-            << m.note << "\n";
+            << " s, speed-up " << speedup << ", serial " << 100 * serialFraction << "%, " << m.note
+            << "\n";
 }
 } // namespace
 
@@ -181,8 +182,8 @@ int scaling(const ScalingSettings& settings)
       const Measurement one = measure([&] { return runModel(p, 1); }, 1e9);
       const double oneThreadModel = one.ran ? one.figures[kModelSeconds] : 0;
       for (const int t : threads)
-        row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, 1e9),
-          oneThreadModel, md, csv);
+        row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, 1e9), oneThreadModel,
+          md, csv);
     }
   writeReport(md, csv, settings.markdownFile, settings.csvFile);
   return 0;

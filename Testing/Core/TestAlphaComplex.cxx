@@ -38,8 +38,8 @@ fd3::AlphaComplex definition(const fd3test::Points& xyz, const fd3::Triangulatio
     }
   };
   for (std::size_t t = 0; t < tets; ++t)
-    if (fd3::tetrahedronCircumradius2(p(tv[4 * t]), p(tv[4 * t + 1]), p(tv[4 * t + 2]),
-          p(tv[4 * t + 3])) <= alpha2)
+    if (fd3::tetrahedronCircumradius2(
+          p(tv[4 * t]), p(tv[4 * t + 1]), p(tv[4 * t + 2]), p(tv[4 * t + 3])) <= alpha2)
     {
       kept[t] = true;
       complex.tetrahedra.push_back(static_cast<std::uint32_t>(t));

@@ -171,7 +171,8 @@ struct ThreadedWork
   /// The longest thread's CPU seconds: what the stretch would take with a core per thread.
   double longest() const
   {
-    return threadSeconds.empty() ? 0.0 : *std::max_element(threadSeconds.begin(), threadSeconds.end());
+    return threadSeconds.empty() ? 0.0
+                                 : *std::max_element(threadSeconds.begin(), threadSeconds.end());
   }
 };
 
