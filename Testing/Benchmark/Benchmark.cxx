@@ -317,8 +317,6 @@ struct Settings
   int repeat = 1;
   std::string markdownFile, csvFile;
   bool paperTable = false;
-  bool scaling = false;
-  std::vector<int> threads = {1, 2, 4, 8, 16, 32, 64};
 };
 
 /// The settings of the command line; false (with a message) on an unknown option.
@@ -329,16 +327,10 @@ bool parse(int argc, char* argv[], Settings& settings)
   for (int i = 1; i < argc; i += 2)
   {
     const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
-    if (key == "--table1" || key == "--scaling")
+    if (key == "--table1")
     {
-      (key == "--table1" ? settings.paperTable : settings.scaling) = true;
+      settings.paperTable = true;
       --i;
-    }
-    else if (key == "--threads")
-    {
-      settings.threads.clear();
-      for (const std::string& t : split(value))
-        settings.threads.push_back(std::stoi(t));
     }
     else if (key == "--kinds")
       settings.kinds = split(value);
@@ -450,14 +442,14 @@ void report(const std::string& kind, std::size_t n, const std::vector<Method>& m
 
 int main(int argc, char* argv[])
 {
+  if (std::find_if(argv + 1, argv + argc,
+        [](const char* a) { return std::string(a) == "--scaling"; }) != argv + argc)
+    return scalingMain(argc, argv);
   Settings settings;
   if (!parse(argc, argv, settings))
     return 2;
   if (settings.paperTable)
     return table1(settings.markdownFile);
-  if (settings.scaling)
-    return scaling(
-      {settings.kinds, settings.sizes, settings.threads, settings.csvFile, settings.markdownFile});
 
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". "

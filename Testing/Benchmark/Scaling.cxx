@@ -13,7 +13,7 @@
 #include "Scaling.h"
 
 #include "Measure.h"
-#include "VtkTestUtilities.h"
+#include "PointSets.h"
 #include "fd3/Delaunay.h"
 
 #include <sys/resource.h>
@@ -126,20 +126,22 @@ Measurement runModel(const fd3test::Points& p, int threads)
 void header(std::ostream& md, std::ostream& csv)
 {
   md << "Machine: " << machineName() << ". Core, one run per row, threads oversubscribed where "
-     << "they outnumber the cores. Model: serial CPU time plus, for every stretch of threaded "
+     << "they outnumber the cores. Speed-up: the one-thread run's seconds over this run's (real "
+        "only where "
+     << "each thread has a core). Model: serial CPU time plus, for every stretch of threaded "
      << "work, its longest thread's CPU time (Testing/Benchmark/Scaling.cxx). Left: the points "
      << "no parallel pass inserted (small rounds, passes left out, points put off by the last "
      << "pass), inserted serially. Thread and process CPU: the threads' CPU times and the serial "
      << "time summed, and getrusage's figure, which they must match.\n\n"
-     << "| points | n | threads | seconds | model s | model speed-up | serial | left | "
+     << "| points | n | threads | seconds | speed-up | model s | model speed-up | serial | left | "
         "put off per pass; serial phases | thread CPU s | process CPU s | peak MiB | B/point |\n"
-     << "|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|\n";
+     << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|\n";
   csv << "kind,n,threads,seconds,model_seconds,model_speedup,serial_fraction,left_fraction,"
          "thread_cpu_seconds,process_cpu_seconds,peak_mib\n";
 }
 
 void row(const std::string& kind, std::size_t n, int threads, const Measurement& m,
-  double oneThreadModel, std::ostream& md, std::ostream& csv)
+  const Measurement& one, std::ostream& md, std::ostream& csv)
 {
   if (!m.ran || m.figures.size() != std::size_t(kFigures))
   {
@@ -148,12 +150,16 @@ void row(const std::string& kind, std::size_t n, int threads, const Measurement&
     return;
   }
   const double model = m.figures[kModelSeconds];
+  const double oneThreadModel = one.ran ? one.figures[kModelSeconds] : 0;
   const double speedup = oneThreadModel > 0 ? oneThreadModel / model : 0;
+  const double wallSpeedup = one.ran ? one.seconds / m.seconds : 0;
   const double serialFraction = m.figures[kSerialSeconds] / model;
   char line[512];
   std::snprintf(line, sizeof line,
-    "| %s | %zu | %d | %.3f | %.3f | %.2f | %.2f%% | %.2f%% | %s | %.3f | %.3f | %.0f | %.0f |\n",
-    kind.c_str(), n, threads, m.seconds, model, speedup, 100 * serialFraction,
+    "| %s | %zu | %d | %.3f | %.2f | %.3f | %.2f | %.2f%% | %.2f%% | %s | %.3f | %.3f | %.0f | "
+    "%.0f "
+    "|\n",
+    kind.c_str(), n, threads, m.seconds, wallSpeedup, model, speedup, 100 * serialFraction,
     100 * m.figures[kLeftFraction], m.note.c_str(), m.figures[kThreadCpuSeconds],
     m.figures[kProcessCpuSeconds], m.peakMiB, m.peakMiB * 1048576.0 / double(n));
   md << line;
@@ -161,11 +167,51 @@ void row(const std::string& kind, std::size_t n, int threads, const Measurement&
     kind.c_str(), n, threads, m.seconds, model, speedup, serialFraction, m.figures[kLeftFraction],
     m.figures[kThreadCpuSeconds], m.figures[kProcessCpuSeconds], m.peakMiB);
   csv << line;
-  std::cerr << kind << " " << n << " T=" << threads << ": " << m.seconds << " s, model " << model
-            << " s, speed-up " << speedup << ", serial " << 100 * serialFraction << "%, " << m.note
-            << "\n";
+  std::cerr << kind << " " << n << " T=" << threads << ": " << m.seconds << " s (" << wallSpeedup
+            << "x), model " << model << " s, speed-up " << speedup << ", serial "
+            << 100 * serialFraction << "%, " << m.note << "\n";
 }
-} // namespace
+
+struct ScalingSettings
+{
+  std::vector<std::string> kinds = fd3test::pointSetNames();
+  std::vector<std::size_t> sizes = {1000000};
+  std::vector<int> threads = {1, 2, 4, 8, 16, 32, 64};
+  std::string csvFile, markdownFile;
+};
+
+/// The settings of the command line; false (with a message) on an unknown option.
+bool parse(int argc, char* argv[], ScalingSettings& settings)
+{
+  for (int i = 1; i < argc; i += 2)
+  {
+    const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
+    if (key == "--scaling")
+      --i;
+    else if (key == "--kinds")
+      settings.kinds = split(value);
+    else if (key == "--sizes" || key == "--threads")
+    {
+      std::vector<std::size_t> numbers;
+      for (const std::string& s : split(value))
+        numbers.push_back(static_cast<std::size_t>(std::stod(s)));
+      if (key == "--sizes")
+        settings.sizes = numbers;
+      else
+        settings.threads.assign(numbers.begin(), numbers.end());
+    }
+    else if (key == "--csv")
+      settings.csvFile = value;
+    else if (key == "--markdown")
+      settings.markdownFile = value;
+    else
+    {
+      std::cerr << "unknown option " << key << "\n";
+      return false;
+    }
+  }
+  return true;
+}
 
 int scaling(const ScalingSettings& settings)
 {
@@ -180,13 +226,18 @@ int scaling(const ScalingSettings& settings)
       const fd3test::Points p = fd3test::generate(kind, size, 1);
       const std::size_t n = p.size() / 3;
       const Measurement one = measure([&] { return runModel(p, 1); }, 1e9);
-      const double oneThreadModel = one.ran ? one.figures[kModelSeconds] : 0;
       for (const int t : threads)
-        row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, 1e9), oneThreadModel,
-          md, csv);
+        row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, 1e9), one, md, csv);
     }
   writeReport(md, csv, settings.markdownFile, settings.csvFile);
   return 0;
+}
+} // namespace
+
+int scalingMain(int argc, char* argv[])
+{
+  ScalingSettings settings;
+  return parse(argc, argv, settings) ? scaling(settings) : 2;
 }
 
 } // namespace fd3bench

@@ -2,23 +2,14 @@
 #ifndef fd3_benchmark_Scaling_h
 #define fd3_benchmark_Scaling_h
 
-#include <cstddef>
-#include <string>
-#include <vector>
-
 namespace fd3bench
 {
 
-struct ScalingSettings
-{
-  std::vector<std::string> kinds;
-  std::vector<std::size_t> sizes;
-  std::vector<int> threads = {1, 2, 4, 8, 16, 32, 64};
-  std::string csvFile, markdownFile;
-};
-
-/// Runs Core on every kind, size and thread count, and writes the model's table.
-int scaling(const ScalingSettings& settings);
+/// The command line of the scaling model, as `Benchmark --scaling` and `ScalingModel` take it:
+///   [--kinds K1,K2] [--sizes N1,N2] [--threads 1,2,4,...] [--csv FILE] [--markdown FILE]
+/// ("--scaling" itself is skipped). Runs Core on every kind, size and thread count, and writes
+/// the model's table; 2 on an unknown option.
+int scalingMain(int argc, char* argv[]);
 
 } // namespace fd3bench
 
