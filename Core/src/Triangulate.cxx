@@ -675,6 +675,8 @@ const char* toString(Status status)
       return "aborted";
     case Status::CheckFailed:
       return "the kernel's mesh check failed (a bug; please report it)";
+    case Status::OutOfRange:
+      return "the points and box span more than the Voronoi vertices' doubles hold";
   }
   return "unknown";
 }

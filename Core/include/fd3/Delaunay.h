@@ -38,7 +38,8 @@ enum class Status
   TooFewPoints, ///< fewer than 4 distinct finite points
   Degenerate,   ///< all distinct points collinear or coplanar: no tetrahedron exists
   Aborted,      ///< the progress callback asked to stop
-  CheckFailed   ///< Options::checkMesh found a broken invariant (a bug): see checkReport
+  CheckFailed,  ///< Options::checkMesh found a broken invariant (a bug): see checkReport
+  OutOfRange    ///< voronoiCells(): the points and box span more than its vertices' doubles hold
 };
 
 /// The most threads per hardware thread that Options::threads starts, where that is more than

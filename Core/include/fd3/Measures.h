@@ -55,12 +55,10 @@ struct Circumcentre
   double edgeProduct2 = 0;
 };
 
-inline Circumcentre circumcentre(const double* a, const double* b, const double* c, const double* d)
+/// The circumcentre of the tetrahedron with vertices 0, u, v, w (edge vectors from one vertex).
+inline Circumcentre circumcentreOfEdges(const double* u, const double* v, const double* w)
 {
-  // Centre relative to a: (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  // (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
   const double vw[3] = {
     v[1] * w[2] - v[2] * w[1], v[2] * w[0] - v[0] * w[2], v[0] * w[1] - v[1] * w[0]};
   const double wu[3] = {
@@ -80,6 +78,14 @@ inline Circumcentre circumcentre(const double* a, const double* b, const double*
       centre.offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]) * inverse;
   }
   return centre;
+}
+
+inline Circumcentre circumcentre(const double* a, const double* b, const double* c, const double* d)
+{
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  return circumcentreOfEdges(u, v, w);
 }
 
 /// Squared circumradius of tetrahedron abcd (infinite when flat).

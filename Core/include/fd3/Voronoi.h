@@ -1,0 +1,74 @@
+// Voronoi cells clipped to a box, as the dual of the exact Delaunay tetrahedralization.
+// Each cell's faces are the Delaunay edges at its generator (a face's neighbour is the edge's other
+// end), each face's vertices the circumcentres of the tetrahedra around that edge: the topology is
+// the tetrahedralization's, ties included, so neighbours are symmetric and no face is lost to
+// rounding. Coordinates are doubles; a vertex is computed once (a circumcentre per tetrahedron,
+// a box crossing from its edge's ends in a fixed order), so the cells that share a face share its
+// vertices bit for bit and the volumes add up to the box's.
+#ifndef fd3_Voronoi_h
+#define fd3_Voronoi_h
+
+#include "fd3/Delaunay.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace fd3
+{
+
+/// A face on the box: VoronoiCells::faceNeighbors holds kBoxFace + w for wall w of the box, in
+/// VTK's bounds order (xmin, xmax, ymin, ymax, zmin, zmax).
+constexpr std::uint32_t kBoxFace = 0xFFFFFFF0u;
+
+struct VoronoiOptions
+{
+  /// The clipping box {xmin, xmax, ymin, ymax, zmin, zmax}; one whose min exceeds its max on an
+  /// axis (the default) is the bounding box of the finite input points.
+  std::array<double, 6> box = {1, -1, 1, -1, 1, -1};
+  /// Threads (0: all hardware threads; bounded as Options::threads). The cells do not depend on it.
+  int threads = 1;
+  /// As Options::progress, for the tetrahedralization.
+  std::function<bool(double)> progress;
+};
+
+/// One cell per generator: each distinct finite input point (duplicates are merged into the first
+/// of their copies, as triangulate() merges them). A generator whose region misses the box has a
+/// cell without faces, of volume 0.
+struct VoronoiCells
+{
+  /// Ok, Empty (no finite point), Aborted; or OutOfRange when the points and box span more than
+  /// the Voronoi vertices' doubles hold. Anything else leaves no cells.
+  Status status = Status::Ok;
+  std::array<double, 6> box = {0, 0, 0, 0, 0, 0}; ///< the box the cells were clipped to
+  std::vector<double> points;                     ///< the cells' vertices, x,y,z each
+  /// Each cell's input point id; the cells follow a Hilbert curve through the points, an order
+  /// that only the points decide.
+  std::vector<std::uint32_t> generators;
+  std::vector<std::size_t> cellFaces;      ///< cell c's faces: [cellFaces[c], cellFaces[c+1])
+  std::vector<std::size_t> faceStart;      ///< face f's vertices: [faceStart[f], faceStart[f+1])
+  std::vector<std::uint32_t> faceVertices; ///< point ids; counter-clockwise seen from outside
+  /// The input point id of the generator across each face, or kBoxFace + wall.
+  std::vector<std::uint32_t> faceNeighbors;
+  std::vector<double> volumes, areas; ///< per cell; areas include the box's faces
+  /// The tetrahedralization's figures for the input's points (the kernel adds eight far points
+  /// of its own, not counted here).
+  Statistics stats;
+
+  std::size_t numberOfCells() const { return generators.size(); }
+  std::size_t numberOfFaces(std::size_t cell) const
+  {
+    return cellFaces[cell + 1] - cellFaces[cell];
+  }
+  /// The faces of the cell that are not on the box.
+  std::size_t numberOfNeighbors(std::size_t cell) const;
+};
+
+/// The Voronoi cells of `count` points (x,y,z triples), clipped to options.box. Throws as
+/// triangulate() does.
+VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOptions& options = {});
+
+} // namespace fd3
+
+#endif
