@@ -258,6 +258,16 @@ public:
   vtkGetMacro(OutputSeconds, double);
   ///@}
 
+  ///@{
+  /**
+   * The input handling that vtkFastVoronoi3D shares: the input's points in `precision` (an
+   * OutputPointsPrecision; its own array when that is already the type, else a copy), and
+   * their coordinates as x,y,z doubles (the array itself when it is one, else `copy`).
+   */
+  static vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input, int precision);
+  static const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy);
+  ///@}
+
 protected:
   vtkFastDelaunay3D();
   ~vtkFastDelaunay3D() override = default;
@@ -317,11 +327,6 @@ protected:
   /// The figures as field data: all of them with ComputeStatistics, else the counts of left-out
   /// points whenever some are.
   void AddFigures(vtkFieldData* fields) const;
-  /// The points' coordinates as x,y,z doubles: the array itself when it is one, else `copy`.
-  static const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy);
-  /// The input's points in `precision` (an OutputPointsPrecision): its own array when that is
-  /// already the type, else a copy.
-  static vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input, int precision);
   /// The bounds of the finite points; xmin > xmax when there are none.
   static void BoundsOfFinitePoints(vtkDataSet* input, double bounds[6]);
   /// The points and point data with an empty cell array: the output where no tetrahedron exists

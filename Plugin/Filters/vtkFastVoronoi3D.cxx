@@ -1,0 +1,297 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+#include "vtkFastVoronoi3D.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkCellType.h"
+#include "vtkDoubleArray.h"
+#include "vtkFastDelaunay3D.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "fd3/Voronoi.h"
+
+#include <algorithm>
+#include <exception>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkFastVoronoi3D);
+
+namespace
+{
+/// The distinct point ids of cell c's faces, sorted, into `ids`.
+void CellPoints(const fd3::VoronoiCells& cells, std::size_t c, std::vector<vtkIdType>& ids)
+{
+  ids.assign(cells.faceVertices.begin() + cells.faceStart[cells.cellFaces[c]],
+    cells.faceVertices.begin() + cells.faceStart[cells.cellFaces[c + 1]]);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+}
+
+template <typename ArrayType>
+vtkSmartPointer<ArrayType> NamedArray(const char* name, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<ArrayType>::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+void AddFieldValue(vtkFieldData* fields, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  fields->AddArray(array);
+}
+} // namespace
+
+vtkFastVoronoi3D::vtkFastVoronoi3D() = default;
+
+int vtkFastVoronoi3D::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkFastVoronoi3D::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  this->NumberOfGenerators = this->NumberOfDuplicatePoints = this->NumberOfInvalidPoints = 0;
+  output->Initialize();
+  const vtkIdType numberOfPoints = input ? input->GetNumberOfPoints() : 0;
+  if (numberOfPoints == 0)
+  {
+    if (outputVector->GetInformationObject(0)->Get(
+          vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) <= 1)
+    {
+      vtkWarningMacro("No Voronoi cells: no input points");
+    }
+    return 1;
+  }
+
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()) > 1)
+  {
+    vtkWarningMacro("Running on several processes: each computes the cells of its own points "
+                    "alone, so cells next to another process's points are too large");
+  }
+
+  // VTK points in -> Core -> VTK polyhedra out.
+  vtkSmartPointer<vtkPoints> points =
+    vtkFastDelaunay3D::InputPoints(input, vtkAlgorithm::DEFAULT_PRECISION);
+  std::vector<double> converted;
+  const double* xyz = vtkFastDelaunay3D::CoordinatesAsDoubles(points, converted);
+  fd3::VoronoiOptions options;
+  std::copy(this->Bounds, this->Bounds + 6, options.box.begin());
+  options.threads =
+    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.progress = [this](double fraction) {
+    this->UpdateProgress(0.8 * fraction);
+    return !this->CheckAbort();
+  };
+  fd3::VoronoiCells cells;
+  try
+  {
+    cells = fd3::voronoiCells(xyz, static_cast<std::size_t>(numberOfPoints), options);
+  }
+  catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
+  {
+    vtkErrorMacro("Voronoi cells failed: " << failure.what() << "; the output is empty");
+    return 0;
+  }
+  if (cells.status == fd3::Status::Aborted)
+  {
+    return 1;
+  }
+  if (!this->ReportOnInput(cells, numberOfPoints))
+  {
+    return 1;
+  }
+  SetPolyhedra(output, cells);
+  this->UpdateProgress(0.9);
+  AddCellData(output, cells, input->GetPointData());
+  this->AddFigures(output->GetFieldData());
+  return 1;
+}
+
+bool vtkFastVoronoi3D::ReportOnInput(const fd3::VoronoiCells& cells, vtkIdType numberOfPoints)
+{
+  this->NumberOfGenerators = static_cast<vtkIdType>(cells.numberOfCells());
+  this->NumberOfDuplicatePoints = static_cast<vtkIdType>(cells.stats.duplicatesMerged);
+  this->NumberOfInvalidPoints = static_cast<vtkIdType>(cells.stats.nonFinitePoints);
+  if (cells.status != fd3::Status::Ok)
+  {
+    vtkWarningMacro("No Voronoi cells: " << fd3::toString(cells.status));
+    return false;
+  }
+  if (this->NumberOfDuplicatePoints > 0 || this->NumberOfInvalidPoints > 0)
+  {
+    vtkWarningMacro(<< this->NumberOfDuplicatePoints + this->NumberOfInvalidPoints << " of "
+                    << numberOfPoints
+                    << " points have no cell of their own: " << this->NumberOfDuplicatePoints
+                    << " exact duplicates (the first copy's cell is theirs), "
+                    << this->NumberOfInvalidPoints << " with NaN or infinite coordinates");
+  }
+  const auto& b = cells.box;
+  if (!((b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]) > 0))
+  {
+    vtkWarningMacro("The clipping box has no volume: every cell is empty (set Bounds)");
+  }
+  return true;
+}
+
+void vtkFastVoronoi3D::SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells)
+{
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(cells.points.size() / 3));
+  std::copy(cells.points.begin(), cells.points.end(), coordinates->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  output->SetPoints(points);
+
+  // Each cell's distinct points, then its face stream (faces, then each face's size and ids).
+  const auto n = static_cast<vtkIdType>(cells.numberOfCells());
+  std::vector<vtkIdType> pointsAt(n + 1, 0), streamAt(n + 1, 0);
+  vtkSMPThreadLocal<std::vector<vtkIdType>> scratch;
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    std::vector<vtkIdType>& ids = scratch.Local();
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      CellPoints(cells, static_cast<std::size_t>(c), ids);
+      const std::size_t faces = cells.numberOfFaces(static_cast<std::size_t>(c));
+      pointsAt[c + 1] = static_cast<vtkIdType>(ids.size());
+      streamAt[c + 1] = faces == 0
+        ? 0
+        : static_cast<vtkIdType>(1 + faces + cells.faceStart[cells.cellFaces[c + 1]] -
+            cells.faceStart[cells.cellFaces[c]]);
+    }
+  });
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    pointsAt[c + 1] += pointsAt[c];
+    streamAt[c + 1] += streamAt[c];
+  }
+  vtkNew<vtkIdTypeArray> offsets, connectivity, faceLocations, faces;
+  vtkNew<vtkUnsignedCharArray> types;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(pointsAt[n]);
+  faceLocations->SetNumberOfValues(n);
+  faces->SetNumberOfValues(streamAt[n]);
+  types->SetNumberOfValues(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    std::vector<vtkIdType>& ids = scratch.Local();
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      CellPoints(cells, static_cast<std::size_t>(c), ids);
+      offsets->SetValue(c, pointsAt[c]);
+      std::copy(ids.begin(), ids.end(), connectivity->GetPointer(pointsAt[c]));
+      const std::size_t first = cells.cellFaces[c], last = cells.cellFaces[c + 1];
+      types->SetValue(c, first == last ? VTK_EMPTY_CELL : VTK_POLYHEDRON);
+      faceLocations->SetValue(c, first == last ? -1 : streamAt[c]);
+      if (first == last)
+      {
+        continue;
+      }
+      vtkIdType* stream = faces->GetPointer(streamAt[c]);
+      *stream++ = static_cast<vtkIdType>(last - first);
+      for (std::size_t f = first; f < last; ++f)
+      {
+        *stream++ = static_cast<vtkIdType>(cells.faceStart[f + 1] - cells.faceStart[f]);
+        for (std::size_t k = cells.faceStart[f]; k < cells.faceStart[f + 1]; ++k)
+        {
+          *stream++ = cells.faceVertices[k];
+        }
+      }
+    }
+  });
+  offsets->SetValue(n, pointsAt[n]);
+  vtkNew<vtkCellArray> polyhedra;
+  polyhedra->SetData(offsets, connectivity);
+  output->SetCells(types, polyhedra, faceLocations, faces);
+}
+
+void vtkFastVoronoi3D::AddCellData(
+  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData)
+{
+  const auto n = static_cast<vtkIdType>(cells.numberOfCells());
+  vtkCellData* cellData = output->GetCellData();
+  if (pointData && pointData->GetNumberOfArrays() > 0)
+  {
+    vtkNew<vtkIdList> from, to;
+    from->SetNumberOfIds(n);
+    to->SetNumberOfIds(n);
+    for (vtkIdType c = 0; c < n; ++c)
+    {
+      from->SetId(c, cells.generators[c]);
+      to->SetId(c, c);
+    }
+    cellData->CopyAllocate(pointData, n);
+    cellData->CopyData(pointData, from, to);
+  }
+  auto generatorId = NamedArray<vtkIdTypeArray>("GeneratorId", n);
+  auto volume = NamedArray<vtkDoubleArray>("Volume", n);
+  auto area = NamedArray<vtkDoubleArray>("SurfaceArea", n);
+  auto faces = NamedArray<vtkIntArray>("NumberOfFaces", n);
+  auto neighbors = NamedArray<vtkIntArray>("NumberOfNeighbors", n);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      const auto cell = static_cast<std::size_t>(c);
+      generatorId->SetValue(c, cells.generators[cell]);
+      volume->SetValue(c, cells.volumes[cell]);
+      area->SetValue(c, cells.areas[cell]);
+      faces->SetValue(c, static_cast<int>(cells.numberOfFaces(cell)));
+      neighbors->SetValue(c, static_cast<int>(cells.numberOfNeighbors(cell)));
+    }
+  });
+  // The cells' own arrays take the place of input arrays of the same name.
+  for (vtkDataArray* array : { vtkDataArray::SafeDownCast(generatorId),
+         vtkDataArray::SafeDownCast(volume), vtkDataArray::SafeDownCast(area),
+         vtkDataArray::SafeDownCast(faces), vtkDataArray::SafeDownCast(neighbors) })
+  {
+    cellData->RemoveArray(array->GetName());
+    cellData->AddArray(array);
+  }
+  cellData->SetActiveScalars("Volume");
+}
+
+void vtkFastVoronoi3D::AddFigures(vtkFieldData* fields) const
+{
+  if (this->NumberOfDuplicatePoints > 0 || this->NumberOfInvalidPoints > 0)
+  {
+    AddFieldValue(fields, "NumberOfDuplicatePoints", double(this->NumberOfDuplicatePoints));
+    AddFieldValue(fields, "NumberOfInvalidPoints", double(this->NumberOfInvalidPoints));
+  }
+}
+
+void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Bounds: (" << this->Bounds[0] << ", " << this->Bounds[1] << ", "
+     << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
+     << this->Bounds[5] << ")\n";
+  os << indent << "Number Of Threads: " << this->NumberOfThreads << "\n";
+  os << indent << "Number Of Generators: " << this->NumberOfGenerators << "\n";
+  os << indent << "Number Of Duplicate Points: " << this->NumberOfDuplicatePoints << "\n";
+  os << indent << "Number Of Invalid Points: " << this->NumberOfInvalidPoints << "\n";
+}

@@ -1,0 +1,111 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+/**
+ * @class   vtkFastVoronoi3D
+ * @brief   Voronoi cells of the input points, clipped to a box, as polyhedra
+ *
+ * vtkFastVoronoi3D outputs one VTK_POLYHEDRON cell per distinct finite input point: the part of
+ * that point's Voronoi region (the space nearer to it than to any other point) inside Bounds.
+ * The cells are the dual of the exact Delaunay tetrahedralization of vtkFastDelaunay3D: each face
+ * is a Delaunay edge, each face vertex the circumcentre of a tetrahedron around it, so the
+ * topology is exact, ties (cospherical points, lattices) are broken as the tetrahedralization
+ * breaks them, and neighbours are symmetric. Vertex positions and clipping are computed in
+ * double; a vertex is computed once, so the cells that share a face share its vertices exactly
+ * and the volumes add up to the box's.
+ *
+ * Cell data: GeneratorId (the input point id), Volume, SurfaceArea (the box's faces included),
+ * NumberOfFaces and NumberOfNeighbors (the faces shared with another cell), and the input's point
+ * data, each point's values on its cell. The cells follow a Hilbert curve through the points.
+ * Circumcentres are points shared by the cells around them; where a cell is clipped, its
+ * crossings of the box are points of its own (at the same coordinates as its neighbours').
+ *
+ * As in vtkFastDelaunay3D, exact duplicate points are merged (the first copy's id makes the cell)
+ * and points with NaN or infinite coordinates are left out; both are counted, reported in one
+ * warning and recorded in the getters and the field data. A point whose region misses the box
+ * has an empty cell (VTK_EMPTY_CELL, volume 0), so that cells and distinct points still match.
+ *
+ * @sa
+ * vtkFastDelaunay3D
+ */
+#ifndef vtkFastVoronoi3D_h
+#define vtkFastVoronoi3D_h
+
+#include "FastDelaunay3DFiltersModule.h" // For export macro
+#include "vtkUnstructuredGridAlgorithm.h"
+
+class vtkFieldData;
+class vtkPointData;
+namespace fd3
+{
+struct VoronoiCells;
+} // namespace fd3
+
+class FASTDELAUNAY3DFILTERS_EXPORT vtkFastVoronoi3D : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static vtkFastVoronoi3D* New();
+  vtkTypeMacro(vtkFastVoronoi3D, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The clipping box (xmin, xmax, ymin, ymax, zmin, zmax). A box whose minimum exceeds its
+   * maximum on an axis, as the default (0, -1, 0, -1, 0, -1), is the bounding box of the input's
+   * finite points. A box of no volume (coplanar points with the default) gives empty cells.
+   */
+  vtkSetVector6Macro(Bounds, double);
+  vtkGetVector6Macro(Bounds, double);
+  ///@}
+
+  ///@{
+  /**
+   * Number of threads. 0 (the default) uses what vtkSMPTools::GetEstimatedNumberOfThreads()
+   * reports. The cells are the same for any number. At most 4 threads per hardware thread (or 64
+   * where that is more) are started.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Figures of the last run: the distinct finite points (one cell each), the exact duplicates
+   * merged and the points with NaN or infinite coordinates left out.
+   */
+  vtkGetMacro(NumberOfGenerators, vtkIdType);
+  vtkGetMacro(NumberOfDuplicatePoints, vtkIdType);
+  vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
+  ///@}
+
+protected:
+  vtkFastVoronoi3D();
+  ~vtkFastVoronoi3D() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
+  int NumberOfThreads = 0;
+  vtkIdType NumberOfGenerators = 0;
+  vtkIdType NumberOfDuplicatePoints = 0;
+  vtkIdType NumberOfInvalidPoints = 0;
+
+private:
+  vtkFastVoronoi3D(const vtkFastVoronoi3D&) = delete;
+  void operator=(const vtkFastVoronoi3D&) = delete;
+
+  /// Warns of what the kernel left out or could not do; false when there are no cells to output.
+  bool ReportOnInput(const fd3::VoronoiCells& cells, vtkIdType numberOfPoints);
+  /// The cells' points and VTK_POLYHEDRON cells (VTK_EMPTY_CELL where a cell has no faces).
+  static void SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells);
+  /// GeneratorId, Volume, SurfaceArea, NumberOfFaces, NumberOfNeighbors and the input's point
+  /// data on the cells.
+  static void AddCellData(
+    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData);
+  /// The counts of left-out points as field data, where there are some.
+  void AddFigures(vtkFieldData* fields) const;
+};
+
+#endif

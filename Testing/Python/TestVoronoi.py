@@ -1,0 +1,73 @@
+"""pvpython: Fast Voronoi 3D through the plugin. The proxy's properties; one polyhedron per
+point of a clustered cloud, whose volumes (Volume, summed) fill the box, as ParaView's own
+Integrate Variables measures them; the Bounds clip; and an image regression of the cells, shrunk
+and coloured by volume.
+
+usage: pvpython TestVoronoi.py <plugin .so> -V <absolute baseline> -T <output dir>
+"""
+import sys
+
+from paraview.simple import *
+from paraview import smtesting
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+plugin = sys.argv[1]
+sys.argv = [sys.argv[0]] + sys.argv[2:]
+smtesting.ProcessCommandLineArguments()
+LoadPlugin(plugin, remote=False, ns=globals())
+
+cloud = ProgrammableSource(OutputDataSetType="vtkPolyData")
+cloud.Script = """
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import vtkPoints
+rng = np.random.default_rng(3)
+centres = rng.random((6, 3))
+xyz = np.vstack([rng.random((600, 3)), np.repeat(centres, 100, axis=0) + 0.05 * rng.standard_normal((600, 3))])
+xyz = np.clip(xyz, 0, 1)
+points = vtkPoints()
+points.SetData(numpy_to_vtk(xyz, deep=True))
+self.GetPolyDataOutput().SetPoints(points)
+"""
+voronoi = FastVoronoi3D(Input=cloud)
+for name in ("Bounds", "NumberOfThreads"):
+    assert name in voronoi.ListProperties(), name
+assert list(voronoi.Bounds) == [0, -1, 0, -1, 0, -1], voronoi.Bounds
+voronoi.UpdatePipeline()
+output = servermanager.Fetch(voronoi)
+assert output.GetNumberOfCells() == 1200, output.GetNumberOfCells()
+types = set(output.GetCellType(c) for c in range(output.GetNumberOfCells()))
+assert types == {42}, types  # VTK_POLYHEDRON
+volume = vtk_to_numpy(output.GetCellData().GetArray("Volume"))
+xyz_bounds = servermanager.Fetch(cloud).GetBounds()
+box = (xyz_bounds[1] - xyz_bounds[0]) * (xyz_bounds[3] - xyz_bounds[2]) * (xyz_bounds[5] - xyz_bounds[4])
+assert abs(volume.sum() - box) <= 1e-9 * box, (volume.sum(), box)
+integrated = IntegrateVariables(Input=voronoi)
+integrated.UpdatePipeline()
+measured = servermanager.Fetch(integrated).GetCellData().GetArray("Volume").GetValue(0)
+# Integrate Variables tetrahedralizes each polyhedron its own way (1e-5 off here): a coarser,
+# independent measure.
+assert abs(measured - box) <= 1e-4 * box, (measured, box)
+
+voronoi.Bounds = [0.25, 0.75, 0.25, 0.75, 0.25, 0.75]
+voronoi.UpdatePipeline()
+clipped = servermanager.Fetch(voronoi)
+clipped_volume = vtk_to_numpy(clipped.GetCellData().GetArray("Volume")).sum()
+assert abs(clipped_volume - 0.125) <= 1e-12, clipped_volume
+
+voronoi.Bounds = [0, -1, 0, -1, 0, -1]
+shrink = Shrink(Input=voronoi, ShrinkFactor=0.8)
+view = CreateRenderView()
+view.ViewSize = [400, 300]
+view.OrientationAxesVisibility = 0
+display = Show(shrink, view)
+ColorBy(display, ("CELLS", "Volume"))
+display.LookupTable.RescaleTransferFunction(0.0, 0.0015)
+view.CameraPosition = [2.2, -1.6, 1.9]
+view.CameraFocalPoint = [0.5, 0.5, 0.5]
+view.CameraViewUp = [0, 0, 1]
+view.ResetCamera()
+Render(view)
+if not smtesting.DoRegressionTesting(view.SMProxy):
+    raise RuntimeError("image comparison failed")
+print("TestVoronoi: OK")
