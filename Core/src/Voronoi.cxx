@@ -778,6 +778,42 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
     a[k] += offset[k];
 }
 
+/// Renumbers the tetrahedra in the order of their lowest vertex. The points lie along a curve, so
+/// a generator's star then lies in a few stretches of memory, and the tetrahedra whose centres
+/// its cell owns in one.
+void sortTetrahedra(ThreadTeam& team, Triangulation& mesh, std::size_t vertices)
+{
+  const std::size_t tets = mesh.numberOfTetrahedra();
+  const std::uint32_t* t4 = mesh.tetrahedra.data();
+  auto lowest = [&](std::size_t t) {
+    return std::min(std::min(t4[4 * t], t4[4 * t + 1]), std::min(t4[4 * t + 2], t4[4 * t + 3]));
+  };
+  std::vector<std::uint32_t> start(vertices + 1, 0);
+  for (std::size_t t = 0; t < tets; ++t)
+    ++start[lowest(t) + 1];
+  for (std::size_t v = 0; v < vertices; ++v)
+    start[v + 1] += start[v];
+  std::vector<std::uint32_t> newId(tets);
+  for (std::size_t t = 0; t < tets; ++t)
+    newId[t] = start[lowest(t)]++;
+  IdArray tetrahedra(4 * tets), neighbors(4 * tets);
+  team.forRanges(tets, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+    {
+      const std::size_t to = 4 * std::size_t(newId[t]);
+      for (int i = 0; i < 4; ++i)
+      {
+        tetrahedra[to + i] = t4[4 * t + i];
+        const std::uint32_t across = mesh.neighbors[4 * t + i];
+        neighbors[to + i] =
+          across == kNoNeighbor ? kNoNeighbor : newId[across >> 2] << 2 | (across & 3);
+      }
+    }
+  });
+  mesh.tetrahedra.swap(tetrahedra);
+  mesh.neighbors.swap(neighbors);
+}
+
 /// Every tetrahedron's circumcentre, and whether it lies in the closed box.
 void circumcentres(ThreadTeam& team, const double* xyz, const Triangulation& mesh,
   const std::array<double, 6>& box, std::vector<double>& centres, std::vector<std::uint8_t>& inBox)
@@ -929,6 +965,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
 
   std::vector<double> centres;
   std::vector<std::uint8_t> inBox;
+  sortTetrahedra(team, mesh, count + kFarPoints);
   circumcentres(team, curve.xyz.data(), mesh, cells.box, centres, inBox);
   const std::vector<std::uint32_t> seeds = starSeeds(team, mesh, count + kFarPoints);
   std::vector<std::uint32_t> vertices; // the generators, as the mesh numbers them

@@ -14,11 +14,14 @@
 //   Benchmark --table1 [--markdown FILE]     the paper's Table 1 for this kernel
 //   Benchmark --scaling [--kinds ...] [--sizes N] [--threads 1,2,4,...] [--csv FILE]
 //             [--markdown FILE]                the scaling model of Core's threads (Scaling.cxx)
+//   Benchmark --voronoi [--kinds ...] [--sizes N] [--threads 1,2] [--csv FILE] [--markdown FILE]
+//                                            Voronoi cells: Core, Voro++, scipy (VoronoiBench.cxx)
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
 // child resets it) and a crash or a time-out costs one row, not the run.
 #include "Measure.h"
 #include "Scaling.h"
+#include "VoronoiBench.h"
 #include "VtkTestUtilities.h"
 #include "fd3/Delaunay.h"
 #include "vtkFastDelaunay3D.h"
@@ -442,9 +445,14 @@ void report(const std::string& kind, std::size_t n, const std::vector<Method>& m
 
 int main(int argc, char* argv[])
 {
-  if (std::find_if(argv + 1, argv + argc,
-        [](const char* a) { return std::string(a) == "--scaling"; }) != argv + argc)
+  auto given = [&](const char* flag) {
+    return std::find_if(argv + 1, argv + argc,
+             [&](const char* a) { return std::string(a) == flag; }) != argv + argc;
+  };
+  if (given("--scaling"))
     return scalingMain(argc, argv);
+  if (given("--voronoi"))
+    return voronoiMain(argc, argv);
   Settings settings;
   if (!parse(argc, argv, settings))
     return 2;

@@ -1,0 +1,211 @@
+// Voronoi cells of the same points by Core (fd3::voronoiCells, on each thread count asked for),
+// by Voro++ (its container in the points' bounding box, cells with volumes, areas and
+// neighbours, as Core gives them) where the benchmark is built with it, and by
+// scipy.spatial.Voronoi (Qhull's unbounded diagram alone) where /usr/bin/python3 has scipy.
+// Each run in a forked child with its own peak memory.
+#include "VoronoiBench.h"
+
+#include "Measure.h"
+#include "PointSets.h"
+#include "fd3/Voronoi.h"
+
+#ifdef FD3_BENCHMARK_WITH_VOROPP
+#include <voro++/voro++.hh>
+#endif
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <numeric>
+
+namespace fd3bench
+{
+namespace
+{
+struct VoronoiSettings
+{
+  std::vector<std::string> kinds = {"cube", "clusters", "molshell"};
+  std::vector<std::size_t> sizes = {100000, 1000000};
+  std::vector<int> threads = {1, 2};
+  std::string csvFile, markdownFile;
+};
+
+bool parse(int argc, char* argv[], VoronoiSettings& settings)
+{
+  for (int i = 1; i < argc; i += 2)
+  {
+    const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
+    if (key == "--voronoi")
+      --i;
+    else if (key == "--kinds")
+      settings.kinds = split(value);
+    else if (key == "--sizes" || key == "--threads")
+    {
+      std::vector<std::size_t> numbers;
+      for (const std::string& s : split(value))
+        numbers.push_back(static_cast<std::size_t>(std::stod(s)));
+      if (key == "--sizes")
+        settings.sizes = numbers;
+      else
+        settings.threads.assign(numbers.begin(), numbers.end());
+    }
+    else if (key == "--csv")
+      settings.csvFile = value;
+    else if (key == "--markdown")
+      settings.markdownFile = value;
+    else
+    {
+      std::cerr << "unknown option " << key << "\n";
+      return false;
+    }
+  }
+  return true;
+}
+
+std::array<double, 6> boundsOf(const fd3test::Points& p)
+{
+  std::array<double, 6> b = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < p.size(); ++i)
+  {
+    b[2 * (i % 3)] = std::min(b[2 * (i % 3)], p[i]);
+    b[2 * (i % 3) + 1] = std::max(b[2 * (i % 3) + 1], p[i]);
+  }
+  return b;
+}
+
+Measurement runCore(const fd3test::Points& p, int threads)
+{
+  fd3::VoronoiOptions options;
+  options.threads = threads;
+  const auto t0 = Clock::now();
+  const fd3::VoronoiCells cells = fd3::voronoiCells(p.data(), p.size() / 3, options);
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = cells.status == fd3::Status::Ok;
+  m.figures = {std::accumulate(cells.volumes.begin(), cells.volumes.end(), 0.0),
+    double(cells.numberOfCells())};
+  return m;
+}
+
+#ifdef FD3_BENCHMARK_WITH_VOROPP
+Measurement runVoropp(const fd3test::Points& p)
+{
+  const std::size_t n = p.size() / 3;
+  const std::array<double, 6> b = boundsOf(p);
+  // About 5 points a block, Voro++'s advice; blocks as cubic as the box allows.
+  const double volume = (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
+  const double side = std::cbrt(5 * volume / double(n));
+  int blocks[3];
+  for (int a = 0; a < 3; ++a)
+    blocks[a] = std::max(1, int((b[2 * a + 1] - b[2 * a]) / side));
+  const auto t0 = Clock::now();
+  voro::container box(
+    b[0], b[1], b[2], b[3], b[4], b[5], blocks[0], blocks[1], blocks[2], false, false, false, 8);
+  for (std::size_t i = 0; i < n; ++i)
+    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  voro::c_loop_all loop(box);
+  voro::voronoicell_neighbor cell;
+  std::vector<int> neighbors;
+  double total = 0, area = 0;
+  std::size_t cells = 0;
+  if (loop.start())
+    do
+      if (box.compute_cell(cell, loop))
+      {
+        total += cell.volume();
+        area += cell.surface_area();
+        cell.neighbors(neighbors);
+        ++cells;
+      }
+    while (loop.inc());
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = true;
+  m.figures = {total, double(cells)};
+  return m;
+}
+#endif
+
+/// scipy.spatial.Voronoi through /usr/bin/python3 on the points, written to a file first.
+Measurement runScipy(const fd3test::Points& p, const std::string& script)
+{
+  const std::string file = "/tmp/fd3-voronoi-points.bin";
+  if (FILE* out = std::fopen(file.c_str(), "wb"))
+  {
+    std::fwrite(p.data(), sizeof(double), p.size(), out);
+    std::fclose(out);
+  }
+  Measurement m;
+  FILE* in = popen(("/usr/bin/python3 " + script + " " + file + " 2>/dev/null").c_str(), "r");
+  double regions = 0;
+  if (in && std::fscanf(in, "%lf %lf %lf", &m.seconds, &m.peakMiB, &regions) == 3)
+  {
+    m.ran = true;
+    m.figures = {0, regions};
+  }
+  else
+    m.note = "scipy not available";
+  if (in)
+    pclose(in);
+  std::remove(file.c_str());
+  return m;
+}
+} // namespace
+
+int voronoiMain(int argc, char* argv[])
+{
+  VoronoiSettings settings;
+  if (!parse(argc, argv, settings))
+    return 2;
+  const std::string script = std::string(FD3_BENCHMARK_SOURCE_DIR) + "/scipy_voronoi.py";
+  std::ostringstream md, csv;
+  md << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
+     << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
+     << "the points' bounding box with volumes, areas and neighbours; scipy: "
+     << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
+     << "Volume: the cells' total over the box's.\n\n"
+     << "| points | n | method | seconds | peak MiB | B/point | volume / box | Voro++ / this |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|\n";
+  csv << "kind,n,method,seconds,peak_mib,volume_fraction\n";
+  for (const std::string& kind : settings.kinds)
+    for (const std::size_t size : settings.sizes)
+    {
+      const fd3test::Points p = fd3test::generate(kind, size, 1);
+      const std::size_t n = p.size() / 3;
+      const std::array<double, 6> b = boundsOf(p);
+      const double box = (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
+      std::vector<std::pair<std::string, Measurement>> rows;
+      for (const int t : settings.threads)
+        rows.push_back({"Core-" + std::to_string(t), measure([&] { return runCore(p, t); }, 1e9)});
+#ifdef FD3_BENCHMARK_WITH_VOROPP
+      rows.push_back({"Voro++", measure([&] { return runVoropp(p); }, 1e9)});
+#endif
+      rows.push_back({"scipy", runScipy(p, script)});
+      double voropp = 0;
+      for (const auto& [name, m] : rows)
+        if (name == "Voro++" && m.ran)
+          voropp = m.seconds;
+      for (const auto& [name, m] : rows)
+      {
+        char line[256];
+        if (!m.ran)
+        {
+          md << "| " << kind << " | " << n << " | " << name << " | " << m.note << " |\n";
+          continue;
+        }
+        const double fraction = m.figures.empty() || m.figures[0] == 0 ? 0 : m.figures[0] / box;
+        std::snprintf(line, sizeof line, "| %s | %zu | %s | %.3f | %.0f | %.0f | %s | %s |\n",
+          kind.c_str(), n, name.c_str(), m.seconds, m.peakMiB, m.peakMiB * 1048576.0 / double(n),
+          fraction > 0 ? std::to_string(fraction).c_str() : "-",
+          voropp > 0 ? (std::to_string(voropp / m.seconds).substr(0, 5) + "x").c_str() : "-");
+        md << line;
+        csv << kind << ',' << n << ',' << name << ',' << m.seconds << ',' << m.peakMiB << ','
+            << fraction << '\n';
+        std::cerr << kind << " " << n << " " << name << ": " << m.seconds << " s\n";
+      }
+    }
+  writeReport(md, csv, settings.markdownFile, settings.csvFile);
+  return 0;
+}
+
+} // namespace fd3bench
