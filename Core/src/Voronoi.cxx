@@ -7,21 +7,23 @@
 //    points and box together, while the corners lie at least 2 sqrt(3) D - D/2 > D from x. So
 //    each cell's part inside the box is unchanged, and every face with a far point lies outside
 //    the box.
-// 2. Every tetrahedron's circumcentre, once (from its vertices in the order of their ids, in
+// 2. The tetrahedra are renumbered in an order that the points alone decide (the mesh's own
+//    varies with the thread count), and that keeps a star in a few stretches of memory.
+// 3. Every tetrahedron's circumcentre, once (from its vertices in the order of their ids, in
 //    double-double where the tetrahedron is flat).
-// 3. Per generator, along the curve, on the threads, a stretch of generators each (the cells do
-//    not depend on how they are split, nor on the order of the tetrahedra, which varies with the
-//    thread count):
-//    - its star: the tetrahedra around it, gathered once through the faces that hold it;
+// 4. Per generator, along the curve, on the threads, a stretch of generators each (the cells do
+//    not depend on how they are split):
+//    - its star: the tetrahedra around it, gathered once through the faces that hold it, from
+//      its lowest-numbered tetrahedron;
 //    - its faces: the ring of star tetrahedra about each edge (p, q), turning counter-clockwise
 //      about p -> q, so the face is counter-clockwise seen from outside; the faces in the order
-//      of q, each ring from the tetrahedron whose first other vertex is the lowest;
+//      the star shows the q, each ring from the tetrahedron that first showed q;
 //    - a cell with a circumcentre outside the box is clipped by the box's six planes: each face
 //      keeps its inside part, a crossing of an edge is computed from its two ends taken in
 //      lexicographic order and put exactly on the plane (so the cells around that edge compute
 //      the same point), and the crossings close a new face on the plane;
 //    - volume and surface area, from each face's Newell vector.
-// 4. The threads' stretches are joined in curve order. A cell's own vertices, numbered in the
+// 5. The threads' stretches are joined in curve order. A cell's own vertices, numbered in the
 //    order its faces meet them, are its crossings and the circumcentres it owns (those of the
 //    tetrahedra whose lowest vertex is its generator), so the output's points too are in the
 //    order of the cells.
@@ -86,19 +88,18 @@ public:
   /// The value of `key`, inserting `value` when absent; `inserted` tells which.
   std::uint32_t find(std::uint32_t key, std::uint32_t value, bool& inserted)
   {
-    if (2 * (used_.size() + 1) > keys_.size())
+    if (2 * (used_.size() + 1) > slots_.size())
       grow();
-    std::size_t slot = hash(key);
-    while (keys_[slot] != kNone && keys_[slot] != key)
-      slot = (slot + 1) & (keys_.size() - 1);
-    inserted = keys_[slot] == kNone;
+    std::size_t slot = (std::uint64_t(key) * 0x9E3779B97F4A7C15ull >> 32) & mask_;
+    while (slots_[slot].key != kNone && slots_[slot].key != key)
+      slot = (slot + 1) & mask_;
+    inserted = slots_[slot].key == kNone;
     if (inserted)
     {
-      keys_[slot] = key;
-      values_[slot] = value;
+      slots_[slot] = {key, value};
       used_.push_back(static_cast<std::uint32_t>(slot));
     }
-    return values_[slot];
+    return slots_[slot].value;
   }
   bool insert(std::uint32_t key)
   {
@@ -109,28 +110,29 @@ public:
   void clear()
   {
     for (const std::uint32_t slot : used_)
-      keys_[slot] = kNone;
+      slots_[slot].key = kNone;
     used_.clear();
   }
 
 private:
-  std::size_t hash(std::uint32_t key) const
+  struct Slot
   {
-    return (std::uint64_t(key) * 0x9E3779B97F4A7C15ull >> 32) & (keys_.size() - 1);
-  }
+    std::uint32_t key = kNone, value = 0;
+  };
   void grow()
   {
-    std::vector<std::uint32_t> keys(std::max<std::size_t>(64, 2 * keys_.size()), kNone);
-    std::vector<std::uint32_t> values(keys.size());
-    keys.swap(keys_);
-    values.swap(values_);
-    const std::vector<std::uint32_t> slots = std::move(used_);
+    std::vector<Slot> old(std::max<std::size_t>(256, 2 * slots_.size()));
+    old.swap(slots_);
+    mask_ = slots_.size() - 1;
+    const std::vector<std::uint32_t> used = std::move(used_);
     used_.clear();
     bool inserted;
-    for (const std::uint32_t slot : slots)
-      find(keys[slot], values[slot], inserted);
+    for (const std::uint32_t slot : used)
+      find(old[slot].key, old[slot].value, inserted);
   }
-  std::vector<std::uint32_t> keys_, values_, used_;
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> used_;
+  std::size_t mask_ = 0;
 };
 
 /// The cells of one stretch of generators, with vertex ids that are tetrahedra (circumcentres
@@ -178,7 +180,6 @@ public:
   {
     gatherStar(generator);
     traceFaces(generator);
-    putInOrder();
     bool inside = true;
     for (const StarTet& s : star_)
       inside = inside && s.inBox;
@@ -203,6 +204,7 @@ private:
     std::uint32_t next[4];  ///< star index across the face opposite each vertex but the generator
     std::uint32_t own;      ///< index among the cell's own vertices, once met (kNone before)
     std::uint8_t generator; ///< the generator's local index
+    std::uint8_t entry;     ///< the vertex opposite the face it was reached through (4: none)
     bool owned;             ///< the generator is its lowest vertex: the cell owns its centre
     bool inBox;
     double centre[3];
@@ -236,12 +238,18 @@ private:
     localOf_.find(seeds_[p], 0, inserted);
     star_.emplace_back();
     star_.back().tet = seeds_[p];
+    star_.back().entry = 4; // every vertex of the first tetrahedron is new
     for (std::size_t i = 0; i < star_.size(); ++i)
     {
       const std::uint32_t t = star_[i].tet;
       const std::uint32_t* v = &mesh_.tetrahedra[4 * std::size_t(t)];
       const std::uint32_t* n = &mesh_.neighbors[4 * std::size_t(t)];
       const int ip = localIndex(v, p);
+      // A tetrahedron reached across a face brings one vertex not seen before at most: the one
+      // opposite that face.
+      for (int k = 0; k < 4; ++k)
+        if (k != ip && (star_[i].entry == 4 || k == star_[i].entry) && seen_.insert(v[k]))
+          queue_.push_back({v[k], static_cast<std::uint32_t>(i)});
       for (int k = 0; k < 4; ++k)
       {
         star_[i].vertices[k] = v[k];
@@ -256,9 +264,8 @@ private:
         {
           star_.emplace_back();
           star_.back().tet = across;
+          star_.back().entry = static_cast<std::uint8_t>(n[k] & 3);
         }
-        if (seen_.insert(v[k]))
-          queue_.push_back({v[k], static_cast<std::uint32_t>(i)});
       }
       StarTet& s = star_[i];
       s.generator = static_cast<std::uint8_t>(ip);
@@ -270,11 +277,10 @@ private:
   }
 
   /// The ring of star tetrahedra about each edge (p, q), turning counter-clockwise about p -> q,
-  /// into loops_ / faceStart_ / neighbors_, and firstOthers_ for putInOrder().
+  /// into loops_ / faceStart_ / neighbors_, each from the tetrahedron that first showed q.
   void traceFaces(std::uint32_t p)
   {
     loops_.clear();
-    firstOthers_.clear();
     faceStart_.assign(1, 0);
     neighbors_.clear();
     for (const auto& [q, start] : queue_)
@@ -285,7 +291,6 @@ private:
         const StarTet& s = star_[i];
         const int r = kTurns.turn[s.generator][localIndex(s.vertices, q)];
         loops_.push_back(i);
-        firstOthers_.push_back(s.vertices[r]); // each other vertex is the r of one tetrahedron
         i = s.next[r];
       } while (i != start);
       faceStart_.push_back(static_cast<std::uint32_t>(loops_.size()));
@@ -295,40 +300,6 @@ private:
   }
 
   const double* centre(std::uint32_t t) const { return &centres_[3 * std::size_t(t)]; }
-
-  /// The faces in the order of their neighbours, each ring from the tetrahedron whose first other
-  /// vertex (in the turning order) is the lowest: an order that the numbering of the tetrahedra
-  /// does not change. Sets order_ and rotation_ (where each face's ring starts).
-  void putInOrder()
-  {
-    const std::size_t faces = neighbors_.size();
-    order_.resize(faces);
-    rotation_.resize(faces);
-    for (std::size_t f = 0; f < faces; ++f)
-    {
-      order_[f] = static_cast<std::uint32_t>(f);
-      const auto begin = firstOthers_.begin() + faceStart_[f];
-      rotation_[f] = static_cast<std::uint32_t>(
-        std::min_element(begin, firstOthers_.begin() + faceStart_[f + 1]) - begin);
-    }
-    // Insertion sort: a cell has a dozen or two faces.
-    for (std::size_t f = 1; f < faces; ++f)
-    {
-      const std::uint32_t moving = order_[f];
-      std::size_t at = f;
-      for (; at > 0 && neighbors_[order_[at - 1]] > neighbors_[moving]; --at)
-        order_[at] = order_[at - 1];
-      order_[at] = moving;
-    }
-  }
-
-  /// The k-th entry of face f's ring, from where putInOrder() starts it.
-  std::uint32_t ringEntry(std::uint32_t f, std::uint32_t k) const
-  {
-    const std::uint32_t size = faceStart_[f + 1] - faceStart_[f];
-    const std::uint32_t at = rotation_[f] + k;
-    return faceStart_[f] + (at < size ? at : at - size);
-  }
 
   /// Adds a face's share of the cell's volume (six times: the face's Newell vector dotted with a
   /// vertex, both from the generator) and area (twice), the Newell vector summed over its edges.
@@ -358,19 +329,37 @@ private:
   /// A cell inside the box: its faces are the rings as they are.
   void emitWhole(std::uint32_t p, Stretch& out)
   {
-    out.faceCounts.push_back(static_cast<std::uint32_t>(neighbors_.size()));
+    const std::size_t faces = neighbors_.size();
+    out.faceCounts.push_back(static_cast<std::uint32_t>(faces));
+    std::size_t at = out.vertices.size();
+    out.vertices.resize(at + loops_.size());
+    std::uint32_t* vertices = out.vertices.data();
     const double* g = &xyz_[3 * std::size_t(p)];
     double sixVolume = 0, twiceArea = 0;
-    for (const std::uint32_t f : order_)
+    for (std::uint32_t f = 0; f < faces; ++f)
     {
       const std::uint32_t size = faceStart_[f + 1] - faceStart_[f];
       out.faceSizes.push_back(size);
       out.neighbors.push_back(inputId(neighbors_[f]));
-      for (std::uint32_t k = 0; k < size; ++k)
+      // The face's Newell vector, from the generator (see addFace), as its vertices go out.
+      double n[3] = {0, 0, 0}, first[3], a[3];
+      for (std::uint32_t k = 0; k <= size; ++k)
       {
-        StarTet& s = star_[loops_[ringEntry(f, k)]];
+        StarTet& s = star_[loops_[faceStart_[f] + (k < size ? k : 0)]];
+        const double b[3] = {s.centre[0] - g[0], s.centre[1] - g[1], s.centre[2] - g[2]};
+        if (k > 0)
+        {
+          n[0] += a[1] * b[2] - a[2] * b[1];
+          n[1] += a[2] * b[0] - a[0] * b[2];
+          n[2] += a[0] * b[1] - a[1] * b[0];
+        }
+        else
+          std::copy_n(b, 3, first);
+        std::copy_n(b, 3, a);
+        if (k == size)
+          break;
         if (!s.owned)
-          out.vertices.push_back(s.tet);
+          vertices[at++] = s.tet;
         else
         {
           if (s.own == kNone)
@@ -379,12 +368,11 @@ private:
             out.ownPoints.insert(out.ownPoints.end(), s.centre, s.centre + 3);
             out.ownedCentres.push_back({s.tet, s.own});
           }
-          out.vertices.push_back(kOwnVertex | s.own);
+          vertices[at++] = kOwnVertex | s.own;
         }
       }
-      addFace(
-        g, size, [&](std::uint32_t k) { return star_[loops_[ringEntry(f, k)]].centre; }, sixVolume,
-        twiceArea);
+      sixVolume += n[0] * first[0] + n[1] * first[1] + n[2] * first[2];
+      twiceArea += std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     }
     out.volumes.push_back(sixVolume / 6);
     out.areas.push_back(twiceArea / 2);
@@ -400,11 +388,11 @@ private:
     c.neighbors.clear();
     for (StarTet& s : star_)
       s.own = kNone;
-    for (const std::uint32_t f : order_)
+    for (std::size_t f = 0; f + 1 < faceStart_.size(); ++f)
     {
-      for (std::uint32_t k = 0; k < faceStart_[f + 1] - faceStart_[f]; ++k)
+      for (std::uint32_t k = faceStart_[f]; k < faceStart_[f + 1]; ++k)
       {
-        StarTet& s = star_[loops_[ringEntry(f, k)]];
+        StarTet& s = star_[loops_[k]];
         if (s.own == kNone)
         {
           s.own = static_cast<std::uint32_t>(c.x.size());
@@ -604,8 +592,6 @@ private:
   // One cell's scratch, kept between cells for its memory.
   std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
   std::vector<StarTet> star_;
-  std::vector<std::uint32_t> firstOthers_; ///< per ring entry: its first other vertex
-  std::vector<std::uint32_t> order_, rotation_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> queue_;
   SmallMap seen_, localOf_;
   Polyhedron cell_;
@@ -778,39 +764,98 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
     a[k] += offset[k];
 }
 
-/// Renumbers the tetrahedra in the order of their lowest vertex. The points lie along a curve, so
-/// a generator's star then lies in a few stretches of memory, and the tetrahedra whose centres
-/// its cell owns in one.
+/// Renumbers the tetrahedra, and their vertices, in an order that the points alone decide: each
+/// tetrahedron's vertices ascending (the last two swapped where that keeps it positive), the
+/// tetrahedra by those vertices. The mesh's own order varies with the thread count; everything
+/// built from the sorted one is the same for any. And as the points lie along a curve, a
+/// generator's star then lies in a few stretches of memory, the tetrahedra whose centres its cell
+/// owns in one.
 void sortTetrahedra(ThreadTeam& team, Triangulation& mesh, std::size_t vertices)
 {
   const std::size_t tets = mesh.numberOfTetrahedra();
   const std::uint32_t* t4 = mesh.tetrahedra.data();
-  auto lowest = [&](std::size_t t) {
-    return std::min(std::min(t4[4 * t], t4[4 * t + 1]), std::min(t4[4 * t + 2], t4[4 * t + 3]));
-  };
-  std::vector<std::uint32_t> start(vertices + 1, 0);
-  for (std::size_t t = 0; t < tets; ++t)
-    ++start[lowest(t) + 1];
-  for (std::size_t v = 0; v < vertices; ++v)
-    start[v + 1] += start[v];
-  std::vector<std::uint32_t> newId(tets);
-  for (std::size_t t = 0; t < tets; ++t)
-    newId[t] = start[lowest(t)]++;
-  IdArray tetrahedra(4 * tets), neighbors(4 * tets);
+  // Each tetrahedron's vertices in their new order, and where each old local index goes.
+  IdArray tetrahedra(4 * tets);
+  std::vector<std::uint8_t> moves(tets); // 2 bits per old local index
   team.forRanges(tets, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
     {
-      const std::size_t to = 4 * std::size_t(newId[t]);
+      // A sorting network of five exchanges; each exchange flips the orientation.
+      int order[4] = {0, 1, 2, 3};
+      bool odd = false;
+      auto exchange = [&](int i, int j) {
+        if (t4[4 * t + order[j]] < t4[4 * t + order[i]])
+        {
+          std::swap(order[i], order[j]);
+          odd = !odd;
+        }
+      };
+      exchange(0, 1);
+      exchange(2, 3);
+      exchange(0, 2);
+      exchange(1, 3);
+      exchange(1, 2);
+      if (odd)
+        std::swap(order[2], order[3]);
+      std::uint8_t move = 0;
+      for (int k = 0; k < 4; ++k)
+      {
+        tetrahedra[4 * t + k] = t4[4 * t + order[k]];
+        move |= std::uint8_t(k << (2 * order[k]));
+      }
+      moves[t] = move;
+    }
+  });
+  // By the lowest vertex (a counting sort), then by the others within each lowest vertex.
+  std::vector<std::uint32_t> start(vertices + 1, 0), sorted(tets);
+  for (std::size_t t = 0; t < tets; ++t)
+    ++start[tetrahedra[4 * t] + 1];
+  for (std::size_t v = 0; v < vertices; ++v)
+    start[v + 1] += start[v];
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < tets; ++t)
+      sorted[next[tetrahedra[4 * t]]++] = static_cast<std::uint32_t>(t);
+  }
+  std::vector<std::uint32_t> newId(tets);
+  team.forRanges(vertices, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+    {
+      auto before = [&](std::uint32_t a, std::uint32_t b) {
+        const std::uint32_t* x = &tetrahedra[4 * std::size_t(a)];
+        const std::uint32_t* y = &tetrahedra[4 * std::size_t(b)];
+        return x[1] != y[1] ? x[1] < y[1] : (x[2] != y[2] ? x[2] < y[2] : x[3] < y[3]);
+      };
+      // Insertion sort: a vertex is the lowest of a few tetrahedra.
+      for (std::uint32_t k = start[v] + 1; k < start[v + 1]; ++k)
+      {
+        const std::uint32_t moving = sorted[k];
+        std::uint32_t at = k;
+        for (; at > start[v] && before(moving, sorted[at - 1]); --at)
+          sorted[at] = sorted[at - 1];
+        sorted[at] = moving;
+      }
+      for (std::uint32_t k = start[v]; k < start[v + 1]; ++k)
+        newId[sorted[k]] = k;
+    }
+  });
+  IdArray sortedTetrahedra(4 * tets), neighbors(4 * tets);
+  team.forRanges(tets, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      const std::size_t t = sorted[k];
+      std::copy_n(&tetrahedra[4 * t], 4, &sortedTetrahedra[4 * k]);
       for (int i = 0; i < 4; ++i)
       {
-        tetrahedra[to + i] = t4[4 * t + i];
         const std::uint32_t across = mesh.neighbors[4 * t + i];
-        neighbors[to + i] =
-          across == kNoNeighbor ? kNoNeighbor : newId[across >> 2] << 2 | (across & 3);
+        const std::uint32_t to = across == kNoNeighbor
+          ? kNoNeighbor
+          : newId[across >> 2] << 2 | ((moves[across >> 2] >> 2 * (across & 3)) & 3);
+        neighbors[4 * k + ((moves[t] >> 2 * i) & 3)] = to;
       }
     }
   });
-  mesh.tetrahedra.swap(tetrahedra);
+  mesh.tetrahedra.swap(sortedTetrahedra);
   mesh.neighbors.swap(neighbors);
 }
 
@@ -837,21 +882,29 @@ void circumcentres(ThreadTeam& team, const double* xyz, const Triangulation& mes
   });
 }
 
-/// A tetrahedron of each vertex's star (any: the cells do not depend on which).
+/// The lowest-numbered tetrahedron of each vertex's star.
 std::vector<std::uint32_t> starSeeds(
   ThreadTeam& team, const Triangulation& mesh, std::size_t vertices)
 {
-  std::unique_ptr<std::atomic<std::uint32_t>[]> seed(new std::atomic<std::uint32_t>[vertices]);
+  std::unique_ptr<std::atomic<std::uint32_t>[]> lowest(new std::atomic<std::uint32_t>[vertices]);
+  for (std::size_t v = 0; v < vertices; ++v)
+    lowest[v].store(kNone, std::memory_order_relaxed);
   team.forRanges(
     mesh.numberOfTetrahedra(), "stars", [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t)
         for (int i = 0; i < 4; ++i)
-          seed[mesh.tetrahedra[4 * t + i]].store(
-            static_cast<std::uint32_t>(t), std::memory_order_relaxed);
+        {
+          std::atomic<std::uint32_t>& seed = lowest[mesh.tetrahedra[4 * t + i]];
+          std::uint32_t known = seed.load(std::memory_order_relaxed);
+          while (t < known &&
+            !seed.compare_exchange_weak(
+              known, static_cast<std::uint32_t>(t), std::memory_order_relaxed))
+          {}
+        }
     });
   std::vector<std::uint32_t> seeds(vertices);
   for (std::size_t v = 0; v < vertices; ++v)
-    seeds[v] = seed[v].load(std::memory_order_relaxed);
+    seeds[v] = lowest[v].load(std::memory_order_relaxed);
   return seeds;
 }
 
