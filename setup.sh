@@ -7,6 +7,7 @@
 #   ./setup.sh benchmark [sizes] [scaling size]   ... then benchmark Core, the filter,
 #                       vtkDelaunay3D, CGAL and TetGen (sizes default 10000,100000,1000000) into
 #                       output/benchmark.{md,csv,png}, the paper's Table 1 into output/table1.md,
+#                       the Voronoi cells against Voro++ and scipy into output/voronoi.{md,csv},
 #                       and the threads' scaling model (1 to 64 threads, default 4000000 points)
 #                       into output/scaling.{md,csv}
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
@@ -22,10 +23,10 @@ cd "$(dirname "$0")"
 # package needs but does not pull in, an X server for rendering tests, and the test tools.
 packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
-  cmake ninja-build g++ pkg-config clang libclang-rt-14-dev)
+  cmake ninja-build g++ pkg-config clang libclang-rt-14-dev voro++-dev)
 # The benchmark alone compares against CGAL and TetGen (never dependencies of Core or Plugin; both
 # are GPL-family licensed and only linked into the benchmark program) and plots.
-[ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib)
+[ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -60,6 +61,8 @@ case "${1:-build}" in
         "$(echo "${2:-1000000}" | tr ',' '\n' | tail -1)" 2>&1 | grep '^mpi_benchmark'
     done | tee output/mpi-benchmark.txt
     build/bin/Benchmark --table1 --markdown output/table1.md
+    build/bin/Benchmark --voronoi --sizes "${2:-100000,1000000}" --threads 1,2 \
+      --kinds cube,clusters,molshell,lattice --markdown output/voronoi.md --csv output/voronoi.csv
     build/bin/Benchmark --scaling --sizes "${3:-4000000}" --threads 1,2,4,8,16,32,64 \
       --kinds cube,ball,clusters,torus,cylinder,noisyshell,scans,terrain,molshell \
       --markdown output/scaling.md --csv output/scaling.csv
@@ -74,6 +77,7 @@ case "${1:-build}" in
     cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFD3_SANITIZE_THREAD=ON \
       -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
     cmake --build build-tsan --target TestCore -j2
-    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/TestCore --gtest_filter='Threads.*:AddPoints.SameTetrahedra*' ;;
+    TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/TestCore \
+      --gtest_filter='Threads.*:AddPoints.SameTetrahedra*:Voronoi.SameCells*' ;;
   *) echo "usage: $0 [build|demo|test|sanitizers|benchmark [sizes]]" >&2; exit 2 ;;
 esac

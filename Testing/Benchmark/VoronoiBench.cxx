@@ -27,6 +27,7 @@ struct VoronoiSettings
   std::vector<std::string> kinds = {"cube", "clusters", "molshell"};
   std::vector<std::size_t> sizes = {100000, 1000000};
   std::vector<int> threads = {1, 2};
+  double limit = 600; ///< seconds for one run of another method (Voro++ on clusters is slow)
   std::string csvFile, markdownFile;
 };
 
@@ -49,6 +50,8 @@ bool parse(int argc, char* argv[], VoronoiSettings& settings)
       else
         settings.threads.assign(numbers.begin(), numbers.end());
     }
+    else if (key == "--limit")
+      settings.limit = std::stod(value);
     else if (key == "--csv")
       settings.csvFile = value;
     else if (key == "--markdown")
@@ -178,7 +181,7 @@ int voronoiMain(int argc, char* argv[])
       for (const int t : settings.threads)
         rows.push_back({"Core-" + std::to_string(t), measure([&] { return runCore(p, t); }, 1e9)});
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-      rows.push_back({"Voro++", measure([&] { return runVoropp(p); }, 1e9)});
+      rows.push_back({"Voro++", measure([&] { return runVoropp(p); }, settings.limit)});
 #endif
       rows.push_back({"scipy", runScipy(p, script)});
       double voropp = 0;

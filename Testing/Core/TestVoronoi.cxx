@@ -184,9 +184,15 @@ INSTANTIATE_TEST_SUITE_P(Voronoi, VoronoiSets,
   ::testing::Values(
     "cube", "ball", "lattice", "clusters", "torus", "planes", "boxboundary", "latlong", "sphere"));
 
+#ifdef FD3_THREAD_SANITIZER
+constexpr std::size_t kThreadTestPoints = 6000; // the thread sanitizer is slow
+#else
+constexpr std::size_t kThreadTestPoints = 40000;
+#endif
+
 TEST(Voronoi, SameCellsForAnyThreadCount)
 {
-  const fd3test::Points xyz = fd3test::generate("clusters", 40000, 3);
+  const fd3test::Points xyz = fd3test::generate("clusters", kThreadTestPoints, 3);
   const fd3::VoronoiCells one = cellsOf(xyz, 1);
   for (const int threads : {2, 5, 64})
   {
