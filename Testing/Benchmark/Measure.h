@@ -157,6 +157,52 @@ inline std::vector<std::string> split(const std::string& s)
   return out;
 }
 
+/// The options that `--scaling` and `--voronoi` share; defaults are each mode's.
+struct RunSettings
+{
+  std::vector<std::string> kinds;
+  std::vector<std::size_t> sizes;
+  std::vector<int> threads;
+  double limit = 1e9; ///< seconds for one run
+  std::string csvFile, markdownFile;
+};
+
+/// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--limit S] [--csv F] [--markdown F]
+/// into `settings`, skipping the mode's own `flag`; false (with a message) on any other option.
+inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettings& settings)
+{
+  for (int i = 1; i < argc; i += 2)
+  {
+    const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
+    if (key == flag)
+      --i;
+    else if (key == "--kinds")
+      settings.kinds = split(value);
+    else if (key == "--sizes" || key == "--threads")
+    {
+      std::vector<std::size_t> numbers;
+      for (const std::string& s : split(value))
+        numbers.push_back(static_cast<std::size_t>(std::stod(s)));
+      if (key == "--sizes")
+        settings.sizes = numbers;
+      else
+        settings.threads.assign(numbers.begin(), numbers.end());
+    }
+    else if (key == "--limit")
+      settings.limit = std::stod(value);
+    else if (key == "--csv")
+      settings.csvFile = value;
+    else if (key == "--markdown")
+      settings.markdownFile = value;
+    else
+    {
+      std::fprintf(stderr, "unknown option %s\n", key.c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
 /// CPU model, hardware threads and memory.
 inline std::string machineName()
 {

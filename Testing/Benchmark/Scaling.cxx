@@ -172,48 +172,7 @@ void row(const std::string& kind, std::size_t n, int threads, const Measurement&
             << 100 * serialFraction << "%, " << m.note << "\n";
 }
 
-struct ScalingSettings
-{
-  std::vector<std::string> kinds = fd3test::pointSetNames();
-  std::vector<std::size_t> sizes = {1000000};
-  std::vector<int> threads = {1, 2, 4, 8, 16, 32, 64};
-  std::string csvFile, markdownFile;
-};
-
-/// The settings of the command line; false (with a message) on an unknown option.
-bool parse(int argc, char* argv[], ScalingSettings& settings)
-{
-  for (int i = 1; i < argc; i += 2)
-  {
-    const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
-    if (key == "--scaling")
-      --i;
-    else if (key == "--kinds")
-      settings.kinds = split(value);
-    else if (key == "--sizes" || key == "--threads")
-    {
-      std::vector<std::size_t> numbers;
-      for (const std::string& s : split(value))
-        numbers.push_back(static_cast<std::size_t>(std::stod(s)));
-      if (key == "--sizes")
-        settings.sizes = numbers;
-      else
-        settings.threads.assign(numbers.begin(), numbers.end());
-    }
-    else if (key == "--csv")
-      settings.csvFile = value;
-    else if (key == "--markdown")
-      settings.markdownFile = value;
-    else
-    {
-      std::cerr << "unknown option " << key << "\n";
-      return false;
-    }
-  }
-  return true;
-}
-
-int scaling(const ScalingSettings& settings)
+int scaling(const RunSettings& settings)
 {
   std::vector<int> threads = settings.threads;
   if (std::find(threads.begin(), threads.end(), 1) == threads.end())
@@ -225,9 +184,10 @@ int scaling(const ScalingSettings& settings)
     {
       const fd3test::Points p = fd3test::generate(kind, size, 1);
       const std::size_t n = p.size() / 3;
-      const Measurement one = measure([&] { return runModel(p, 1); }, 1e9);
+      const Measurement one = measure([&] { return runModel(p, 1); }, settings.limit);
       for (const int t : threads)
-        row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, 1e9), one, md, csv);
+        row(kind, n, t, t == 1 ? one : measure([&] { return runModel(p, t); }, settings.limit), one,
+          md, csv);
     }
   writeReport(md, csv, settings.markdownFile, settings.csvFile);
   return 0;
@@ -236,8 +196,11 @@ int scaling(const ScalingSettings& settings)
 
 int scalingMain(int argc, char* argv[])
 {
-  ScalingSettings settings;
-  return parse(argc, argv, settings) ? scaling(settings) : 2;
+  RunSettings settings;
+  settings.kinds = fd3test::pointSetNames();
+  settings.sizes = {1000000};
+  settings.threads = {1, 2, 4, 8, 16, 32, 64};
+  return parseRunSettings(argc, argv, "--scaling", settings) ? scaling(settings) : 2;
 }
 
 } // namespace fd3bench

@@ -6,7 +6,8 @@ namespace fd3bench
 {
 
 /// The command line of the scaling model, as `Benchmark --scaling` and `ScalingModel` take it:
-///   [--kinds K1,K2] [--sizes N1,N2] [--threads 1,2,4,...] [--csv FILE] [--markdown FILE]
+///   [--kinds K1,K2] [--sizes N1,N2] [--threads 1,2,4,...] [--limit SECONDS] [--csv FILE]
+///   [--markdown FILE]
 /// ("--scaling" itself is skipped). Runs Core on every kind, size and thread count, and writes
 /// the model's table; 2 on an unknown option.
 int scalingMain(int argc, char* argv[]);

@@ -22,49 +22,6 @@ namespace fd3bench
 {
 namespace
 {
-struct VoronoiSettings
-{
-  std::vector<std::string> kinds = {"cube", "clusters", "molshell"};
-  std::vector<std::size_t> sizes = {100000, 1000000};
-  std::vector<int> threads = {1, 2};
-  double limit = 600; ///< seconds for one run of another method (Voro++ on clusters is slow)
-  std::string csvFile, markdownFile;
-};
-
-bool parse(int argc, char* argv[], VoronoiSettings& settings)
-{
-  for (int i = 1; i < argc; i += 2)
-  {
-    const std::string key = argv[i], value = i + 1 < argc ? argv[i + 1] : "";
-    if (key == "--voronoi")
-      --i;
-    else if (key == "--kinds")
-      settings.kinds = split(value);
-    else if (key == "--sizes" || key == "--threads")
-    {
-      std::vector<std::size_t> numbers;
-      for (const std::string& s : split(value))
-        numbers.push_back(static_cast<std::size_t>(std::stod(s)));
-      if (key == "--sizes")
-        settings.sizes = numbers;
-      else
-        settings.threads.assign(numbers.begin(), numbers.end());
-    }
-    else if (key == "--limit")
-      settings.limit = std::stod(value);
-    else if (key == "--csv")
-      settings.csvFile = value;
-    else if (key == "--markdown")
-      settings.markdownFile = value;
-    else
-    {
-      std::cerr << "unknown option " << key << "\n";
-      return false;
-    }
-  }
-  return true;
-}
-
 std::array<double, 6> boundsOf(const fd3test::Points& p)
 {
   std::array<double, 6> b = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
@@ -157,8 +114,12 @@ Measurement runScipy(const fd3test::Points& p, const std::string& script)
 
 int voronoiMain(int argc, char* argv[])
 {
-  VoronoiSettings settings;
-  if (!parse(argc, argv, settings))
+  RunSettings settings;
+  settings.kinds = {"cube", "clusters", "molshell"};
+  settings.sizes = {100000, 1000000};
+  settings.threads = {1, 2};
+  settings.limit = 600; // Voro++ on clustered points is slow
+  if (!parseRunSettings(argc, argv, "--voronoi", settings))
     return 2;
   const std::string script = std::string(FD3_BENCHMARK_SOURCE_DIR) + "/scipy_voronoi.py";
   std::ostringstream md, csv;
