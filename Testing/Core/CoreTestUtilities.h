@@ -7,6 +7,14 @@
 
 namespace fd3test
 {
+/// Points per set in the tests that run on many threads (fewer under the thread sanitizer, which
+/// is slow).
+#ifdef FD3_THREAD_SANITIZER
+constexpr std::size_t kThreadTestPoints = 6000;
+#else
+constexpr std::size_t kThreadTestPoints = 40000;
+#endif
+
 /// The exact frame of a whole point set, as a distributed run computes it from every piece.
 inline fd3::Frame frameOf(const Points& p)
 {

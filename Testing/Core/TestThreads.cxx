@@ -2,6 +2,7 @@
 // here), exactly valid, on every point set of the benchmark; region passes where they pay, locking
 // passes where they do not; progress from the calling thread only; abort and failures stop every
 // thread and leave nothing behind. The thread sanitizer build runs these too.
+#include "CoreTestUtilities.h"
 #include "ExactValidator.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
@@ -23,11 +24,7 @@ fd3::Triangulation run(const fd3test::Points& p, int threads)
   return fd3::triangulate(p.data(), p.size() / 3, options);
 }
 
-#ifdef FD3_THREAD_SANITIZER
-constexpr std::size_t kPoints = 6000; // the thread sanitizer is slow
-#else
-constexpr std::size_t kPoints = 40000;
-#endif
+constexpr std::size_t kPoints = fd3test::kThreadTestPoints;
 
 TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
 {

@@ -4,6 +4,7 @@
 // generators or on its box wall, the generator nearest each cell's centroid, the volumes adding
 // up to the box's; the same cells for any thread count; bad input; and, where Voro++ is
 // installed, the volumes of Voro++'s cells to 1e-9.
+#include "CoreTestUtilities.h"
 #include "PointSets.h"
 #include "fd3/Voronoi.h"
 
@@ -184,15 +185,9 @@ INSTANTIATE_TEST_SUITE_P(Voronoi, VoronoiSets,
   ::testing::Values(
     "cube", "ball", "lattice", "clusters", "torus", "planes", "boxboundary", "latlong", "sphere"));
 
-#ifdef FD3_THREAD_SANITIZER
-constexpr std::size_t kThreadTestPoints = 6000; // the thread sanitizer is slow
-#else
-constexpr std::size_t kThreadTestPoints = 40000;
-#endif
-
 TEST(Voronoi, SameCellsForAnyThreadCount)
 {
-  const fd3test::Points xyz = fd3test::generate("clusters", kThreadTestPoints, 3);
+  const fd3test::Points xyz = fd3test::generate("clusters", fd3test::kThreadTestPoints, 3);
   const fd3::VoronoiCells one = cellsOf(xyz, 1);
   for (const int threads : {2, 5, 64})
   {
