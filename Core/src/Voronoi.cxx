@@ -179,7 +179,7 @@ public:
   void build(std::uint32_t generator, Stretch& out)
   {
     gatherStar(generator);
-    traceFaces(generator);
+    traceFaces();
     bool inside = true;
     for (const StarTet& s : star_)
       inside = inside && s.inBox;
@@ -278,7 +278,7 @@ private:
 
   /// The ring of star tetrahedra about each edge (p, q), turning counter-clockwise about p -> q,
   /// into loops_ / faceStart_ / neighbors_, each from the tetrahedron that first showed q.
-  void traceFaces(std::uint32_t p)
+  void traceFaces()
   {
     loops_.clear();
     faceStart_.assign(1, 0);
@@ -296,7 +296,6 @@ private:
       faceStart_.push_back(static_cast<std::uint32_t>(loops_.size()));
       neighbors_.push_back(q);
     }
-    (void)p;
   }
 
   const double* centre(std::uint32_t t) const { return &centres_[3 * std::size_t(t)]; }
@@ -341,23 +340,10 @@ private:
       const std::uint32_t size = faceStart_[f + 1] - faceStart_[f];
       out.faceSizes.push_back(size);
       out.neighbors.push_back(inputId(neighbors_[f]));
-      // The face's Newell vector, from the generator (see addFace), as its vertices go out.
-      double n[3] = {0, 0, 0}, first[3], a[3];
-      for (std::uint32_t k = 0; k <= size; ++k)
+      const std::uint32_t* ring = &loops_[faceStart_[f]];
+      for (std::uint32_t k = 0; k < size; ++k)
       {
-        StarTet& s = star_[loops_[faceStart_[f] + (k < size ? k : 0)]];
-        const double b[3] = {s.centre[0] - g[0], s.centre[1] - g[1], s.centre[2] - g[2]};
-        if (k > 0)
-        {
-          n[0] += a[1] * b[2] - a[2] * b[1];
-          n[1] += a[2] * b[0] - a[0] * b[2];
-          n[2] += a[0] * b[1] - a[1] * b[0];
-        }
-        else
-          std::copy_n(b, 3, first);
-        std::copy_n(b, 3, a);
-        if (k == size)
-          break;
+        StarTet& s = star_[ring[k]];
         if (!s.owned)
           vertices[at++] = s.tet;
         else
@@ -371,8 +357,8 @@ private:
           vertices[at++] = kOwnVertex | s.own;
         }
       }
-      sixVolume += n[0] * first[0] + n[1] * first[1] + n[2] * first[2];
-      twiceArea += std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      addFace(
+        g, size, [&](std::uint32_t k) { return star_[ring[k]].centre; }, sixVolume, twiceArea);
     }
     out.volumes.push_back(sixVolume / 6);
     out.areas.push_back(twiceArea / 2);
