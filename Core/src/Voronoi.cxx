@@ -9,7 +9,7 @@
 //    the box.
 // 2. The tetrahedra are renumbered in an order that the points alone decide (the mesh's own
 //    varies with the thread count), and that keeps a star in a few stretches of memory.
-// 3. Every tetrahedron's circumcentre, once (from its vertices in the order of their ids, in
+// 3. Every tetrahedron's circumcentre, once (from its vertices in their sorted order, in
 //    double-double where the tetrahedron is flat).
 // 4. Per generator, along the curve, on the threads, a stretch of generators each (the cells do
 //    not depend on how they are split):
@@ -30,6 +30,7 @@
 #include "fd3/Voronoi.h"
 
 #include "DoubleDouble.h"
+#include "Geometry.h"
 #include "InsertionOrder.h"
 #include "Threads.h"
 #include "fd3/Measures.h"
@@ -216,11 +217,8 @@ private:
   {
     return neighbor < inputId_.size() ? inputId_[neighbor] : neighbor;
   }
-  /// The lowest vertex of t, whose cell owns its circumcentre.
-  std::uint32_t owner(std::uint32_t t) const
-  {
-    return std::min(std::min(vertex(t, 0), vertex(t, 1)), std::min(vertex(t, 2), vertex(t, 3)));
-  }
+  /// The lowest vertex of t, whose cell owns its circumcentre: the first (sortTetrahedra).
+  std::uint32_t owner(std::uint32_t t) const { return vertex(t, 0); }
   static int localIndex(const std::uint32_t* vertices, std::uint32_t v)
   {
     return (vertices[1] == v) + 2 * (vertices[2] == v) + 3 * (vertices[3] == v);
@@ -269,7 +267,7 @@ private:
       }
       StarTet& s = star_[i];
       s.generator = static_cast<std::uint8_t>(ip);
-      s.owned = std::min(std::min(v[0], v[1]), std::min(v[2], v[3])) == p;
+      s.owned = v[0] == p; // its lowest vertex
       s.inBox = inBox_[t];
       s.own = kNone;
       std::copy_n(centre(t), 3, s.centre);
@@ -587,24 +585,20 @@ private:
   std::vector<bool> capUsed_;
 };
 
-/// The bounding box of the finite points; false when there is none.
+/// The bounding box of the finite points, in VTK's order; false when there is none.
 bool finiteBounds(const double* xyz, std::size_t count, std::array<double, 6>& bounds)
 {
-  bounds = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
-  bool any = false;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double* p = xyz + 3 * i;
-    if (!isFinite(p))
-      continue;
-    any = true;
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = std::min(bounds[2 * a], p[a]);
-      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], p[a]);
-    }
-  }
-  return any;
+  std::size_t i = 0;
+  while (i < count && !isFinite(xyz + 3 * i))
+    ++i;
+  if (i == count)
+    return false;
+  Box box = Box::around(xyz + 3 * i);
+  for (; i < count; ++i)
+    if (isFinite(xyz + 3 * i))
+      box.include(xyz + 3 * i);
+  bounds = {box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2], box.hi[2]};
+  return true;
 }
 
 bool isBox(const std::array<double, 6>& b)
@@ -856,12 +850,11 @@ void circumcentres(ThreadTeam& team, const double* xyz, const Triangulation& mes
   team.forRanges(tets, "circumcentres", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
     {
-      // From the vertices in the order of their ids, which the thread count does not change.
-      std::uint32_t ids[4] = {t4[4 * t], t4[4 * t + 1], t4[4 * t + 2], t4[4 * t + 3]};
-      std::sort(ids, ids + 4);
+      // From the vertices in their sorted order (sortTetrahedra), which the thread count does
+      // not change, so neither does the centre's rounding.
       double* x = &centres[3 * t];
-      std::copy_n(xyz + 3 * std::size_t(ids[0]), 3, x);
-      addScaledCircumcentre(xyz, ids, x);
+      std::copy_n(xyz + 3 * std::size_t(t4[4 * t]), 3, x);
+      addScaledCircumcentre(xyz, t4 + 4 * t, x);
       inBox[t] = x[0] >= box[0] && x[0] <= box[1] && x[1] >= box[2] && x[1] <= box[3] &&
         x[2] >= box[4] && x[2] <= box[5];
     }
