@@ -610,9 +610,11 @@ bool isBox(const std::array<double, 6>& b)
 }
 
 /// The input's points along a Hilbert curve through their bounding box (exact copies in the
-/// order of their ids, the points that are not finite last), then the corners of a cube about the
-/// points and the box (see the top of this file). Neighbouring points, and so the tetrahedra
-/// between them, then lie near each other in memory.
+/// order of their ids): the generators, then the points that only bound their cells (so that a
+/// tetrahedron with a generator has one as its lowest vertex, the owner of its centre), then the
+/// points that are not finite; then the corners of a cube about the points and the box (see the
+/// top of this file). Neighbouring points, and so the tetrahedra between them, then lie near each
+/// other in memory.
 struct CurvePoints
 {
   std::vector<double> xyz;            ///< empty when the corners are not finite
@@ -620,7 +622,7 @@ struct CurvePoints
 };
 
 CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
-  const std::array<double, 6>& points, const std::array<double, 6>& box)
+  std::size_t generators, const std::array<double, 6>& points, const std::array<double, 6>& box)
 {
   double both[6], centre[3], scale[3];
   const double cells = double(1u << kHilbertBits);
@@ -658,6 +660,8 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
           cell[a] = static_cast<std::uint32_t>(
             std::min(cells - 1, std::max(0.0, (p[a] - points[2 * a]) * scale[a])));
         position = hilbertIndex(cell[0], cell[1], cell[2]);
+        if (i >= generators) // after every generator: see circumcentres' owners
+          position |= std::uint64_t(1) << (3 * kHilbertBits);
       }
       keys[i] = position << 31 | i; // ids below 2^30
     }
@@ -975,7 +979,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   }
   cells.box = isBox(options.box) ? options.box : bounds;
   ThreadTeam team(boundedThreads(options.threads));
-  const CurvePoints curve = alongCurve(team, xyz, count, bounds, cells.box);
+  const CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
   if (curve.xyz.empty())
   {
     cells.status = Status::OutOfRange;
@@ -1002,7 +1006,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   const std::vector<std::uint32_t> seeds = starSeeds(team, mesh, count + kFarPoints);
   std::vector<std::uint32_t> vertices; // the generators, as the mesh numbers them
   for (std::uint32_t v = 0; v < count; ++v)
-    if (mesh.representative[v] == v)
+    if (mesh.representative[v] == v && curve.inputId[v] < options.generators)
       vertices.push_back(v);
   cells.generators.resize(vertices.size());
   for (std::size_t c = 0; c < vertices.size(); ++c)

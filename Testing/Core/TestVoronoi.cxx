@@ -202,6 +202,96 @@ TEST(Voronoi, SameCellsForAnyThreadCount)
   }
 }
 
+/// Each cell's vertex centroid, by generator.
+std::map<std::uint32_t, Vec> vertexCentroids(const fd3::VoronoiCells& v)
+{
+  std::map<std::uint32_t, Vec> centroids;
+  for (std::size_t c = 0; c < v.numberOfCells(); ++c)
+  {
+    std::set<std::uint32_t> ids(v.faceVertices.begin() + v.faceStart[v.cellFaces[c]],
+      v.faceVertices.begin() + v.faceStart[v.cellFaces[c + 1]]);
+    Vec sum = {0, 0, 0};
+    for (const std::uint32_t id : ids)
+      for (int k = 0; k < 3; ++k)
+        sum[k] += v.points[3 * id + k] / double(ids.size());
+    centroids[v.generators[c]] = sum;
+  }
+  return centroids;
+}
+
+// A piece of a distributed point set: its own points, then their Delaunay neighbours in the whole
+// set (the least that another piece's halo brings), give its points' cells in the whole set.
+TEST(Voronoi, CellsOfAPieceFromItsPointsAndTheirNeighbours)
+{
+  const fd3test::Points xyz = fd3test::generate("clusters", 4000, 9);
+  const std::size_t n = xyz.size() / 3;
+  const std::array<double, 6> box = {-0.1, 1.1, -0.1, 1.1, -0.1, 1.1};
+  const fd3::VoronoiCells whole = cellsOf(xyz, 1, box);
+  ASSERT_EQ(whole.status, fd3::Status::Ok);
+  const fd3::Triangulation mesh = fd3::triangulate(xyz.data(), n, fd3::Options());
+  ASSERT_EQ(mesh.status, fd3::Status::Ok);
+
+  // The piece: the points with x below 0.4, then their neighbours, in the order of the whole.
+  std::vector<std::uint32_t> own, ghosts;
+  std::vector<bool> isOwn(n), isGhost(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (xyz[3 * i] < 0.4)
+    {
+      own.push_back(std::uint32_t(i));
+      isOwn[i] = true;
+    }
+  for (std::size_t t = 0; t < mesh.numberOfTetrahedra(); ++t)
+  {
+    const std::uint32_t* v = &mesh.tetrahedra[4 * t];
+    if (std::any_of(v, v + 4, [&](std::uint32_t p) { return isOwn[p]; }))
+      for (int k = 0; k < 4; ++k)
+        isGhost[v[k]] = !isOwn[v[k]];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (isGhost[i])
+      ghosts.push_back(std::uint32_t(i));
+  ASSERT_GT(ghosts.size(), 50u);
+  ASSERT_LT(own.size() + ghosts.size(), n / 2 + n / 4);
+  std::vector<std::uint32_t> wholeId = own; // of each point of the piece
+  wholeId.insert(wholeId.end(), ghosts.begin(), ghosts.end());
+  std::vector<double> piece;
+  for (const std::uint32_t i : wholeId)
+    piece.insert(piece.end(), &xyz[3 * i], &xyz[3 * i + 3]);
+
+  fd3::VoronoiOptions options;
+  options.box = box;
+  options.generators = own.size();
+  const fd3::VoronoiCells part = fd3::voronoiCells(piece.data(), wholeId.size(), options);
+  ASSERT_EQ(part.status, fd3::Status::Ok);
+  ASSERT_EQ(part.numberOfCells(), own.size());
+  std::map<std::uint32_t, std::size_t> cellOf;
+  for (std::size_t c = 0; c < whole.numberOfCells(); ++c)
+    cellOf[whole.generators[c]] = c;
+  const std::map<std::uint32_t, Vec> wholeCentroids = vertexCentroids(whole);
+  const std::map<std::uint32_t, Vec> partCentroids = vertexCentroids(part);
+  const double cellVolume = boxVolume(box) / double(n);
+  for (std::size_t c = 0; c < part.numberOfCells(); ++c)
+  {
+    const std::uint32_t p = wholeId[part.generators[c]];
+    ASSERT_LT(part.generators[c], own.size());
+    const std::size_t w = cellOf.at(p);
+    EXPECT_NEAR(part.volumes[c], whole.volumes[w], 1e-12 * cellVolume) << "point " << p;
+    EXPECT_NEAR(part.areas[c], whole.areas[w], 1e-12 * std::cbrt(cellVolume * cellVolume));
+    EXPECT_EQ(part.numberOfNeighbors(c), whole.numberOfNeighbors(w)) << "point " << p;
+    std::multiset<std::uint32_t> wholeNeighbors, partNeighbors;
+    for (std::size_t f = whole.cellFaces[w]; f < whole.cellFaces[w + 1]; ++f)
+      wholeNeighbors.insert(whole.faceNeighbors[f]);
+    for (std::size_t f = part.cellFaces[c]; f < part.cellFaces[c + 1]; ++f)
+    {
+      const std::uint32_t q = part.faceNeighbors[f];
+      partNeighbors.insert(q < fd3::kBoxFace ? wholeId[q] : q);
+    }
+    EXPECT_EQ(partNeighbors, wholeNeighbors) << "point " << p;
+    for (int k = 0; k < 3; ++k) // the output's vertices, not only the volumes, are the cell's
+      EXPECT_NEAR(partCentroids.at(part.generators[c])[k], wholeCentroids.at(p)[k], 1e-12);
+  }
+}
+
 TEST(Voronoi, BoxSmallerAndLargerThanThePoints)
 {
   const fd3test::Points xyz = fd3test::generate("ball", 2000, 5);

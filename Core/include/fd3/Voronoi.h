@@ -11,6 +11,7 @@
 #include "fd3/Delaunay.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -31,10 +32,15 @@ struct VoronoiOptions
   int threads = 1;
   /// As Options::progress, for the tetrahedralization.
   std::function<bool(double)> progress;
+  /// How many input points, from the first, get cells (all, by default). The others only bound
+  /// those cells: they are the neighbours that the other pieces of a distributed point set send.
+  /// A cell is its generator's in the whole set when every Delaunay neighbour of its generator in
+  /// the whole set is among the points.
+  std::size_t generators = SIZE_MAX;
 };
 
 /// One cell per generator: each distinct finite input point (duplicates are merged into the first
-/// of their copies, as triangulate() merges them). A generator whose region misses the box has a
+/// of their copies, as triangulate() merges them) among the first VoronoiOptions::generators. A generator whose region misses the box has a
 /// cell without faces, of volume 0.
 struct VoronoiCells
 {
