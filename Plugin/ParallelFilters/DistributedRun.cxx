@@ -1,0 +1,838 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+#include "DistributedRun.h"
+
+#include "vtkArrayDispatch.h"
+#include "vtkCellArray.h"
+#include "vtkCommunicator.h"
+#include "vtkDIYUtilities.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDataSetAttributesFieldList.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "fd3/Distributed.h"
+#include "fd3/Measures.h"
+
+// clang-format off
+#include "vtk_diy2.h"
+#include VTK_DIY2(diy/assigner.hpp)
+#include VTK_DIY2(diy/link.hpp)
+#include VTK_DIY2(diy/master.hpp)
+#include VTK_DIY2(diy/mpi.hpp)
+// clang-format on
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fd3vtk
+{
+/// A split of space into parts, one per rank: a k-d tree whose leaves are ranks.
+class SpaceCuts
+{
+public:
+  using Point = std::array<double, 3>;
+
+  /// The tree of ranks [first, first + ranks) over the points [begin, end): those below the cut
+  /// go to the first ranks / 2 ranks, in proportion. Returns the node, or -(rank + 1) for a leaf.
+  int Split(
+    std::vector<Point>::iterator begin, std::vector<Point>::iterator end, int first, int ranks)
+  {
+    if (ranks == 1)
+    {
+      return -(first + 1);
+    }
+    Point lo = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+    for (auto p = begin; p != end; ++p)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], (*p)[a]);
+        hi[a] = std::max(hi[a], (*p)[a]);
+      }
+    }
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+    {
+      axis = hi[a] - lo[a] > hi[axis] - lo[axis] ? a : axis;
+    }
+    const int lower = ranks / 2;
+    const auto quantile = begin + (end - begin) * lower / ranks;
+    std::nth_element(
+      begin, quantile, end, [axis](const Point& a, const Point& b) { return a[axis] < b[axis]; });
+    const double at = quantile == end ? HUGE_VAL : (*quantile)[axis];
+    const auto split = std::partition(begin, end, [&](const Point& p) { return p[axis] < at; });
+    const int node = static_cast<int>(this->Nodes.size());
+    this->Nodes.push_back({ axis, at, 0, 0 });
+    const int below = this->Split(begin, split, first, lower);
+    const int above = this->Split(split, end, first + lower, ranks - lower);
+    this->Nodes[node].Below = below;
+    this->Nodes[node].Above = above;
+    return node;
+  }
+
+  int RankOf(const double x[3]) const
+  {
+    int node = 0;
+    while (node >= 0)
+    {
+      const Cut& cut = this->Nodes[node];
+      node = x[cut.Axis] < cut.At ? cut.Below : cut.Above;
+    }
+    return -node - 1;
+  }
+
+private:
+  struct Cut
+  {
+    int Axis;
+    double At;
+    int Below, Above;
+  };
+  std::vector<Cut> Nodes;
+};
+
+namespace
+{
+/// The point ids `ids` as a vtkIdList.
+template <typename Id>
+vtkSmartPointer<vtkIdList> IdList(const std::vector<Id>& ids)
+{
+  auto list = vtkSmartPointer<vtkIdList>::New();
+  list->SetNumberOfIds(static_cast<vtkIdType>(ids.size()));
+  std::copy(ids.begin(), ids.end(), list->begin());
+  return list;
+}
+
+/// `points`, one for each of `from`, with the point data of `from`.
+vtkSmartPointer<vtkPolyData> WithPointData(vtkPoints* points, vtkPointData* data, vtkIdList* from)
+{
+  vtkNew<vtkIdList> to;
+  to->SetNumberOfIds(from->GetNumberOfIds());
+  std::iota(to->begin(), to->end(), vtkIdType(0));
+  auto subset = vtkSmartPointer<vtkPolyData>::New();
+  subset->SetPoints(points);
+  subset->GetPointData()->CopyAllocate(data, from->GetNumberOfIds());
+  subset->GetPointData()->CopyData(data, from, to);
+  return subset;
+}
+
+/// The points `ids`, from their coordinates (3 components) and point data, as points of `type`.
+vtkSmartPointer<vtkPolyData> Subset(
+  vtkDataArray* coordinates, vtkPointData* data, const std::vector<vtkIdType>& ids, int type)
+{
+  vtkSmartPointer<vtkIdList> from = IdList(ids);
+  vtkNew<vtkPoints> points;
+  points->SetDataType(type);
+  points->SetNumberOfPoints(from->GetNumberOfIds());
+  coordinates->GetTuples(from, points->GetData());
+  return WithPointData(points, data, from);
+}
+
+vtkSmartPointer<vtkPolyData> Subset(vtkPointSet* source, const std::vector<vtkIdType>& ids)
+{
+  vtkPoints* points = source->GetPoints();
+  return Subset(points->GetData(), source->GetPointData(), ids, points->GetDataType());
+}
+
+/// Calls visit(i, x) for every point i of a 3-component array, x its coordinates as doubles,
+/// without a virtual call per point.
+struct VisitPoints
+{
+  template <typename Array, typename Visit>
+  void operator()(Array* coordinates, Visit&& visit) const
+  {
+    vtkIdType i = 0;
+    for (const auto tuple : vtk::DataArrayTupleRange<3>(coordinates))
+    {
+      const double x[3] = { static_cast<double>(tuple[0]), static_cast<double>(tuple[1]),
+        static_cast<double>(tuple[2]) };
+      visit(i++, x);
+    }
+  }
+};
+
+template <typename Visit>
+void ForEachPoint(vtkDataArray* coordinates, Visit&& visit)
+{
+  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  if (!Reals::Execute(coordinates, VisitPoints{}, visit))
+  {
+    VisitPoints{}(coordinates, visit);
+  }
+}
+
+/// Appends the coordinates of a 3-component array to xyz.
+void AppendPoints(vtkDataArray* coordinates, Coordinates& xyz)
+{
+  ForEachPoint(
+    coordinates, [&xyz](vtkIdType, const double x[3]) { xyz.insert(xyz.end(), x, x + 3); });
+}
+
+/// The point data of `parts` one after the other: the arrays that all of them have, as
+/// vtkAppendFilter keeps them.
+vtkSmartPointer<vtkPointData> GatherPointData(const std::vector<vtkPointData*>& parts)
+{
+  vtkDataSetAttributesFieldList arrays(static_cast<int>(parts.size()));
+  vtkIdType count = 0;
+  for (vtkPointData* part : parts)
+  {
+    part == parts[0] ? arrays.InitializeFieldList(part) : arrays.IntersectFieldList(part);
+    count += part->GetNumberOfTuples();
+  }
+  auto data = vtkSmartPointer<vtkPointData>::New();
+  data->CopyAllocate(arrays, count);
+  vtkIdType next = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+  {
+    const vtkIdType n = parts[k]->GetNumberOfTuples();
+    arrays.CopyData(static_cast<int>(k), parts[k], 0, n, data, next);
+    next += n;
+  }
+  return data;
+}
+
+/// Marks the point ids from `first` on that the cells use: used[id - first] = 0.
+struct MarkIdsFrom
+{
+  template <typename Array>
+  void operator()(Array* ids, std::size_t first, std::vector<vtkIdType>& used) const
+  {
+    for (const auto id : vtk::DataArrayValueRange<1>(ids))
+    {
+      if (static_cast<std::size_t>(id) >= first)
+      {
+        used[static_cast<std::size_t>(id) - first] = 0;
+      }
+    }
+  }
+};
+
+/// Replaces the cells' point ids from `first` on by newId[id - first].
+struct RenumberIdsFrom
+{
+  template <typename Array>
+  void operator()(Array* ids, std::size_t first, const std::vector<vtkIdType>& newId) const
+  {
+    using Id = vtk::GetAPIType<Array>;
+    for (auto&& id : vtk::DataArrayValueRange<1>(ids))
+    {
+      if (static_cast<std::size_t>(id) >= first)
+      {
+        id = static_cast<Id>(newId[static_cast<std::size_t>(id) - first]);
+      }
+    }
+  }
+};
+
+/// Runs `worker` on the cells' connectivity array, without a virtual call per id.
+template <typename Worker, typename... Args>
+void OnCellIds(vtkCellArray* cells, Worker worker, Args&... args)
+{
+  using Ids = vtkArrayDispatch::DispatchByArray<vtkCellArray::StorageArrayList>;
+  vtkDataArray* connectivity = cells->GetConnectivityArray();
+  if (!Ids::Execute(connectivity, worker, args...))
+  {
+    worker(connectivity, args...);
+  }
+}
+
+/// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
+/// which catches what it throws; then every rank learns whether all got through, before any
+/// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the
+/// others waiting in a collective call: all of them stop after the same step.
+
+/// The input pieces' point ids in rank order, as the "GlobalIds" array of each point.
+vtkSmartPointer<vtkPointData> InputData(vtkDataSet* input, vtkIdType count, vtkIdType firstId)
+{
+  auto data = vtkSmartPointer<vtkPointData>::New();
+  if (input)
+  {
+    data->ShallowCopy(input->GetPointData());
+    data->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  }
+  vtkNew<vtkIdTypeArray> inputIds;
+  inputIds->SetName(kInputIds);
+  inputIds->SetNumberOfValues(count);
+  std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + count, firstId);
+  data->AddArray(inputIds);
+  return data;
+}
+
+/// One rank's figures, then all ranks' together (Reduce()): counts are summed, with each vertex
+/// and tetrahedron counted by its owner; times and the status are the slowest or best rank's.
+struct RankFigures
+{
+  fd3::Statistics Stats;
+  double MeshInsertions = 0; ///< vertices of the rank's mesh, ghosts included
+  double Ghosts = 0;         ///< points received
+  double StatusRank = 0;     ///< the index of the rank's status in kByRank
+
+  /// The order of the statuses across ranks: the whole is Ok when any rank has tetrahedra, else
+  /// the most telling. A failed check or an abort never gets here.
+  static constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
+    fd3::Status::Degenerate, fd3::Status::Ok };
+
+  void Reduce(vtkMultiProcessController* controller)
+  {
+    std::vector<double> sums;
+    for (auto field : fd3::Statistics::counts())
+    {
+      sums.push_back(double(this->Stats.*field));
+    }
+    sums.insert(sums.end(), { this->MeshInsertions, this->Ghosts });
+    std::vector<double> maxima = { double(this->Stats.maxWalkSteps) };
+    for (auto field : fd3::Statistics::seconds())
+    {
+      maxima.push_back(this->Stats.*field);
+    }
+    maxima.push_back(this->StatusRank);
+    std::vector<double> total(sums.size()), slowest(maxima.size());
+    controller->AllReduce(sums.data(), total.data(), sums.size(), vtkCommunicator::SUM_OP);
+    controller->AllReduce(maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
+
+    auto sum = total.begin();
+    for (auto field : fd3::Statistics::counts())
+    {
+      this->Stats.*field = static_cast<std::size_t>(*sum++);
+    }
+    this->MeshInsertions = *sum++;
+    this->Ghosts = *sum++;
+    auto largest = slowest.begin();
+    this->Stats.maxWalkSteps = static_cast<std::size_t>(*largest++);
+    for (auto field : fd3::Statistics::seconds())
+    {
+      this->Stats.*field = *largest++;
+    }
+    this->StatusRank = *largest++;
+    // Walks and cavities of ghost insertions count too: that is the work done.
+    const double perVertex =
+      double(this->Stats.insertedPoints) / std::max(this->MeshInsertions, 1.0);
+    this->Stats.walkSteps = static_cast<std::size_t>(double(this->Stats.walkSteps) * perVertex);
+    this->Stats.cavityTetrahedra =
+      static_cast<std::size_t>(double(this->Stats.cavityTetrahedra) * perVertex);
+  }
+};
+
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// What the exchange brought, in rank order.
+void Take(diy::Master& master, const RankGroup& ranks, Received& received)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> byRank(ranks.Size);
+  master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
+    for (const diy::BlockID& from : proxy.link()->neighbors())
+    {
+      if (proxy.incoming(from.gid))
+      {
+        vtkDataArray* xyz = nullptr;
+        vtkFieldData* values = nullptr;
+        proxy.dequeue<vtkDataArray*>(from.gid, xyz);
+        proxy.dequeue<vtkFieldData*>(from.gid, values);
+        byRank[from.gid] = vtkSmartPointer<vtkPolyData>::New();
+        byRank[from.gid]->SetPoints(vtkNew<vtkPoints>());
+        byRank[from.gid]->GetPoints()->SetData(vtkSmartPointer<vtkDataArray>::Take(xyz));
+        byRank[from.gid]->GetPointData()->ShallowCopy(vtkSmartPointer<vtkFieldData>::Take(values));
+      }
+    }
+  });
+  for (int r = 0; r < ranks.Size; ++r)
+  {
+    if (byRank[r] && byRank[r]->GetNumberOfPoints() > 0)
+    {
+      received.Parts.push_back(byRank[r]);
+      received.Senders.push_back(r);
+    }
+  }
+}
+} // namespace
+
+RankGroup::RankGroup(vtkMultiProcessController* controller)
+  : Controller(controller), Rank(controller->GetLocalProcessId()),
+    Size(controller->GetNumberOfProcesses())
+{}
+
+bool RankGroup::AllSucceeded(bool succeeded)
+{
+  int local[2] = { succeeded, this->Failure.empty() }, global[2] = { 0, 0 };
+  this->Controller->AllReduce(local, global, 2, vtkCommunicator::MIN_OP);
+  this->AnyFailed = global[1] == 0;
+  return global[0] != 0;
+}
+
+bool PointExchange::BalancedCuts(
+  vtkDataArray* coordinates, const std::vector<vtkIdType>& finite, SpaceCuts& cuts)
+{
+  constexpr double kSample = 1 << 18; // parts within about 1% of the mean
+  vtkMultiProcessController* controller = this->Ranks.Controller;
+  const vtkIdType local = static_cast<vtkIdType>(finite.size());
+  vtkIdType total = 0;
+  controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
+  std::vector<double> sample;
+  if (!this->Ranks.Local([&] {
+        const auto mine = static_cast<std::size_t>(std::ceil(kSample * local / double(total)));
+        sample.resize(3 * std::min(mine, finite.size()));
+        for (std::size_t k = 0; k < sample.size() / 3; ++k)
+        {
+          coordinates->GetTuple(finite[k * finite.size() / (sample.size() / 3)], &sample[3 * k]);
+        }
+        return true;
+      }))
+  {
+    return false;
+  }
+  std::vector<vtkIdType> lengths(this->Ranks.Size), offsets(this->Ranks.Size);
+  const vtkIdType length = static_cast<vtkIdType>(sample.size());
+  controller->AllGather(&length, lengths.data(), 1);
+  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  std::vector<std::array<double, 3>> all;
+  if (!this->Ranks.Local([&] {
+        all.resize(static_cast<std::size_t>(offsets.back() + lengths.back()) / 3);
+        return true;
+      }))
+  {
+    return false;
+  }
+  controller->AllGatherV(sample.data(), all.data()->data(), length, lengths.data(), offsets.data());
+  return this->Ranks.Local([&] {
+    cuts.Split(all.begin(), all.end(), 0, this->Ranks.Size);
+    return true;
+  });
+}
+
+template <typename List, typename Part>
+bool PointExchange::Send(const std::vector<List>& lists, Part&& part, Received& received)
+{
+  const int rank = this->Ranks.Rank, size = this->Ranks.Size;
+  diy::mpi::communicator comm = vtkDIYUtilities::GetCommunicator(this->Ranks.Controller);
+  std::vector<int> sends(size);
+  for (int r = 0; r < size; ++r)
+  {
+    sends[r] = r != rank && !lists[r].empty();
+  }
+  std::vector<std::vector<int>> allSends;
+  diy::mpi::all_gather(comm, sends, allSends);
+  diy::Master master(comm, 1, -1, nullptr, [](void*) {});
+  diy::ContiguousAssigner assigner(size, size);
+  auto* link = new diy::Link(); // the master's
+  for (int r = 0; r < size; ++r)
+  {
+    if (allSends[rank][r] || allSends[r][rank])
+    {
+      link->add_neighbor(diy::BlockID(r, assigner.rank(r)));
+    }
+  }
+  int block = 0; // DIY's one block per rank; its content is not used
+  master.add(rank, &block, link);
+  if (!this->Ranks.Local([&] {
+        master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
+          for (const diy::BlockID& to : proxy.link()->neighbors())
+          {
+            if (sends[to.gid])
+            {
+              vtkSmartPointer<vtkPolyData> points = part(to.gid);
+              proxy.enqueue<vtkDataArray*>(to, points->GetPoints()->GetData());
+              proxy.enqueue<vtkFieldData*>(to, points->GetPointData());
+            }
+          }
+        });
+        return true;
+      }))
+  {
+    return false;
+  }
+  master.exchange();
+  return this->Ranks.Local([&] {
+    Take(master, this->Ranks, received);
+    return true;
+  });
+}
+
+DistributedRun::DistributedRun(vtkMultiProcessController* controller)
+  : Ranks(controller), Exchange(this->Ranks)
+{}
+
+bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
+{
+  const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
+  std::vector<vtkIdType> counts(this->Ranks.Size);
+  this->Ranks.Controller->AllGather(&count, counts.data(), 1);
+  const vtkIdType firstId =
+    std::accumulate(counts.begin(), counts.begin() + this->Ranks.Rank, vtkIdType(0));
+  this->InputPoints = std::accumulate(counts.begin(), counts.end(), vtkIdType(0));
+  int type = count > 0 ? points->GetDataType() : 0, widest = 0; // as the one-process output's
+  this->Ranks.Controller->AllReduce(&type, &widest, 1, vtkCommunicator::MAX_OP);
+  this->PointType = widest > 0 ? widest : VTK_DOUBLE;
+
+  vtkSmartPointer<vtkPointData> data;
+  std::vector<vtkIdType> finite, nonFinite;
+  if (!this->Ranks.Local([&] {
+        data = InputData(input, count, firstId);
+        ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
+          (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
+        });
+        return true;
+      }))
+  {
+    return false;
+  }
+  Received parts;
+  if (!this->SpreadFinite(points->GetData(), data, finite, parts))
+  {
+    return false;
+  }
+  return this->Ranks.Local([&] {
+    this->Gather(points->GetData(), data, nonFinite, parts);
+    return true;
+  });
+}
+
+bool DistributedRun::ChooseFrame()
+{
+  fd3::Bounds box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  const Coordinates& xyz = this->Own.Xyz;
+  for (std::size_t i = 0; i < this->Own.Finite; ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      box[2 * a] = std::min(box[2 * a], xyz[3 * i + a]);
+      box[2 * a + 1] = std::max(box[2 * a + 1], xyz[3 * i + a]);
+    }
+  }
+  if (!this->Ranks.Local([&] {
+        this->Boxes.assign(this->Ranks.Size, fd3::Bounds());
+        return true;
+      }))
+  {
+    return false;
+  }
+  this->Ranks.Controller->AllGather(box.data(), this->Boxes[0].data(), 6);
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  for (const fd3::Bounds& b : this->Boxes)
+  {
+    for (int a = 0; a < 3 && b[0] <= b[1]; ++a)
+    {
+      lo[a] = std::min(lo[a], b[2 * a]);
+      hi[a] = std::max(hi[a], b[2 * a + 1]);
+    }
+  }
+  const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
+  this->Diagonal = fd3::diagonal(bounds);
+  bool exact[3] = { true, true, true };
+  fd3::checkShifts(xyz.data(), this->Own.Count, lo, hi, exact);
+  int local[3] = { exact[0], exact[1], exact[2] }, global[3];
+  this->Ranks.Controller->AllReduce(local, global, 3, vtkCommunicator::MIN_OP);
+  for (int a = 0; a < 3; ++a)
+  {
+    exact[a] = global[a] != 0;
+  }
+  const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
+  int fits = fd3::fitsFrame(frame, xyz.data(), this->Own.Count), allFit = 0;
+  this->Ranks.Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
+  this->Frame = allFit ? frame : fd3::identityFrame(lo, hi);
+  return true;
+}
+
+bool DistributedRun::Triangulate(const fd3::Options& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  const bool done = this->Ranks.Local([&] {
+    this->Mesh = std::make_unique<fd3::IncrementalDelaunay>(
+      std::move(this->Own.Xyz), options, this->Frame, GhostRoom(this->Own.Count));
+    return this->Mesh->status() != fd3::Status::Aborted;
+  });
+  this->MeshSeconds = SecondsSince(start);
+  return done;
+}
+
+bool DistributedRun::ExchangeHalo()
+{
+  std::vector<std::vector<std::uint32_t>> halo;
+  std::vector<std::vector<double>> xyz;
+  const bool meshed = this->Mesh->status() == fd3::Status::Ok;
+  if (!this->Ranks.Local([&] {
+        halo = meshed ? this->Mesh->haloVertices(this->OtherBoxes()) : this->AllToAll();
+        xyz = meshed ? this->Mesh->points(halo) : std::vector<std::vector<double>>();
+        return true;
+      }))
+  {
+    return false;
+  }
+  // With no tetrahedron, a rank sends all its points to every other: each part is made as it
+  // is sent.
+  return this->Exchange.Send(
+    halo,
+    [&](int r) {
+      return this->HaloPart(halo[r], meshed ? xyz[r] : this->Mesh->points({ halo[r] })[0]);
+    },
+    this->Ghosts);
+}
+
+bool DistributedRun::AddGhosts()
+{
+  const auto start = std::chrono::steady_clock::now();
+  return this->Ranks.Local([&] {
+    Coordinates ghostXyz;
+    for (const auto& part : this->Ghosts.Parts)
+    {
+      AppendPoints(part->GetPoints()->GetData(), ghostXyz);
+    }
+    this->Mesh->add(ghostXyz.data(), ghostXyz.size() / 3);
+    Coordinates().swap(ghostXyz); // the mesh holds them
+    this->Result = this->Mesh->release(this->Xyz);
+    this->Mesh.reset();
+    if (this->Result.status == fd3::Status::CheckFailed)
+    {
+      throw std::runtime_error(std::string("the kernel's mesh check failed (a bug; please report "
+                                           "it with the input): ") +
+        this->Result.checkReport);
+    }
+    this->Result.stats.secondsTotal = this->MeshSeconds + SecondsSince(start);
+    // Made after the release, which gives back most of the mesh.
+    this->Owner.assign(this->Own.Count, this->Ranks.Rank);
+    for (std::size_t k = 0; k < this->Ghosts.Parts.size(); ++k)
+    {
+      this->Owner.insert(this->Owner.end(),
+        static_cast<std::size_t>(this->Ghosts.Parts[k]->GetNumberOfPoints()),
+        this->Ghosts.Senders[k]);
+    }
+    return this->Result.status != fd3::Status::Aborted;
+  });
+}
+
+fd3::Statistics DistributedRun::GlobalFigures(fd3::Status& status)
+{
+  RankFigures figures;
+  figures.Stats = this->Result.stats;
+  figures.MeshInsertions = double(this->Result.stats.insertedPoints);
+  figures.Ghosts = double(this->Xyz.size() / 3 - this->Own.Count);
+  const auto& byRank = RankFigures::kByRank;
+  figures.StatusRank =
+    double(std::find(std::begin(byRank), std::end(byRank), this->Result.status) - byRank);
+  this->CountOwned(figures.Stats);
+  figures.Reduce(this->Ranks.Controller);
+  status = byRank[static_cast<int>(figures.StatusRank)];
+  this->GhostPoints = static_cast<vtkIdType>(figures.Ghosts);
+  figures.Stats.inputPoints = static_cast<std::size_t>(this->InputPoints);
+  return figures.Stats;
+}
+
+bool DistributedRun::Owns(const std::uint32_t* ids, int size) const
+{
+  // Nearly always one rank owns every vertex, and their order does not matter.
+  const int owner = this->Owner[ids[0]];
+  if (std::all_of(ids + 1, ids + size, [&](std::uint32_t v) { return this->Owner[v] == owner; }))
+  {
+    return owner == this->Ranks.Rank;
+  }
+  const std::uint32_t* smallest =
+    std::min_element(ids, ids + size, [this](std::uint32_t a, std::uint32_t b) {
+      return std::lexicographical_compare(
+        &this->Xyz[3 * a], &this->Xyz[3 * a + 3], &this->Xyz[3 * b], &this->Xyz[3 * b + 3]);
+    });
+  return this->Owner[*smallest] == this->Ranks.Rank;
+}
+
+void DistributedRun::SetOutputPoints(vtkUnstructuredGrid* output)
+{
+  std::vector<vtkIdType> ghostId(this->Xyz.size() / 3 - this->Own.Count, -1);
+  OnCellIds(output->GetCells(), MarkIdsFrom{}, this->Own.Count, ghostId);
+  vtkIdType next = static_cast<vtkIdType>(this->Own.Count);
+  for (vtkIdType& id : ghostId)
+  {
+    id = id == 0 ? next++ : -1;
+  }
+  OnCellIds(output->GetCells(), RenumberIdsFrom{}, this->Own.Count, ghostId);
+
+  vtkNew<vtkPoints> points;
+  points->SetDataType(this->PointType);
+  points->SetNumberOfPoints(next);
+  vtkDataArray* coordinates = points->GetData();
+  for (std::size_t i = 0; i < this->Own.Count; ++i)
+  {
+    coordinates->SetTuple(static_cast<vtkIdType>(i), &this->Xyz[3 * i]);
+  }
+  for (std::size_t g = 0; g < ghostId.size(); ++g)
+  {
+    if (ghostId[g] >= 0)
+    {
+      coordinates->SetTuple(ghostId[g], &this->Xyz[3 * (this->Own.Count + g)]);
+    }
+  }
+  output->SetPoints(points);
+  this->SetOutputPointData(output, ghostId);
+}
+
+bool DistributedRun::SpreadFinite(
+  vtkDataArray* coordinates, vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts)
+{
+  int mine = !finite.empty(), any = 0;
+  this->Ranks.Controller->AllReduce(&mine, &any, 1, vtkCommunicator::MAX_OP);
+  SpaceCuts cuts;
+  if (!any || !this->Exchange.BalancedCuts(coordinates, finite, cuts))
+  {
+    return !any;
+  }
+  std::vector<std::vector<vtkIdType>> lists(this->Ranks.Size);
+  if (!this->Ranks.Local([&] {
+        ForEachPoint(coordinates, [&](vtkIdType i, const double x[3]) {
+          if (fd3::isFinite(x))
+          {
+            lists[cuts.RankOf(x)].push_back(i);
+          }
+        });
+        std::vector<vtkIdType>().swap(finite);
+        return true;
+      }))
+  {
+    return false;
+  }
+  const int type = this->PointType;
+  if (!this->Exchange.Send(
+        lists, [&](int r) { return Subset(coordinates, data, lists[r], type); }, parts))
+  {
+    return false;
+  }
+  return this->Ranks.Local([&] {
+    const int rank = this->Ranks.Rank;
+    if (!lists[rank].empty()) // in rank order
+    {
+      const auto at =
+        std::upper_bound(parts.Senders.begin(), parts.Senders.end(), rank) - parts.Senders.begin();
+      parts.Parts.insert(parts.Parts.begin() + at, Subset(coordinates, data, lists[rank], type));
+      parts.Senders.insert(parts.Senders.begin() + at, rank);
+    }
+    return true;
+  });
+}
+
+void DistributedRun::Gather(vtkDataArray* coordinates, vtkPointData* data,
+  const std::vector<vtkIdType>& nonFinite, Received& parts)
+{
+  this->Own.Finite = 0;
+  for (const auto& part : parts.Parts)
+  {
+    this->Own.Finite += static_cast<std::size_t>(part->GetNumberOfPoints());
+  }
+  if (!nonFinite.empty() || parts.Parts.empty())
+  {
+    parts.Parts.push_back(Subset(coordinates, data, nonFinite, this->PointType));
+  }
+  this->Own.Count = this->Own.Finite + nonFinite.size();
+  this->Own.Xyz.reserve(3 * (this->Own.Count + GhostRoom(this->Own.Count)));
+  std::vector<vtkPointData*> partData;
+  for (const auto& part : parts.Parts)
+  {
+    AppendPoints(part->GetPoints()->GetData(), this->Own.Xyz);
+    partData.push_back(part->GetPointData());
+  }
+  this->Own.Data = GatherPointData(partData);
+}
+
+std::vector<fd3::Bounds> DistributedRun::OtherBoxes() const
+{
+  std::vector<fd3::Bounds> others = this->Boxes;
+  others[this->Ranks.Rank] = { 1, -1, 1, -1, 1, -1 };
+  return others;
+}
+
+std::vector<std::vector<std::uint32_t>> DistributedRun::AllToAll() const
+{
+  std::vector<std::vector<std::uint32_t>> halo(this->Ranks.Size);
+  for (int r = 0; r < this->Ranks.Size; ++r)
+  {
+    if (r != this->Ranks.Rank)
+    {
+      halo[r].resize(this->Own.Finite);
+      std::iota(halo[r].begin(), halo[r].end(), 0u);
+    }
+  }
+  return halo;
+}
+
+vtkSmartPointer<vtkPolyData> DistributedRun::HaloPart(
+  const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz) const
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataType(this->PointType);
+  points->SetNumberOfPoints(static_cast<vtkIdType>(halo.size()));
+  for (std::size_t k = 0; k < halo.size(); ++k)
+  {
+    points->SetPoint(static_cast<vtkIdType>(k), &xyz[3 * k]);
+  }
+  return WithPointData(points, this->Own.Data, IdList(halo));
+}
+
+void DistributedRun::CountOwned(fd3::Statistics& stats) const
+{
+  stats.inputPoints = stats.insertedPoints = stats.duplicatesMerged = 0;
+  stats.closePointsSkipped = stats.tetrahedra = 0;
+  for (std::size_t t = 0; t < this->Result.numberOfTetrahedra(); ++t)
+  {
+    stats.tetrahedra += this->Owns(this->Result.tetrahedra.data() + 4 * t, 4);
+  }
+  for (std::size_t k = 0; k < this->Own.Count && this->Result.status == fd3::Status::Ok; ++k)
+  {
+    const std::uint32_t v = this->Result.representative[k];
+    stats.insertedPoints += v == k;
+    if (v != k && v != fd3::kNoPoint)
+    {
+      const bool same = std::equal(&this->Xyz[3 * k], &this->Xyz[3 * k + 3], &this->Xyz[3 * v]);
+      (same ? stats.duplicatesMerged : stats.closePointsSkipped) += 1;
+    }
+  }
+}
+
+void DistributedRun::SetOutputPointData(
+  vtkUnstructuredGrid* output, const std::vector<vtkIdType>& ghostId)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> used;
+  std::vector<vtkPointData*> parts{ this->Own.Data };
+  std::size_t g = 0;
+  for (const auto& ghosts : this->Ghosts.Parts)
+  {
+    std::vector<vtkIdType> ids;
+    for (vtkIdType i = 0; i < ghosts->GetNumberOfPoints(); ++i, ++g)
+    {
+      if (ghostId[g] >= 0)
+      {
+        ids.push_back(i);
+      }
+    }
+    used.push_back(Subset(ghosts, ids));
+    parts.push_back(used.back()->GetPointData());
+  }
+  output->GetPointData()->ShallowCopy(GatherPointData(parts));
+  vtkPointData* data = output->GetPointData();
+  data->SetGlobalIds(data->GetArray(kInputIds));
+  const vtkIdType count = output->GetNumberOfPoints();
+  vtkNew<vtkUnsignedCharArray> ghostType;
+  ghostType->SetName(vtkDataSetAttributes::GhostArrayName());
+  ghostType->SetNumberOfValues(count);
+  std::fill_n(ghostType->GetPointer(0), this->Own.Count, 0);
+  std::fill(ghostType->GetPointer(0) + this->Own.Count, ghostType->GetPointer(0) + count,
+    static_cast<unsigned char>(vtkDataSetAttributes::DUPLICATEPOINT));
+  data->AddArray(ghostType);
+}
+} // namespace fd3vtk

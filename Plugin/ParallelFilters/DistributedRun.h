@@ -1,0 +1,218 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+// The distributed Delaunay tetrahedralization that vtkPFastDelaunay3D and vtkPFastVoronoi3D share
+// (see vtkPFastDelaunay3D's class documentation): the points spread over the MPI ranks by space,
+// one exact frame, each rank's mesh, the halo exchanged once, the ghosts added. A private header
+// of the ParallelFilters module.
+#ifndef DistributedRun_h
+#define DistributedRun_h
+
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include "fd3/Distributed.h"
+
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkDataSet;
+class vtkMultiProcessController;
+class vtkPointSet;
+class vtkPoints;
+class vtkPolyData;
+class vtkUnstructuredGrid;
+
+namespace fd3vtk
+{
+/// The point data array of every point's input id (its position in the input pieces taken in rank
+/// order).
+constexpr const char* kInputIds = "GlobalIds";
+
+using fd3::Coordinates;
+
+class SpaceCuts;
+
+/// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
+/// which catches what it throws; then every rank learns whether all got through, before any
+/// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the
+/// others waiting in a collective call: all of them stop after the same step.
+class RankGroup
+{
+public:
+  explicit RankGroup(vtkMultiProcessController* controller);
+
+  /// Runs `work` on this rank (it returns false when aborted); whether it succeeded on all.
+  template <typename Work>
+  bool Local(Work&& work)
+  {
+    bool succeeded = false;
+    try
+    {
+      succeeded = work();
+    }
+    catch (const std::exception& error)
+    {
+      this->Failure = error.what();
+    }
+    return this->AllSucceeded(succeeded);
+  }
+
+  /// Whether every rank succeeded; AnyFailed says whether a rank failed rather than aborted.
+  bool AllSucceeded(bool succeeded);
+
+  vtkMultiProcessController* const Controller;
+  const int Rank;
+  const int Size;
+  std::string Failure;    ///< why this rank failed, when it did
+  bool AnyFailed = false; ///< whether some rank failed (else a stop was an abort)
+};
+
+/// The point sets that other ranks sent to this one, one per sender, in rank order.
+struct Received
+{
+  std::vector<vtkSmartPointer<vtkPointSet>> Parts;
+  std::vector<int> Senders;
+};
+
+/// Points moved between ranks: the split of space that balances them, and the exchange of point
+/// sets as raw arrays. Nothing in it is particular to Delaunay.
+class PointExchange
+{
+public:
+  explicit PointExchange(RankGroup& ranks) : Ranks(ranks) {}
+
+  /// A split of space into one part per rank, balanced by count: recursive bisection of a
+  /// sample of every rank's `finite` points (kSample in all, each rank's share in proportion to
+  /// its count), each time across the sample's longest side, at the quantile that gives each side
+  /// its share of ranks. Every rank computes it from the same gathered sample, so all agree.
+  /// (vtkDistributedPointCloudFilter gives single-precision points under MPI, whatever the
+  /// input's, and is several times slower; vtkDIYKdTreeUtilities, whose cuts
+  /// vtkRedistributeDataSetFilter uses, is not in ParaView's SDK.)
+  bool BalancedCuts(
+    vtkDataArray* coordinates, const std::vector<vtkIdType>& finite, SpaceCuts& cuts);
+
+  /// Sends every other rank r the points part(r), made as they are sent, where lists[r] is not
+  /// empty, and appends what this rank receives to `received`. With DIY, as vtkDIYDataExchanger,
+  /// but as raw arrays: vtkDIYDataExchanger writes each data set as a compressed XML file, which
+  /// took most of the redistribution's time.
+  template <typename List, typename Part>
+  bool Send(const std::vector<List>& lists, Part&& part, Received& received);
+
+private:
+  RankGroup& Ranks;
+};
+
+/// This rank's points once spread by space: the finite points in its part of space, then its own
+/// non-finite ones (nothing to triangulate, but they stay in the output as unused points).
+struct OwnPoints
+{
+  Coordinates Xyz; ///< 3 per point; the mesh takes them and gives them back
+  vtkSmartPointer<vtkPointData> Data;
+  std::size_t Count = 0;
+  std::size_t Finite = 0; ///< the first points, the finite ones
+};
+
+/// One execution across the ranks, step by step (see the class documentation). Each step returns
+/// whether every rank got through it (RankGroup); a step that returns false stopped them all.
+class DistributedRun
+{
+public:
+  explicit DistributedRun(vtkMultiProcessController* controller);
+
+  /// Step 1: the finite points spread over the ranks by space (PointExchange::BalancedCuts()),
+  /// with their point data and input ids, this rank's non-finite ones after them. `points`: the
+  /// input's, in the output's precision.
+  bool Redistribute(vtkDataSet* input, vtkPoints* points);
+
+  /// Step 2: one exact frame for every rank, from the global bounds (computed here once, for the
+  /// diagonal too) and the shifts that are exact on every rank.
+  bool ChooseFrame();
+
+  /// Step 3: this rank's points tetrahedralized. The mesh takes them, and frees them where its
+  /// records give them back, so that they are not in the rank's peak.
+  bool Triangulate(const fd3::Options& options);
+
+  /// Step 4: the halo of every other rank sent to it (fd3::haloVertices).
+  bool ExchangeHalo();
+
+  /// Step 5: the received points added to this rank's mesh, the output taken from it with every
+  /// point's coordinates, and the owner of every point.
+  bool AddGhosts();
+
+  /// Step 6: the figures and status of all ranks together.
+  fd3::Statistics GlobalFigures(fd3::Status& status);
+
+  /// Whether this rank owns the simplex: it owns its lexicographically smallest vertex, which
+  /// every rank holding the simplex finds alike. A vertex cell (a point on no other cell of the
+  /// alpha shape, or a duplicate) goes with the point itself. Every position is one rank's
+  /// alone: the cuts send a point by its coordinates, so the copies of a position go to one rank
+  /// (which merges them) and no ghost repeats an own point.
+  bool Owns(const std::uint32_t* ids, int size) const;
+
+  /// Step 7, after the cells: the output's points, this rank's own, then the received ones its
+  /// cells use (as duplicate points, in the order received), with the cells' ids renumbered to
+  /// match, and their point data.
+  void SetOutputPoints(vtkUnstructuredGrid* output);
+
+  RankGroup Ranks;
+  vtkIdType InputPoints = 0; ///< all ranks'
+  vtkIdType GhostPoints = 0; ///< all ranks'
+  double Diagonal = 0;       ///< of the global bounds
+  fd3::Triangulation Result; ///< this rank's: its points and the received ones
+  Coordinates Xyz;           ///< from step 5: this rank's points, then the received ones
+
+private:
+  /// The ghost points that room is made for up front, in Xyz and in the mesh's vertex records: a
+  /// rank receives a few percent of its own count at 1M points a rank, more on small ones.
+  /// Growing either later would copy it, and under MPI the copy's source stays resident (Open MPI
+  /// keeps the freed pages).
+  static std::size_t GhostRoom(std::size_t own) { return own / 4 + 1024; }
+
+  /// The finite points `finite` sent to the ranks whose part of space holds them; `parts`: those
+  /// this rank gets, its own among them, in rank order.
+  bool SpreadFinite(
+    vtkDataArray* coordinates, vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts);
+
+  /// OwnPoints from the parts received and this rank's non-finite points, with room for the
+  /// ghosts in Xyz.
+  void Gather(vtkDataArray* coordinates, vtkPointData* data,
+    const std::vector<vtkIdType>& nonFinite, Received& parts);
+
+  std::vector<fd3::Bounds> OtherBoxes() const;
+
+  /// Every finite point for every other rank: without a tetrahedron to choose from, any point
+  /// might matter.
+  std::vector<std::vector<std::uint32_t>> AllToAll() const;
+
+  /// The own points `halo`, at `xyz` (3 each), with their point data.
+  vtkSmartPointer<vtkPolyData> HaloPart(
+    const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz) const;
+
+  /// The counts of what this rank owns, in place of its mesh's: its vertices, the points merged
+  /// into them or skipped, and the tetrahedra.
+  void CountOwned(fd3::Statistics& stats) const;
+
+  /// The point data of the output's points: this rank's own, then that of the received points
+  /// in use (ghostId >= 0), with GlobalIds and the ghost marks.
+  void SetOutputPointData(vtkUnstructuredGrid* output, const std::vector<vtkIdType>& ghostId);
+
+  PointExchange Exchange;
+  int PointType = VTK_DOUBLE; ///< of the output's points
+  OwnPoints Own;
+  std::vector<fd3::Bounds> Boxes; ///< every rank's bounds
+  fd3::Frame Frame;
+  std::unique_ptr<fd3::IncrementalDelaunay> Mesh;
+  double MeshSeconds = 0;
+  Received Ghosts;
+  std::vector<int> Owner; ///< per point of Xyz: the rank whose own point it is
+};
+} // namespace fd3vtk
+
+#endif
