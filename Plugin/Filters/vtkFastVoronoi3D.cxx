@@ -75,7 +75,7 @@ int vtkFastVoronoi3D::RequestData(
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
-  this->NumberOfGenerators = this->NumberOfDuplicatePoints = this->NumberOfInvalidPoints = 0;
+  this->RecordFigures(0, 0, 0);
   output->Initialize();
   const vtkIdType numberOfPoints = input ? input->GetNumberOfPoints() : 0;
   if (numberOfPoints == 0)
@@ -100,18 +100,10 @@ int vtkFastVoronoi3D::RequestData(
     vtkFastDelaunay3D::InputPoints(input, vtkAlgorithm::DEFAULT_PRECISION);
   std::vector<double> converted;
   const double* xyz = vtkFastDelaunay3D::CoordinatesAsDoubles(points, converted);
-  fd3::VoronoiOptions options;
-  std::copy(this->Bounds, this->Bounds + 6, options.box.begin());
-  options.threads =
-    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
-  options.progress = [this](double fraction) {
-    this->UpdateProgress(0.8 * fraction);
-    return !this->CheckAbort();
-  };
   fd3::VoronoiCells cells;
   try
   {
-    cells = fd3::voronoiCells(xyz, static_cast<std::size_t>(numberOfPoints), options);
+    cells = fd3::voronoiCells(xyz, static_cast<std::size_t>(numberOfPoints), this->KernelOptions());
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -122,7 +114,10 @@ int vtkFastVoronoi3D::RequestData(
   {
     return 1;
   }
-  if (!this->ReportOnInput(cells, numberOfPoints))
+  this->RecordFigures(static_cast<vtkIdType>(cells.numberOfCells()),
+    static_cast<vtkIdType>(cells.stats.duplicatesMerged),
+    static_cast<vtkIdType>(cells.stats.nonFinitePoints));
+  if (!this->ReportOnInput(cells.status, cells.box, numberOfPoints))
   {
     return 1;
   }
@@ -133,14 +128,32 @@ int vtkFastVoronoi3D::RequestData(
   return 1;
 }
 
-bool vtkFastVoronoi3D::ReportOnInput(const fd3::VoronoiCells& cells, vtkIdType numberOfPoints)
+fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
 {
-  this->NumberOfGenerators = static_cast<vtkIdType>(cells.numberOfCells());
-  this->NumberOfDuplicatePoints = static_cast<vtkIdType>(cells.stats.duplicatesMerged);
-  this->NumberOfInvalidPoints = static_cast<vtkIdType>(cells.stats.nonFinitePoints);
-  if (cells.status != fd3::Status::Ok)
+  fd3::VoronoiOptions options;
+  std::copy(this->Bounds, this->Bounds + 6, options.box.begin());
+  options.threads =
+    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.progress = [this](double fraction) {
+    this->UpdateProgress(0.8 * fraction);
+    return !this->CheckAbort();
+  };
+  return options;
+}
+
+void vtkFastVoronoi3D::RecordFigures(vtkIdType generators, vtkIdType duplicates, vtkIdType invalid)
+{
+  this->NumberOfGenerators = generators;
+  this->NumberOfDuplicatePoints = duplicates;
+  this->NumberOfInvalidPoints = invalid;
+}
+
+bool vtkFastVoronoi3D::ReportOnInput(
+  fd3::Status status, const std::array<double, 6>& box, vtkIdType numberOfPoints)
+{
+  if (status != fd3::Status::Ok)
   {
-    vtkWarningMacro("No Voronoi cells: " << fd3::toString(cells.status));
+    vtkWarningMacro("No Voronoi cells: " << fd3::toString(status));
     return false;
   }
   if (this->NumberOfDuplicatePoints > 0 || this->NumberOfInvalidPoints > 0)
@@ -151,8 +164,7 @@ bool vtkFastVoronoi3D::ReportOnInput(const fd3::VoronoiCells& cells, vtkIdType n
                     << " exact duplicates (the first copy's cell is theirs), "
                     << this->NumberOfInvalidPoints << " with NaN or infinite coordinates");
   }
-  const auto& b = cells.box;
-  if (!((b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]) > 0))
+  if (!((box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4]) > 0))
   {
     vtkWarningMacro("The clipping box has no volume: every cell is empty (set Bounds)");
   }

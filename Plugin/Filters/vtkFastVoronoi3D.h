@@ -37,9 +37,13 @@
 
 class vtkFieldData;
 class vtkPointData;
+#include <array> // for std::array
+
 namespace fd3
 {
+enum class Status;
 struct VoronoiCells;
+struct VoronoiOptions;
 } // namespace fd3
 
 class FASTDELAUNAY3DFILTERS_EXPORT vtkFastVoronoi3D : public vtkUnstructuredGridAlgorithm
@@ -86,6 +90,23 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// The kernel's options from the properties, with progress and abort for the tetrahedralization.
+  fd3::VoronoiOptions KernelOptions();
+  /// Records the figures (of every rank, under MPI).
+  void RecordFigures(vtkIdType generators, vtkIdType duplicates, vtkIdType invalid);
+  /// Warns of what the figures say was left out, or why there are no cells (`status`, of the
+  /// kernel, `box`, the box the cells were clipped to); false when there are no cells to output.
+  bool ReportOnInput(
+    fd3::Status status, const std::array<double, 6>& box, vtkIdType numberOfPoints);
+  /// The cells' points and VTK_POLYHEDRON cells (VTK_EMPTY_CELL where a cell has no faces).
+  static void SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells);
+  /// GeneratorId, Volume, SurfaceArea, NumberOfFaces, NumberOfNeighbors and the input's point
+  /// data on the cells.
+  static void AddCellData(
+    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData);
+  /// The counts of left-out points as field data, where there are some.
+  void AddFigures(vtkFieldData* fields) const;
+
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   int NumberOfThreads = 0;
   vtkIdType NumberOfGenerators = 0;
@@ -95,17 +116,6 @@ protected:
 private:
   vtkFastVoronoi3D(const vtkFastVoronoi3D&) = delete;
   void operator=(const vtkFastVoronoi3D&) = delete;
-
-  /// Warns of what the kernel left out or could not do; false when there are no cells to output.
-  bool ReportOnInput(const fd3::VoronoiCells& cells, vtkIdType numberOfPoints);
-  /// The cells' points and VTK_POLYHEDRON cells (VTK_EMPTY_CELL where a cell has no faces).
-  static void SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells);
-  /// GeneratorId, Volume, SurfaceArea, NumberOfFaces, NumberOfNeighbors and the input's point
-  /// data on the cells.
-  static void AddCellData(
-    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData);
-  /// The counts of left-out points as field data, where there are some.
-  void AddFigures(vtkFieldData* fields) const;
 };
 
 #endif

@@ -537,8 +537,8 @@ bool DistributedRun::ChooseFrame()
       hi[a] = std::max(hi[a], b[2 * a + 1]);
     }
   }
-  const double bounds[6] = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
-  this->Diagonal = fd3::diagonal(bounds);
+  this->GlobalBounds = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
+  this->Diagonal = fd3::diagonal(this->GlobalBounds.data());
   bool exact[3] = { true, true, true };
   fd3::checkShifts(xyz.data(), this->Own.Count, lo, hi, exact);
   int local[3] = { exact[0], exact[1], exact[2] }, global[3];

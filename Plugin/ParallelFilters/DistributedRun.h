@@ -161,7 +161,14 @@ public:
   /// match, and their point data.
   void SetOutputPoints(vtkUnstructuredGrid* output);
 
+  /// This rank's own points, the first of Xyz: the finite ones in its part of space, then its
+  /// non-finite ones.
+  std::size_t OwnCount() const { return this->Own.Count; }
+  /// The point data of the own points, with every point's input id (kInputIds).
+  vtkPointData* OwnData() const { return this->Own.Data; }
+
   RankGroup Ranks;
+  fd3::Bounds GlobalBounds;  ///< from step 2: of every rank's finite points
   vtkIdType InputPoints = 0; ///< all ranks'
   vtkIdType GhostPoints = 0; ///< all ranks'
   double Diagonal = 0;       ///< of the global bounds

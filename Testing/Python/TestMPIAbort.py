@@ -2,7 +2,8 @@
 it meshes; every rank must stop (none left waiting in a collective call for it), the output must be
 empty on every rank, and the filter must run in full afterwards.
 
-usage: mpiexec -np N pvbatch --mpi TestMPIAbort.py <plugin .so>
+usage: mpiexec -np N pvbatch --mpi TestMPIAbort.py <plugin .so> [voronoi]
+voronoi: FastVoronoi3D in place of FastDelaunay3D.
 """
 import sys
 
@@ -13,7 +14,8 @@ from mpi_cloud import uniform_cloud
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
 count = 200000
 cloud = uniform_cloud(count, 3)
-delaunay = FastDelaunay3D(Input=cloud)
+voronoi = len(sys.argv) > 2 and sys.argv[2] == "voronoi"
+delaunay = FastVoronoi3D(Input=cloud) if voronoi else FastDelaunay3D(Input=cloud)
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 filter = delaunay.GetClientSideObject()  # rank 0's
 progress = []
@@ -38,7 +40,7 @@ filter.SetAbortExecute(0)
 delaunay.MarkModified(delaunay)  # Apply again: only the rank that aborted would run, unless all do
 delaunay.UpdatePipeline()
 full = delaunay.GetDataInformation()
-if full.GetNumberOfCells() < 6 * count or full.GetNumberOfPoints() < count:
+if full.GetNumberOfCells() < (count if voronoi else 6 * count) or full.GetNumberOfPoints() < count:
     sys.exit("TestMPIAbort: the run after the abort gave %d cells and %d points"
              % (full.GetNumberOfCells(), full.GetNumberOfPoints()))
 print("TestMPIAbort: OK on %d ranks, %d cells after the aborted run" % (ranks, full.GetNumberOfCells()))

@@ -1,5 +1,6 @@
 """pvbatch under MPI: 3 points in all, on the first ranks; the filter must warn once that there are
 fewer than 4 distinct points, count nothing as left out, and keep every rank's points with no cells.
+Their Voronoi cells in a box, which has no tetrahedron to find a halo with, must fill it.
 
 usage: mpiexec -np N pvbatch --mpi TestMPIFewPoints.py <plugin .so>
 """
@@ -17,9 +18,17 @@ for x in [(0, 0, 0), (1, 0, 0), (0, 1, 0)][rank::2]:
     points.InsertNextPoint(x)
 self.GetOutput().SetPoints(points)
 """
-delaunay = FastDelaunay3D(Input=ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script))
+points = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
+delaunay = FastDelaunay3D(Input=points)
 delaunay.UpdatePipeline()
 info = delaunay.GetDataInformation()
 if info.GetNumberOfCells() != 0 or info.GetNumberOfPoints() != 3:
     sys.exit("TestMPIFewPoints: %d cells and %d points" % (info.GetNumberOfCells(), info.GetNumberOfPoints()))
 print("TestMPIFewPoints: 3 points and no cells on %d ranks" % servermanager.ActiveConnection.GetNumberOfDataPartitions())
+
+cells = servermanager.Fetch(FastVoronoi3D(Input=points, Bounds=[0, 2, 0, 2, -1, 1]))
+volumes = cells.GetCellData().GetArray("Volume")
+total = sum(volumes.GetValue(c) for c in range(cells.GetNumberOfCells())) if volumes else 0
+if cells.GetNumberOfCells() != 3 or abs(total - 8) > 1e-12:
+    sys.exit("TestMPIFewPoints: %d Voronoi cells of volume %g in a box of 8" % (cells.GetNumberOfCells(), total))
+print("TestMPIFewPoints: 3 Voronoi cells fill the box")

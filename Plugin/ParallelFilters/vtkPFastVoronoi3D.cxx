@@ -1,0 +1,181 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+#include "vtkPFastVoronoi3D.h"
+
+#include "DistributedRun.h"
+
+#include "vtkCellData.h"
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkFastDelaunay3D.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformationVector.h"
+#include "vtkMPIController.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkSMPTools.h"
+#include "vtkUnstructuredGrid.h"
+
+#include "fd3/Voronoi.h"
+
+#include <algorithm>
+#include <exception>
+#include <string>
+
+vtkStandardNewMacro(vtkPFastVoronoi3D);
+vtkCxxSetObjectMacro(vtkPFastVoronoi3D, Controller, vtkMultiProcessController);
+
+namespace
+{
+/// Whether the box has a minimum at most its maximum on every axis (else it means "the points'
+/// bounds").
+bool IsBox(const std::array<double, 6>& box)
+{
+  return box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5];
+}
+
+/// The cells' GeneratorId: the input ids that the points brought (kInputIds, as cell data), which
+/// then leave the cell data.
+void SetGeneratorIds(vtkUnstructuredGrid* output)
+{
+  vtkCellData* cellData = output->GetCellData();
+  vtkDataArray* inputIds = cellData->GetArray(fd3vtk::kInputIds);
+  auto* generatorIds = vtkIdTypeArray::SafeDownCast(cellData->GetArray("GeneratorId"));
+  if (!inputIds || !generatorIds) // no cells
+  {
+    cellData->RemoveArray(fd3vtk::kInputIds);
+    return;
+  }
+  for (vtkIdType c = 0; c < generatorIds->GetNumberOfValues(); ++c)
+  {
+    generatorIds->SetValue(c, static_cast<vtkIdType>(inputIds->GetComponent(c, 0)));
+  }
+  cellData->RemoveArray(fd3vtk::kInputIds);
+}
+} // namespace
+
+vtkPFastVoronoi3D::vtkPFastVoronoi3D()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+vtkPFastVoronoi3D::~vtkPFastVoronoi3D()
+{
+  this->SetController(nullptr);
+}
+
+int vtkPFastVoronoi3D::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->NumberOfGhostPoints = 0;
+  if (!vtkMPIController::SafeDownCast(this->Controller) ||
+    this->Controller->GetNumberOfProcesses() < 2)
+  {
+    return this->Superclass::RequestData(request, inputVector, outputVector);
+  }
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  output->Initialize();
+  this->RecordFigures(0, 0, 0);
+  vtkSmartPointer<vtkPoints> inputPoints =
+    vtkFastDelaunay3D::InputPoints(input, vtkAlgorithm::DEFAULT_PRECISION);
+  const bool root = this->Controller->GetLocalProcessId() == 0;
+
+  // The points spread by space, each rank's mesh, and the halo that completes its points' cells.
+  fd3vtk::DistributedRun run(this->Controller);
+  const bool redistributed = run.Redistribute(input, inputPoints);
+  if (redistributed && run.InputPoints == 0)
+  {
+    if (root)
+    {
+      vtkWarningMacro("No Voronoi cells: no input points");
+    }
+    return 1;
+  }
+  fd3::Options meshOptions;
+  meshOptions.threads =
+    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  meshOptions.progress = [this](double fraction) {
+    this->UpdateProgress(0.3 * fraction);
+    return !this->CheckAbort();
+  };
+  if (!redistributed || !run.ChooseFrame() || !run.Triangulate(meshOptions) ||
+    !run.ExchangeHalo() || !run.AddGhosts())
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
+  }
+  run.Result = fd3::Triangulation(); // the cells need the points alone
+
+  // The cells of this rank's own points, among its points and the halo.
+  fd3::VoronoiOptions options = this->KernelOptions();
+  if (!IsBox(options.box))
+  {
+    options.box = run.GlobalBounds;
+  }
+  options.generators = run.OwnCount();
+  fd3::VoronoiCells cells;
+  if (!run.Ranks.Local([&] {
+        cells = fd3::voronoiCells(run.Xyz.data(), run.Xyz.size() / 3, options);
+        return cells.status != fd3::Status::Aborted;
+      }))
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
+  }
+  const std::size_t ghosts = run.Xyz.size() / 3 - run.OwnCount();
+  fd3::Coordinates().swap(run.Xyz);
+
+  // The figures of all ranks: a rank's duplicates and non-finite points are its own points' (a
+  // position is one rank's, and the halo is finite).
+  const double local[5] = { double(cells.numberOfCells()), double(cells.stats.duplicatesMerged),
+    double(cells.stats.nonFinitePoints), double(cells.status == fd3::Status::OutOfRange),
+    double(ghosts) };
+  double total[5];
+  this->Controller->AllReduce(local, total, 5, vtkCommunicator::SUM_OP);
+  this->RecordFigures(static_cast<vtkIdType>(total[0]), static_cast<vtkIdType>(total[1]),
+    static_cast<vtkIdType>(total[2]));
+  this->NumberOfGhostPoints = static_cast<vtkIdType>(total[4]);
+  const fd3::Status status = total[3] > 0 ? fd3::Status::OutOfRange
+    : total[0] > 0                        ? fd3::Status::Ok
+                                          : fd3::Status::Empty;
+  const bool hasCells =
+    root ? this->ReportOnInput(status, options.box, run.InputPoints) : status == fd3::Status::Ok;
+  if (!hasCells)
+  {
+    return 1;
+  }
+  SetPolyhedra(output, cells);
+  this->UpdateProgress(0.9);
+  AddCellData(output, cells, run.OwnData());
+  SetGeneratorIds(output);
+  this->AddFigures(output->GetFieldData());
+  return 1;
+}
+
+int vtkPFastVoronoi3D::Stop(const std::string& failure, bool anyFailed)
+{
+  if (!anyFailed)
+  {
+    // Every rank stops as the one that was aborted, and runs again on the next update as an
+    // aborted filter does; else that rank alone would, and wait for the others.
+    this->SetAbortOutput(true);
+    return 1;
+  }
+  if (!failure.empty())
+  {
+    vtkErrorMacro("Voronoi cells failed: " << failure << "; the output is empty");
+  }
+  else if (this->Controller->GetLocalProcessId() == 0)
+  {
+    vtkErrorMacro("Voronoi cells failed on another rank; the output is empty");
+  }
+  return 0;
+}
+
+void vtkPFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "NumberOfGhostPoints: " << this->NumberOfGhostPoints << "\n";
+}

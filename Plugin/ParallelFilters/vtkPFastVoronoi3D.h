@@ -1,0 +1,79 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+/**
+ * @class   vtkPFastVoronoi3D
+ * @brief   vtkFastVoronoi3D across MPI ranks: each rank outputs the cells of the points it owns
+ *
+ * With more than one process in its controller, the filter computes the Voronoi cells of the
+ * points of every rank together, whatever rank holds them. The points are spread over the ranks
+ * by space and exchange their halo as in vtkPFastDelaunay3D: afterwards each rank holds, beside
+ * its own points, every Delaunay neighbour of them in the whole set, so the cell of each own point
+ * among these points is its cell in the whole set. Each rank then outputs the cells of its own
+ * distinct finite points, clipped to Bounds (by default the bounding box of all ranks' finite
+ * points), with their point data, and GeneratorId, the input id of each cell's point (its
+ * position in the input pieces taken in rank order). Together the pieces are the one-process
+ * output's cells: the same faces and neighbours, and volumes and vertices equal to rounding (a
+ * rank computes a shared vertex from the same points, possibly in another order). The figures
+ * (getters, field data) count all ranks. With one process, or a controller that is not MPI, this
+ * is vtkFastVoronoi3D.
+ *
+ * @warning
+ * A rank tetrahedralizes its points twice: once to find the halo, once with the halo for the
+ * cells. Coplanar or collinear input has no tetrahedron to find a halo with: every rank then
+ * receives all points.
+ *
+ * @sa
+ * vtkFastVoronoi3D vtkPFastDelaunay3D
+ */
+#ifndef vtkPFastVoronoi3D_h
+#define vtkPFastVoronoi3D_h
+
+#include "FastDelaunay3DParallelFiltersModule.h" // For export macro
+#include "vtkFastVoronoi3D.h"
+
+#include <string> // for std::string
+
+class vtkMultiProcessController;
+
+class FASTDELAUNAY3DPARALLELFILTERS_EXPORT vtkPFastVoronoi3D : public vtkFastVoronoi3D
+{
+public:
+  static vtkPFastVoronoi3D* New();
+  vtkTypeMacro(vtkPFastVoronoi3D, vtkFastVoronoi3D);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The ranks that compute the cells together. Default: the global controller.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  /**
+   * Points that ranks received from other ranks in the last execution, all ranks together (the
+   * cost of the exchange; 0 with one process).
+   */
+  vtkGetMacro(NumberOfGhostPoints, vtkIdType);
+
+protected:
+  vtkPFastVoronoi3D();
+  ~vtkPFastVoronoi3D() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+private:
+  /// Ends an execution that some rank could not finish: aborted, it runs again on the next update;
+  /// failed (`failure`: this rank's reason, when it was this rank), the output is empty.
+  int Stop(const std::string& failure, bool anyFailed);
+
+  vtkPFastVoronoi3D(const vtkPFastVoronoi3D&) = delete;
+  void operator=(const vtkPFastVoronoi3D&) = delete;
+
+  vtkMultiProcessController* Controller = nullptr;
+  vtkIdType NumberOfGhostPoints = 0;
+};
+
+#endif

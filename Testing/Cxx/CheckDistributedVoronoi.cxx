@@ -1,0 +1,146 @@
+// Checks the Voronoi cells that the distributed filter wrote (TestMPI.py ... voronoi) against the
+// one-process run on the same points: every generator has one cell on one rank, with the volume,
+// surface area, faces and neighbours of its one-process cell; the cells keep their points' data
+// ("Label", made from the coordinates); the pieces' volumes fill the box; the duplicates are
+// counted across ranks.
+//
+// usage: CheckDistributedVoronoi <pieces .pvtu>
+#include "VtkTestUtilities.h"
+
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkFastVoronoi3D.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkXMLPUnstructuredGridReader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <string>
+
+namespace
+{
+int fail(const std::string& why)
+{
+  std::cerr << "CheckDistributedVoronoi: " << why << "\n";
+  return 1;
+}
+
+std::string text(double x)
+{
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+/// TestMPI.py repeats its first 50 points.
+constexpr double kDuplicates = 50;
+
+/// A cell's figures, by generator id.
+struct Cell
+{
+  double volume, area;
+  int faces, neighbors;
+};
+
+std::string cellsOf(vtkUnstructuredGrid* grid, std::map<vtkIdType, Cell>& cells)
+{
+  vtkCellData* data = grid->GetCellData();
+  vtkDataArray* ids = data->GetArray("GeneratorId");
+  vtkDataArray* volume = data->GetArray("Volume");
+  vtkDataArray* area = data->GetArray("SurfaceArea");
+  vtkDataArray* faces = data->GetArray("NumberOfFaces");
+  vtkDataArray* neighbors = data->GetArray("NumberOfNeighbors");
+  if (!ids || !volume || !area || !faces || !neighbors)
+    return "a cell array is missing";
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    const auto id = static_cast<vtkIdType>(ids->GetComponent(c, 0));
+    const Cell cell = {volume->GetComponent(c, 0), area->GetComponent(c, 0),
+      int(faces->GetComponent(c, 0)), int(neighbors->GetComponent(c, 0))};
+    if (!cells.emplace(id, cell).second)
+      return "generator " + std::to_string(id) + " has two cells";
+  }
+  return "";
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 2)
+    return fail("usage: CheckDistributedVoronoi <pieces .pvtu>");
+  vtkNew<vtkXMLPUnstructuredGridReader> reader;
+  reader->SetFileName(argv[1]);
+  reader->Update();
+  vtkUnstructuredGrid* pieces = reader->GetOutput();
+  std::map<vtkIdType, Cell> distributed;
+  if (const std::string failure = cellsOf(pieces, distributed); !failure.empty())
+    return fail(failure);
+  vtkDataArray* position = pieces->GetCellData()->GetArray("Position");
+  vtkDataArray* label = pieces->GetCellData()->GetArray("Label");
+  vtkDataArray* generatorIds = pieces->GetCellData()->GetArray("GeneratorId");
+  if (!position || !label)
+    return fail("the input's point data is not on the cells");
+
+  // The generators, one per cell, in the order of their ids: the one-process run's input.
+  std::map<vtkIdType, std::array<double, 3>> byId;
+  for (vtkIdType c = 0; c < pieces->GetNumberOfCells(); ++c)
+  {
+    std::array<double, 3> x;
+    position->GetTuple(c, x.data());
+    if (label->GetComponent(c, 0) != x[0] / 4 + x[1] / 2 + x[2])
+      return fail("cell " + std::to_string(c) + " has another point's data");
+    byId[static_cast<vtkIdType>(generatorIds->GetComponent(c, 0))] = x;
+  }
+  fd3test::Points input;
+  std::vector<vtkIdType> inputId;
+  for (const auto& [id, x] : byId)
+  {
+    input.insert(input.end(), x.begin(), x.end());
+    inputId.push_back(id);
+  }
+  vtkNew<vtkFastVoronoi3D> serial;
+  serial->SetInputData(fd3test::toPolyData(input));
+  serial->Update();
+  std::map<vtkIdType, Cell> expected, renumbered;
+  if (const std::string failure = cellsOf(serial->GetOutput(), expected); !failure.empty())
+    return fail(failure);
+  for (const auto& [k, cell] : expected)
+    renumbered[inputId[k]] = cell;
+  if (renumbered.size() != distributed.size())
+    return fail(std::to_string(distributed.size()) + " cells, the one-process run has " +
+      std::to_string(renumbered.size()));
+
+  const double* box = serial->GetOutput()->GetBounds();
+  const double boxVolume = (box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4]);
+  const double cellVolume = boxVolume / double(distributed.size());
+  const double cellArea = std::pow(cellVolume, 2.0 / 3.0);
+  double total = 0;
+  for (const auto& [id, cell] : distributed)
+  {
+    const Cell& one = renumbered.at(id);
+    // A rank computes a vertex from the same points as one process, in another order at times.
+    if (!(std::abs(cell.volume - one.volume) <= 1e-12 * std::max(one.volume, cellVolume)) ||
+      !(std::abs(cell.area - one.area) <= 1e-12 * std::max(one.area, cellArea)))
+      return fail("generator " + std::to_string(id) + ": volume " + text(cell.volume) + ", area " +
+        text(cell.area) + "; one process: " + text(one.volume) + ", " + text(one.area));
+    if (cell.faces != one.faces || cell.neighbors != one.neighbors)
+      return fail("generator " + std::to_string(id) + ": " + std::to_string(cell.faces) +
+        " faces, " + std::to_string(cell.neighbors) + " neighbours; one process: " +
+        std::to_string(one.faces) + ", " + std::to_string(one.neighbors));
+    total += cell.volume;
+  }
+  if (!(std::abs(total - boxVolume) <= 1e-9 * boxVolume))
+    return fail("the cells' volumes add up to " + std::to_string(total) + ", the box's is " +
+      std::to_string(boxVolume));
+  vtkDataArray* duplicates = pieces->GetFieldData()->GetArray("NumberOfDuplicatePoints");
+  if (!duplicates || duplicates->GetComponent(0, 0) != kDuplicates)
+    return fail("the duplicates are not counted across ranks");
+  std::cout << "CheckDistributedVoronoi: OK, " << distributed.size() << " cells\n";
+  return 0;
+}
