@@ -7,26 +7,25 @@
 //    points and box together, while the corners lie at least 2 sqrt(3) D - D/2 > D from x. So
 //    each cell's part inside the box is unchanged, and every face with a far point lies outside
 //    the box.
-// 2. The tetrahedra are renumbered in an order that the points alone decide (the mesh's own
-//    varies with the thread count), and that keeps a star in a few stretches of memory.
-// 3. Every tetrahedron's circumcentre, once (from its vertices in their sorted order, in
-//    double-double where the tetrahedron is flat).
-// 4. Per generator, along the curve, on the threads, a stretch of generators each (the cells do
-//    not depend on how they are split):
-//    - its star: the tetrahedra around it, gathered once through the faces that hold it, from
-//      its lowest-numbered tetrahedron;
-//    - its faces: the ring of star tetrahedra about each edge (p, q), turning counter-clockwise
-//      about p -> q, so the face is counter-clockwise seen from outside; the faces in the order
-//      the star shows the q, each ring from the tetrahedron that first showed q;
-//    - a cell with a circumcentre outside the box is clipped by the box's six planes: each face
-//      keeps its inside part, a crossing of an edge is computed from its two ends taken in
-//      lexicographic order and put exactly on the plane (so the cells around that edge compute
-//      the same point), and the crossings close a new face on the plane;
-//    - volume and surface area, from each face's Newell vector.
-// 5. The threads' stretches are joined in curve order. A cell's own vertices, numbered in the
-//    order its faces meet them, are its crossings and the circumcentres it owns (those of the
-//    tetrahedra whose lowest vertex is its generator), so the output's points too are in the
-//    order of the cells.
+// 2. Each tetrahedron's vertices are put in ascending order (orientation kept), an order that the
+//    points alone decide (the mesh's own varies with the thread count), and its circumcentre is
+//    computed once, from its vertices in that order (in double-double where it is flat).
+// 3. The stars: the tetrahedra around each vertex, listed in one pass; beside them, the centres
+//    in the box that each generator's cell owns (those of the tetrahedra whose lowest vertex it
+//    is) and whether any centre of its star lies outside the box.
+// 4. A cell's faces, per generator p: the ring of its star's tetrahedra about each edge (p, q),
+//    turning counter-clockwise about p -> q, so the face is counter-clockwise seen from outside;
+//    each ring from the tetrahedron after its lowest link vertex, the faces by q. Where each ring
+//    starts and the order of the faces follow from the points alone, so the cells do not depend
+//    on the thread count or on how the generators are split among the threads.
+// 5. The cells that leave the box first, on the threads: clipped by the box's six planes, each
+//    face keeps its inside part, a crossing of an edge is computed from its two ends taken in
+//    lexicographic order and put exactly on the plane (so the cells around that edge compute the
+//    same point), and the crossings close a new face on the plane. With their sizes known (a
+//    whole cell with a star of n tetrahedra has 2 + n/2 faces and 3n face vertices), every cell
+//    has its place in the output: the centres each cell owns are numbered there, and the whole
+//    cells are written straight into their places. Volume and surface area come from each face's
+//    Newell vector.
 #include "fd3/Voronoi.h"
 
 #include "DoubleDouble.h"
@@ -36,16 +35,18 @@
 #include "fd3/Measures.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace fd3
 {
 namespace
 {
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+using Doubles = VoronoiCells::Doubles;
 constexpr int kFarPoints = 8;
 /// Marks a cell's own vertex (a crossing of the box) in a stretch's output, before the join
 /// numbers it.
@@ -136,18 +137,31 @@ private:
   std::size_t mask_ = 0;
 };
 
-/// The cells of one stretch of generators, with vertex ids that are tetrahedra (circumcentres
-/// that other cells own) or kOwnVertex + the index of one of the stretch's own vertices.
+/// The clipped cells of one stretch of generators, with vertex ids that are tetrahedra (their
+/// circumcentres) or kOwnVertex + the index of one of the cell's crossings of the box.
 struct Stretch
 {
+  std::vector<std::uint32_t> cells;      ///< index of each cell among all
   std::vector<std::uint32_t> faceCounts; ///< per cell
+  std::vector<std::uint32_t> crossings;  ///< per cell
   std::vector<std::uint32_t> faceSizes;  ///< per face
   std::vector<std::uint32_t> vertices;
   std::vector<std::uint32_t> neighbors; ///< per face
-  std::vector<double> ownPoints;
-  /// The circumcentres among the own vertices: tetrahedron, own index.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> ownedCentres;
+  std::vector<double> crossingPoints;
   std::vector<double> volumes, areas;
+};
+
+/// The tetrahedra around each vertex: those of vertex v are tets[start[v], start[v + 1]), in the
+/// mesh's order. Beside them, what each vertex needs to know of its star before its cell is built.
+struct Stars
+{
+  std::vector<std::size_t> start;
+  IdArray tets;
+  /// The tetrahedra whose lowest vertex it is and whose centre lies in the box: the centres its
+  /// cell owns and numbers.
+  std::vector<std::uint32_t> ownedCentres;
+  /// Whether a tetrahedron of its star has its centre outside the box: its cell is clipped.
+  std::vector<std::uint8_t> clipped;
 };
 
 /// A cell as a polyhedron of local vertices, while it is clipped.
@@ -165,138 +179,257 @@ bool lexicographicallyLess(const std::array<double, 3>& a, const std::array<doub
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
 
+/// What every cell is built from, shared by the threads (read only while cells are built).
+struct CellSources
+{
+  const double* xyz;                         ///< the points, along the curve
+  const std::vector<std::uint32_t>& inputId; ///< of each point but the far ones
+  const std::uint32_t* tetrahedra;           ///< 4 vertices each, in sortVertices' order
+  const Stars& stars;
+  const std::vector<std::uint8_t>& inBox; ///< per tetrahedron: its centre lies in the closed box
+  const std::array<double, 6>& box;
+  /// Per tetrahedron: its centre, while the clipped cells are built; then null, and the centres
+  /// in the box are read from `points` through `pointOf`.
+  const double* centres = nullptr;
+  const std::uint32_t* pointOf = nullptr; ///< per tetrahedron whose centre is an output point
+  const double* points = nullptr;
+};
+
 /// Builds one generator's cell after another (one builder per thread).
 class CellBuilder
 {
 public:
-  CellBuilder(const double* xyz, const std::vector<std::uint32_t>& inputId,
-    const Triangulation& mesh, const std::vector<double>& centres,
-    const std::vector<std::uint8_t>& inBox, const std::vector<std::uint32_t>& seeds,
-    const std::array<double, 6>& box)
-    : xyz_(xyz), inputId_(inputId), mesh_(mesh), centres_(centres), inBox_(inBox), seeds_(seeds),
-      box_(box)
+  /// A builder for cells of a mesh of `vertices` vertices.
+  CellBuilder(const CellSources& sources, std::size_t vertices)
+    : in_(sources), linkOf_(vertices, kNoLink)
   {}
 
-  void build(std::uint32_t generator, Stretch& out)
+  /// The faces of p's cell before any clipping: the ring of its star's tetrahedra about each edge
+  /// (p, q), turning counter-clockwise about p -> q (so the face is counter-clockwise seen from
+  /// outside), from the tetrahedron after the lowest vertex of the ring; the faces by q, lowest
+  /// first. The rings as sets are the mesh's; where each starts, and the order of the faces,
+  /// depend on the points alone.
+  void trace(std::uint32_t p)
   {
-    gatherStar(generator);
-    traceFaces();
-    bool inside = true;
-    for (const StarTet& s : star_)
-      inside = inside && s.inBox;
-    if (inside)
-      emitWhole(generator, out);
-    else
+    gatherStar(p);
+    linkEdges();
+    traceRings();
+  }
+
+  /// A cell inside the box, written where `at` says: its faces are the rings as they are.
+  void emitWhole(
+    std::uint32_t p, std::size_t cell, std::size_t face, std::size_t vertex, VoronoiCells& out)
+  {
+    if (neighbors_.size() != 2 + star_.size() / 2 || loops_.size() != 3 * star_.size())
+      throw std::logic_error("voronoiCells: a generator's link is not a sphere");
+    for (StarTet& s : star_)
+      s.point = in_.pointOf[s.tet];
+    const double* g = in_.xyz + 3 * std::size_t(p);
+    double sixVolume = 0, twiceArea = 0;
+    out.cellFaces[cell] = face;
+    for (std::size_t f = 0; f < neighbors_.size(); ++f, ++face)
     {
-      makePolyhedron();
-      for (int wall = 0; wall < 6 && !cell_.neighbors.empty(); ++wall)
-        clip(wall);
-      emitClipped(generator, out);
+      const std::uint32_t size = faceStart_[f + 1] - faceStart_[f];
+      const std::uint32_t* ring = &loops_[faceStart_[f]];
+      out.faceStart[face] = vertex;
+      out.faceNeighbors[face] = inputId(neighbors_[f]);
+      for (std::uint32_t k = 0; k < size; ++k)
+        out.faceVertices[vertex++] = star_[ring[k]].point;
+      addFace(
+        g, size,
+        [&](std::uint32_t k) { return in_.points + 3 * std::size_t(star_[ring[k]].point); },
+        sixVolume, twiceArea);
     }
+    out.volumes[cell] = sixVolume / 6;
+    out.areas[cell] = twiceArea / 2;
+  }
+
+  /// A cell that leaves the box, clipped by its six planes, into `out`.
+  void emitClipped(std::uint32_t p, std::uint32_t cell, Stretch& out)
+  {
+    makePolyhedron();
+    for (int wall = 0; wall < 6 && !cell_.neighbors.empty(); ++wall)
+      clip(wall);
+    const Polyhedron& c = cell_;
+    const std::size_t faces = c.neighbors.size();
+    out.cells.push_back(cell);
+    out.faceCounts.push_back(static_cast<std::uint32_t>(faces));
+    crossingOf_.clear();
+    const double* g = in_.xyz + 3 * std::size_t(p);
+    double sixVolume = 0, twiceArea = 0;
+    std::uint32_t crossings = 0;
+    for (std::size_t f = 0; f < faces; ++f)
+    {
+      const std::uint32_t begin = c.faceStart[f], size = c.faceStart[f + 1] - begin;
+      out.faceSizes.push_back(size);
+      out.neighbors.push_back(inputId(c.neighbors[f]));
+      for (std::uint32_t k = 0; k < size; ++k)
+      {
+        const std::uint32_t v = c.loops[begin + k], t = c.tet[v];
+        if (t != kNone)
+        {
+          out.vertices.push_back(t);
+          continue;
+        }
+        bool inserted;
+        const std::uint32_t id = crossingOf_.find(v, crossings, inserted);
+        if (inserted)
+        {
+          ++crossings;
+          out.crossingPoints.insert(out.crossingPoints.end(), c.x[v].begin(), c.x[v].end());
+        }
+        out.vertices.push_back(kOwnVertex | id);
+      }
+      addFace(
+        g, size, [&](std::uint32_t k) { return c.x[c.loops[begin + k]].data(); }, sixVolume,
+        twiceArea);
+    }
+    out.crossings.push_back(crossings);
+    out.volumes.push_back(sixVolume / 6);
+    out.areas.push_back(twiceArea / 2);
   }
 
 private:
-  /// A tetrahedron of the generator's star, with what the cell needs of it, gathered once so
-  /// that tracing the faces stays in a few cache lines.
+  /// A tetrahedron of the generator's star.
   struct StarTet
   {
     std::uint32_t tet;
     std::uint32_t vertices[4];
-    std::uint32_t next[4];  ///< star index across the face opposite each vertex but the generator
-    std::uint32_t own;      ///< index among the cell's own vertices, once met (kNone before)
+    std::uint32_t link[4];  ///< each other vertex's index in link_
+    std::uint32_t point;    ///< its centre's output point, once looked up
     std::uint8_t generator; ///< the generator's local index
-    std::uint8_t entry;     ///< the vertex opposite the face it was reached through (4: none)
-    bool owned;             ///< the generator is its lowest vertex: the cell owns its centre
-    bool inBox;
-    double centre[3];
+  };
+  /// A tetrahedron's step in the ring about (p, q): from its face with link vertex `from` to its
+  /// face with `to`, in the turning order. `cell` tells the cell that wrote it.
+  struct RingStep
+  {
+    std::uint32_t to, star, cell;
   };
 
-  std::uint32_t vertex(std::uint32_t t, int i) const { return mesh_.tetrahedra[4 * t + i]; }
   /// A face's neighbour as the output names it: the input id of a point, or a box wall.
   std::uint32_t inputId(std::uint32_t neighbor) const
   {
-    return neighbor < inputId_.size() ? inputId_[neighbor] : neighbor;
+    return neighbor < in_.inputId.size() ? in_.inputId[neighbor] : neighbor;
   }
-  /// The lowest vertex of t, whose cell owns its circumcentre: the first (sortTetrahedra).
-  std::uint32_t owner(std::uint32_t t) const { return vertex(t, 0); }
   static int localIndex(const std::uint32_t* vertices, std::uint32_t v)
   {
     return (vertices[1] == v) + 2 * (vertices[2] == v) + 3 * (vertices[3] == v);
   }
+  const double* centre(std::uint32_t t) const
+  {
+    return in_.centres ? in_.centres + 3 * std::size_t(t)
+                       : in_.points + 3 * std::size_t(in_.pointOf[t]);
+  }
 
-  /// The tetrahedra around the generator, through the faces that hold it, into star_; each other
-  /// vertex once into queue_, with a star tetrahedron that holds it.
   void gatherStar(std::uint32_t p)
   {
     star_.clear();
-    localOf_.clear();
-    seen_.clear();
-    queue_.clear();
-    bool inserted;
-    localOf_.find(seeds_[p], 0, inserted);
-    star_.emplace_back();
-    star_.back().tet = seeds_[p];
-    star_.back().entry = 4; // every vertex of the first tetrahedron is new
-    for (std::size_t i = 0; i < star_.size(); ++i)
+    for (std::size_t k = in_.stars.start[p]; k < in_.stars.start[p + 1]; ++k)
     {
-      const std::uint32_t t = star_[i].tet;
-      const std::uint32_t* v = &mesh_.tetrahedra[4 * std::size_t(t)];
-      const std::uint32_t* n = &mesh_.neighbors[4 * std::size_t(t)];
-      const int ip = localIndex(v, p);
-      // A tetrahedron reached across a face brings one vertex not seen before at most: the one
-      // opposite that face.
-      for (int k = 0; k < 4; ++k)
-        if (k != ip && (star_[i].entry == 4 || k == star_[i].entry) && seen_.insert(v[k]))
-          queue_.push_back({v[k], static_cast<std::uint32_t>(i)});
-      for (int k = 0; k < 4; ++k)
-      {
-        star_[i].vertices[k] = v[k];
-        if (k == ip)
-          continue;
-        if (n[k] == kNoNeighbor) // far points surround every generator
-          throw std::logic_error("voronoiCells: a generator's edge lies on the hull");
-        const std::uint32_t across = n[k] >> 2;
-        const auto index = static_cast<std::uint32_t>(star_.size());
-        star_[i].next[k] = localOf_.find(across, index, inserted);
-        if (inserted)
-        {
-          star_.emplace_back();
-          star_.back().tet = across;
-          star_.back().entry = static_cast<std::uint8_t>(n[k] & 3);
-        }
-      }
-      StarTet& s = star_[i];
-      s.generator = static_cast<std::uint8_t>(ip);
-      s.owned = v[0] == p; // its lowest vertex
-      s.inBox = inBox_[t];
-      s.own = kNone;
-      std::copy_n(centre(t), 3, s.centre);
+      StarTet s;
+      s.tet = in_.stars.tets[k];
+      std::copy_n(in_.tetrahedra + 4 * std::size_t(s.tet), 4, s.vertices);
+      s.generator = static_cast<std::uint8_t>(localIndex(s.vertices, p));
+      star_.push_back(s);
     }
   }
 
-  /// The ring of star tetrahedra about each edge (p, q), turning counter-clockwise about p -> q,
-  /// into loops_ / faceStart_ / neighbors_, each from the tetrahedron that first showed q.
-  void traceFaces()
+  /// The generator's link (the vertices it is joined to) into link_, and each star
+  /// tetrahedron's step in the ring about each of its other three vertices.
+  void linkEdges()
   {
+    link_.clear();
+    // A star of n tetrahedra has 2 + n/2 link vertices: below kDenseStar, their indices fit
+    // linkOf_'s 16 bits.
+    const bool dense = star_.size() < kDenseStar;
+    if (!dense)
+      linkOfLarge_.clear();
+    for (StarTet& s : star_)
+      for (int k = 0; k < 4; ++k)
+        if (k != s.generator)
+          s.link[k] = linkIndex(s.vertices[k], dense);
+    if (dense)
+      for (const std::uint32_t v : link_)
+        linkOf_[v] = kNoLink;
+    const std::size_t links = link_.size();
+    ++stamp_;
+    if (links <= kDenseLinks && steps_.size() < links * links)
+      steps_.resize(links * links, {0, 0, 0});
+    else if (links > kDenseLinks)
+      stepsLarge_.clear();
+    firstFrom_.assign(links, kNone);
+    for (std::size_t i = 0; i < star_.size(); ++i)
+    {
+      const StarTet& s = star_[i];
+      for (int k = 0; k < 4; ++k)
+      {
+        if (k == s.generator)
+          continue;
+        // Crossing the face opposite r, the one with the fourth vertex, turns counter-clockwise
+        // about p -> q: the ring enters through the face with r and leaves through the other.
+        const int r = kTurns.turn[s.generator][k], fourth = 6 - s.generator - k - r;
+        const std::uint32_t q = s.link[k], from = s.link[r];
+        step(q, from) = {s.link[fourth], static_cast<std::uint32_t>(i), stamp_};
+        std::uint32_t& first = firstFrom_[q];
+        if (first == kNone || link_[from] < link_[first])
+          first = from;
+      }
+    }
+  }
+
+  std::uint32_t linkIndex(std::uint32_t v, bool dense)
+  {
+    if (dense)
+    {
+      std::uint16_t& index = linkOf_[v];
+      if (index == kNoLink)
+      {
+        index = static_cast<std::uint16_t>(link_.size());
+        link_.push_back(v);
+      }
+      return index;
+    }
+    const auto found = linkOfLarge_.emplace(v, static_cast<std::uint32_t>(link_.size()));
+    if (found.second)
+      link_.push_back(v);
+    return found.first->second;
+  }
+
+  RingStep& step(std::uint32_t q, std::uint32_t from)
+  {
+    const std::size_t links = link_.size();
+    return links <= kDenseLinks ? steps_[q * links + from]
+                                : stepsLarge_[std::uint64_t(q) << 32 | from];
+  }
+
+  /// The rings, into loops_ / faceStart_ / neighbors_.
+  void traceRings()
+  {
+    order_.resize(link_.size());
+    for (std::uint32_t q = 0; q < order_.size(); ++q)
+      order_[q] = std::uint64_t(link_[q]) << 32 | q;
+    std::sort(order_.begin(), order_.end());
     loops_.clear();
     faceStart_.assign(1, 0);
     neighbors_.clear();
-    for (const auto& [q, start] : queue_)
+    for (const std::uint64_t key : order_)
     {
-      std::uint32_t i = start;
+      const auto q = static_cast<std::uint32_t>(key);
+      const std::uint32_t first = firstFrom_[q];
+      std::uint32_t from = first;
+      std::size_t steps = 0;
       do
       {
-        const StarTet& s = star_[i];
-        const int r = kTurns.turn[s.generator][localIndex(s.vertices, q)];
-        loops_.push_back(i);
-        i = s.next[r];
-      } while (i != start);
+        const RingStep& next = step(q, from);
+        if (next.cell != stamp_ || ++steps > star_.size())
+          throw std::logic_error("voronoiCells: a ring about an edge is open");
+        loops_.push_back(next.star);
+        from = next.to;
+      } while (from != first);
       faceStart_.push_back(static_cast<std::uint32_t>(loops_.size()));
-      neighbors_.push_back(q);
+      neighbors_.push_back(link_[q]);
     }
   }
-
-  const double* centre(std::uint32_t t) const { return &centres_[3 * std::size_t(t)]; }
 
   /// Adds a face's share of the cell's volume (six times: the face's Newell vector dotted with a
   /// vertex, both from the generator) and area (twice), the Newell vector summed over its edges.
@@ -323,45 +456,6 @@ private:
     twiceArea += std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   }
 
-  /// A cell inside the box: its faces are the rings as they are.
-  void emitWhole(std::uint32_t p, Stretch& out)
-  {
-    const std::size_t faces = neighbors_.size();
-    out.faceCounts.push_back(static_cast<std::uint32_t>(faces));
-    std::size_t at = out.vertices.size();
-    out.vertices.resize(at + loops_.size());
-    std::uint32_t* vertices = out.vertices.data();
-    const double* g = &xyz_[3 * std::size_t(p)];
-    double sixVolume = 0, twiceArea = 0;
-    for (std::uint32_t f = 0; f < faces; ++f)
-    {
-      const std::uint32_t size = faceStart_[f + 1] - faceStart_[f];
-      out.faceSizes.push_back(size);
-      out.neighbors.push_back(inputId(neighbors_[f]));
-      const std::uint32_t* ring = &loops_[faceStart_[f]];
-      for (std::uint32_t k = 0; k < size; ++k)
-      {
-        StarTet& s = star_[ring[k]];
-        if (!s.owned)
-          vertices[at++] = s.tet;
-        else
-        {
-          if (s.own == kNone)
-          {
-            s.own = static_cast<std::uint32_t>(out.ownPoints.size() / 3);
-            out.ownPoints.insert(out.ownPoints.end(), s.centre, s.centre + 3);
-            out.ownedCentres.push_back({s.tet, s.own});
-          }
-          vertices[at++] = kOwnVertex | s.own;
-        }
-      }
-      addFace(
-        g, size, [&](std::uint32_t k) { return star_[ring[k]].centre; }, sixVolume, twiceArea);
-    }
-    out.volumes.push_back(sixVolume / 6);
-    out.areas.push_back(twiceArea / 2);
-  }
-
   void makePolyhedron()
   {
     Polyhedron& c = cell_;
@@ -370,20 +464,22 @@ private:
     c.loops.clear();
     c.faceStart.assign(1, 0);
     c.neighbors.clear();
-    for (StarTet& s : star_)
-      s.own = kNone;
+    localOf_.clear();
     for (std::size_t f = 0; f + 1 < faceStart_.size(); ++f)
     {
       for (std::uint32_t k = faceStart_[f]; k < faceStart_[f + 1]; ++k)
       {
-        StarTet& s = star_[loops_[k]];
-        if (s.own == kNone)
+        const StarTet& s = star_[loops_[k]];
+        bool inserted;
+        const std::uint32_t v =
+          localOf_.find(loops_[k], static_cast<std::uint32_t>(c.x.size()), inserted);
+        if (inserted)
         {
-          s.own = static_cast<std::uint32_t>(c.x.size());
-          c.x.push_back({s.centre[0], s.centre[1], s.centre[2]});
+          const double* x = centre(s.tet);
+          c.x.push_back({x[0], x[1], x[2]});
           c.tet.push_back(s.tet);
         }
-        c.loops.push_back(s.own);
+        c.loops.push_back(v);
       }
       c.faceStart.push_back(static_cast<std::uint32_t>(c.loops.size()));
       c.neighbors.push_back(neighbors_[f]);
@@ -395,7 +491,7 @@ private:
   {
     Polyhedron& c = cell_;
     const int axis = wall / 2;
-    const double bound = box_[wall];
+    const double bound = in_.box[wall];
     auto outside = [&](std::uint32_t v) {
       return wall % 2 ? c.x[v][axis] > bound : c.x[v][axis] < bound;
     };
@@ -524,60 +620,27 @@ private:
     }
   }
 
-  /// A clipped cell into `out`: its own vertices (crossings and the circumcentres it owns)
-  /// numbered in the order its faces meet them.
-  void emitClipped(std::uint32_t p, Stretch& out)
-  {
-    const Polyhedron& c = cell_;
-    const std::size_t faces = c.neighbors.size();
-    out.faceCounts.push_back(static_cast<std::uint32_t>(faces));
-    localOf_.clear();
-    const double* g = &xyz_[3 * std::size_t(p)];
-    double sixVolume = 0, twiceArea = 0;
-    for (std::size_t f = 0; f < faces; ++f)
-    {
-      const std::uint32_t begin = c.faceStart[f], size = c.faceStart[f + 1] - begin;
-      out.faceSizes.push_back(size);
-      out.neighbors.push_back(inputId(c.neighbors[f]));
-      for (std::uint32_t k = 0; k < size; ++k)
-      {
-        const std::uint32_t v = c.loops[begin + k], t = c.tet[v];
-        if (t != kNone && owner(t) != p)
-        {
-          out.vertices.push_back(t);
-          continue;
-        }
-        bool inserted;
-        const auto own = static_cast<std::uint32_t>(out.ownPoints.size() / 3);
-        const std::uint32_t id = localOf_.find(v, own, inserted);
-        if (inserted)
-        {
-          out.ownPoints.insert(out.ownPoints.end(), c.x[v].begin(), c.x[v].end());
-          if (t != kNone)
-            out.ownedCentres.push_back({t, id});
-        }
-        out.vertices.push_back(kOwnVertex | id);
-      }
-      addFace(
-        g, size, [&](std::uint32_t k) { return c.x[c.loops[begin + k]].data(); }, sixVolume,
-        twiceArea);
-    }
-    out.volumes.push_back(sixVolume / 6);
-    out.areas.push_back(twiceArea / 2);
-  }
+  /// Stars of fewer tetrahedra number their link in linkOf_; link vertices up to this many
+  /// have their ring steps in a square table.
+  static constexpr std::size_t kDenseStar = 1 << 16;
+  static constexpr std::size_t kDenseLinks = 256;
+  static constexpr std::uint16_t kNoLink = 0xFFFF;
 
-  const double* xyz_;
-  const std::vector<std::uint32_t>& inputId_;
-  const Triangulation& mesh_;
-  const std::vector<double>& centres_;
-  const std::vector<std::uint8_t>& inBox_;
-  const std::vector<std::uint32_t>& seeds_;
-  const std::array<double, 6> box_;
+  const CellSources& in_;
   // One cell's scratch, kept between cells for its memory.
-  std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
   std::vector<StarTet> star_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> queue_;
-  SmallMap seen_, localOf_;
+  std::vector<std::uint32_t> link_; ///< the vertices joined to the generator, as met
+  /// Each vertex's index in link_ while a cell is traced (kNoLink otherwise): two bytes a vertex
+  /// per thread, against a hash map's several lookups.
+  std::vector<std::uint16_t> linkOf_;
+  std::unordered_map<std::uint32_t, std::uint32_t> linkOfLarge_;
+  std::vector<RingStep> steps_; ///< links x links, by (q, from)
+  std::unordered_map<std::uint64_t, RingStep> stepsLarge_;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> firstFrom_; ///< per link vertex: the lowest `from` of its ring
+  std::vector<std::uint64_t> order_;
+  SmallMap localOf_, crossingOf_;
+  std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
   Polyhedron cell_;
   std::vector<std::array<std::uint32_t, 3>> crossings_;
   std::vector<std::pair<std::uint32_t, bool>> events_;
@@ -748,29 +811,28 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
     a[k] += offset[k];
 }
 
-/// Renumbers the tetrahedra, and their vertices, in an order that the points alone decide: each
-/// tetrahedron's vertices ascending (the last two swapped where that keeps it positive), the
-/// tetrahedra by those vertices. The mesh's own order varies with the thread count; everything
-/// built from the sorted one is the same for any. And as the points lie along a curve, a
-/// generator's star then lies in a few stretches of memory, the tetrahedra whose centres its cell
-/// owns in one.
-void sortTetrahedra(ThreadTeam& team, Triangulation& mesh, std::size_t vertices)
+/// Each tetrahedron's vertices in ascending order, the last two exchanged where that order is an
+/// odd permutation of the mesh's, so that it stays positively oriented; then its circumcentre,
+/// from the vertices in that order, and whether it lies in the closed box. The mesh's rotation of
+/// the vertices varies with the thread count; this order, the centres' rounding and everything
+/// built from them depend on the points alone.
+void prepareTetrahedra(ThreadTeam& team, const double* xyz, Triangulation& mesh,
+  const std::array<double, 6>& box, Doubles& centres, std::vector<std::uint8_t>& inBox)
 {
   const std::size_t tets = mesh.numberOfTetrahedra();
-  const std::uint32_t* t4 = mesh.tetrahedra.data();
-  // Each tetrahedron's vertices in their new order, and where each old local index goes.
-  IdArray tetrahedra(4 * tets);
-  std::vector<std::uint8_t> moves(tets); // 2 bits per old local index
-  team.forRanges(tets, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+  centres.resize(3 * tets);
+  inBox.resize(tets);
+  std::uint32_t* t4 = mesh.tetrahedra.data();
+  team.forRanges(tets, "circumcentres", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
     {
+      std::uint32_t* v = t4 + 4 * t;
       // A sorting network of five exchanges; each exchange flips the orientation.
-      int order[4] = {0, 1, 2, 3};
       bool odd = false;
       auto exchange = [&](int i, int j) {
-        if (t4[4 * t + order[j]] < t4[4 * t + order[i]])
+        if (v[j] < v[i])
         {
-          std::swap(order[i], order[j]);
+          std::swap(v[i], v[j]);
           odd = !odd;
         }
       };
@@ -780,181 +842,191 @@ void sortTetrahedra(ThreadTeam& team, Triangulation& mesh, std::size_t vertices)
       exchange(1, 3);
       exchange(1, 2);
       if (odd)
-        std::swap(order[2], order[3]);
-      std::uint8_t move = 0;
-      for (int k = 0; k < 4; ++k)
-      {
-        tetrahedra[4 * t + k] = t4[4 * t + order[k]];
-        move |= std::uint8_t(k << (2 * order[k]));
-      }
-      moves[t] = move;
-    }
-  });
-  // By the lowest vertex (a counting sort), then by the others within each lowest vertex.
-  std::vector<std::uint32_t> start(vertices + 1, 0), sorted(tets);
-  for (std::size_t t = 0; t < tets; ++t)
-    ++start[tetrahedra[4 * t] + 1];
-  for (std::size_t v = 0; v < vertices; ++v)
-    start[v + 1] += start[v];
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < tets; ++t)
-      sorted[next[tetrahedra[4 * t]]++] = static_cast<std::uint32_t>(t);
-  }
-  std::vector<std::uint32_t> newId(tets);
-  team.forRanges(vertices, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v)
-    {
-      auto before = [&](std::uint32_t a, std::uint32_t b) {
-        const std::uint32_t* x = &tetrahedra[4 * std::size_t(a)];
-        const std::uint32_t* y = &tetrahedra[4 * std::size_t(b)];
-        return x[1] != y[1] ? x[1] < y[1] : (x[2] != y[2] ? x[2] < y[2] : x[3] < y[3]);
-      };
-      // Insertion sort: a vertex is the lowest of a few tetrahedra.
-      for (std::uint32_t k = start[v] + 1; k < start[v + 1]; ++k)
-      {
-        const std::uint32_t moving = sorted[k];
-        std::uint32_t at = k;
-        for (; at > start[v] && before(moving, sorted[at - 1]); --at)
-          sorted[at] = sorted[at - 1];
-        sorted[at] = moving;
-      }
-      for (std::uint32_t k = start[v]; k < start[v + 1]; ++k)
-        newId[sorted[k]] = k;
-    }
-  });
-  IdArray sortedTetrahedra(4 * tets), neighbors(4 * tets);
-  team.forRanges(tets, "voronoi sort", [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k)
-    {
-      const std::size_t t = sorted[k];
-      std::copy_n(&tetrahedra[4 * t], 4, &sortedTetrahedra[4 * k]);
-      for (int i = 0; i < 4; ++i)
-      {
-        const std::uint32_t across = mesh.neighbors[4 * t + i];
-        const std::uint32_t to = across == kNoNeighbor
-          ? kNoNeighbor
-          : newId[across >> 2] << 2 | ((moves[across >> 2] >> 2 * (across & 3)) & 3);
-        neighbors[4 * k + ((moves[t] >> 2 * i) & 3)] = to;
-      }
-    }
-  });
-  mesh.tetrahedra.swap(sortedTetrahedra);
-  mesh.neighbors.swap(neighbors);
-}
-
-/// Every tetrahedron's circumcentre, and whether it lies in the closed box.
-void circumcentres(ThreadTeam& team, const double* xyz, const Triangulation& mesh,
-  const std::array<double, 6>& box, std::vector<double>& centres, std::vector<std::uint8_t>& inBox)
-{
-  const std::size_t tets = mesh.numberOfTetrahedra();
-  centres.resize(3 * tets);
-  inBox.resize(tets);
-  const auto* t4 = mesh.tetrahedra.data();
-  team.forRanges(tets, "circumcentres", [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t t = begin; t < end; ++t)
-    {
-      // From the vertices in their sorted order (sortTetrahedra), which the thread count does
-      // not change, so neither does the centre's rounding.
+        std::swap(v[2], v[3]);
       double* x = &centres[3 * t];
-      std::copy_n(xyz + 3 * std::size_t(t4[4 * t]), 3, x);
-      addScaledCircumcentre(xyz, t4 + 4 * t, x);
+      std::copy_n(xyz + 3 * std::size_t(v[0]), 3, x);
+      addScaledCircumcentre(xyz, v, x);
       inBox[t] = x[0] >= box[0] && x[0] <= box[1] && x[1] >= box[2] && x[1] <= box[3] &&
         x[2] >= box[4] && x[2] <= box[5];
     }
   });
 }
 
-/// The lowest-numbered tetrahedron of each vertex's star.
-std::vector<std::uint32_t> starSeeds(
-  ThreadTeam& team, const Triangulation& mesh, std::size_t vertices)
+/// Every vertex's star, in two passes over the tetrahedra (a count, then their ids).
+Stars starsOf(
+  const Triangulation& mesh, const std::vector<std::uint8_t>& inBox, std::size_t vertices)
 {
-  std::unique_ptr<std::atomic<std::uint32_t>[]> lowest(new std::atomic<std::uint32_t>[vertices]);
+  Stars stars;
+  const std::size_t tets = mesh.numberOfTetrahedra();
+  const std::uint32_t* t4 = mesh.tetrahedra.data();
+  stars.start.assign(vertices + 1, 0);
+  stars.ownedCentres.assign(vertices, 0);
+  stars.clipped.assign(vertices, 0);
+  for (std::size_t t = 0; t < tets; ++t)
+  {
+    const std::uint32_t* v = t4 + 4 * t;
+    stars.ownedCentres[v[0]] += inBox[t];
+    for (int k = 0; k < 4; ++k)
+    {
+      ++stars.start[v[k] + 1];
+      stars.clipped[v[k]] |= !inBox[t];
+    }
+  }
   for (std::size_t v = 0; v < vertices; ++v)
-    lowest[v].store(kNone, std::memory_order_relaxed);
-  team.forRanges(
-    mesh.numberOfTetrahedra(), "stars", [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t t = begin; t < end; ++t)
-        for (int i = 0; i < 4; ++i)
-        {
-          std::atomic<std::uint32_t>& seed = lowest[mesh.tetrahedra[4 * t + i]];
-          std::uint32_t known = seed.load(std::memory_order_relaxed);
-          while (t < known &&
-            !seed.compare_exchange_weak(
-              known, static_cast<std::uint32_t>(t), std::memory_order_relaxed))
-          {}
-        }
-    });
-  std::vector<std::uint32_t> seeds(vertices);
-  for (std::size_t v = 0; v < vertices; ++v)
-    seeds[v] = lowest[v].load(std::memory_order_relaxed);
-  return seeds;
+    stars.start[v + 1] += stars.start[v];
+  stars.tets.resize(4 * tets);
+  for (std::size_t k = 0; k < 4 * tets; ++k)
+    stars.tets[stars.start[t4[k]]++] = static_cast<std::uint32_t>(k / 4);
+  // Each start has moved to its star's end, the next one's start.
+  for (std::size_t v = vertices; v > 0; --v)
+    stars.start[v] = stars.start[v - 1];
+  stars.start[0] = 0;
+  return stars;
 }
 
-/// Joins the stretches, in order, into `cells`, the circumcentres that other cells own numbered
-/// through `pointOf` (a scratch of a number per tetrahedron).
-void join(ThreadTeam& team, std::vector<Stretch>& parts, std::vector<std::uint32_t>& pointOf,
+/// Where each cell's parts go in the output: its first face, vertex, centre and crossing.
+struct CellPlaces
+{
+  std::vector<std::size_t> vertex, centre, crossing;
+};
+
+/// The sizes of the cells (those of the clipped ones from their stretches; a whole cell with a
+/// star of n tetrahedra has 2 + n/2 faces, those of its link, a sphere, and 3n face vertices),
+/// summed into places, and the output's arrays made to hold them.
+CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& stars,
+  const std::vector<Stretch>& parts, VoronoiCells& cells)
+{
+  const std::size_t n = vertices.size();
+  std::vector<std::uint32_t> clippedAt(n, kNone); // the cell's index in its stretch
+  std::vector<std::uint32_t> clippedPart(n, kNone);
+  for (std::size_t k = 0; k < parts.size(); ++k)
+    for (std::size_t j = 0; j < parts[k].cells.size(); ++j)
+    {
+      clippedAt[parts[k].cells[j]] = static_cast<std::uint32_t>(j);
+      clippedPart[parts[k].cells[j]] = static_cast<std::uint32_t>(k);
+    }
+  std::vector<std::size_t> clippedFace(parts.size(), 0);
+  std::vector<std::size_t> clippedVertex(parts.size(), 0);
+  CellPlaces at;
+  at.vertex.resize(n + 1);
+  at.centre.resize(n + 1);
+  at.crossing.resize(n + 1);
+  cells.cellFaces.resize(n + 1);
+  cells.cellFaces[0] = at.vertex[0] = at.centre[0] = at.crossing[0] = 0;
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    const std::uint32_t p = vertices[c];
+    std::size_t faces, faceVertices, crossings = 0;
+    if (clippedAt[c] == kNone)
+    {
+      const std::size_t star = stars.start[p + 1] - stars.start[p];
+      faces = 2 + star / 2;
+      faceVertices = 3 * star;
+    }
+    else
+    {
+      const Stretch& s = parts[clippedPart[c]];
+      const std::uint32_t j = clippedAt[c];
+      faces = s.faceCounts[j];
+      std::size_t& face = clippedFace[clippedPart[c]];
+      faceVertices = std::accumulate(
+        s.faceSizes.begin() + face, s.faceSizes.begin() + face + faces, std::size_t(0));
+      face += faces;
+      crossings = s.crossings[j];
+    }
+    cells.cellFaces[c + 1] = cells.cellFaces[c] + faces;
+    at.vertex[c + 1] = at.vertex[c] + faceVertices;
+    at.centre[c + 1] = at.centre[c] + stars.ownedCentres[p];
+    at.crossing[c + 1] = at.crossing[c] + crossings;
+  }
+  const std::size_t points = at.centre[n] + at.crossing[n];
+  if (points >= kOwnVertex)
+    throw std::length_error("voronoiCells: more than 2^31 vertices");
+  for (std::size_t& crossing : at.crossing)
+    crossing += at.centre[n];
+  cells.faceStart.resize(cells.cellFaces[n] + 1);
+  cells.faceStart[cells.cellFaces[n]] = at.vertex[n];
+  cells.faceVertices.resize(at.vertex[n]);
+  cells.faceNeighbors.resize(cells.cellFaces[n]);
+  cells.points.resize(3 * points);
+  cells.volumes.resize(n);
+  cells.areas.resize(n);
+  return at;
+}
+
+/// The output's points of the centres in the box, cell after cell: each cell's own (those of the
+/// tetrahedra whose lowest vertex is its generator) by their tetrahedra's other vertices; and
+/// the point of each such tetrahedron.
+void placeCentres(ThreadTeam& team, const std::vector<std::uint32_t>& vertices,
+  const CellSources& in, const CellPlaces& at, const Doubles& centres, IdArray& pointOf,
   VoronoiCells& cells)
 {
-  const std::size_t n = parts.size();
-  std::vector<std::size_t> cellAt(n + 1, 0), faceAt(n + 1, 0), vertexAt(n + 1, 0),
-    pointAt(n + 1, 0);
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    cellAt[k + 1] = cellAt[k] + parts[k].faceCounts.size();
-    faceAt[k + 1] = faceAt[k] + parts[k].faceSizes.size();
-    vertexAt[k + 1] = vertexAt[k] + parts[k].vertices.size();
-    pointAt[k + 1] = pointAt[k] + parts[k].ownPoints.size() / 3;
-  }
-  if (pointAt[n] >= kOwnVertex)
-    throw std::length_error("voronoiCells: more than 2^31 vertices");
-  cells.points.resize(3 * pointAt[n]);
-  cells.cellFaces.resize(cellAt[n] + 1);
-  cells.faceStart.resize(faceAt[n] + 1);
-  cells.faceVertices.resize(vertexAt[n]);
-  cells.faceNeighbors.resize(faceAt[n]);
-  cells.volumes.resize(cellAt[n]);
-  cells.areas.resize(cellAt[n]);
-  cells.cellFaces[cellAt[n]] = faceAt[n];
-  cells.faceStart[faceAt[n]] = vertexAt[n];
-  ThreadedWork& record = team.newRecord("voronoi join");
+  team.forRanges(
+    vertices.size(), "voronoi centres", [&](std::size_t, std::size_t begin, std::size_t end) {
+      std::vector<std::uint32_t> owned;
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        const std::uint32_t p = vertices[c];
+        owned.clear();
+        for (std::size_t k = in.stars.start[p]; k < in.stars.start[p + 1]; ++k)
+        {
+          const std::uint32_t t = in.stars.tets[k];
+          if (in.tetrahedra[4 * std::size_t(t)] == p && in.inBox[t])
+            owned.push_back(t);
+        }
+        std::sort(owned.begin(), owned.end(), [&](std::uint32_t a, std::uint32_t b) {
+          return std::lexicographical_compare(in.tetrahedra + 4 * std::size_t(a) + 1,
+            in.tetrahedra + 4 * std::size_t(a) + 4, in.tetrahedra + 4 * std::size_t(b) + 1,
+            in.tetrahedra + 4 * std::size_t(b) + 4);
+        });
+        for (std::size_t r = 0; r < owned.size(); ++r)
+        {
+          const std::size_t point = at.centre[c] + r;
+          pointOf[owned[r]] = static_cast<std::uint32_t>(point);
+          std::copy_n(&centres[3 * std::size_t(owned[r])], 3, &cells.points[3 * point]);
+        }
+      }
+    });
+}
+
+/// The clipped cells' stretches into the output, their circumcentres numbered through pointOf.
+void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces& at,
+  const IdArray& pointOf, VoronoiCells& cells)
+{
   team.run(
-    n,
-    [&](std::size_t k) {
-      for (const auto& [t, own] : parts[k].ownedCentres)
-        pointOf[t] = static_cast<std::uint32_t>(pointAt[k] + own);
-    },
-    record);
-  team.run(
-    n,
+    parts.size(),
     [&](std::size_t k) {
       const Stretch& s = parts[k];
-      std::size_t face = faceAt[k];
-      for (std::size_t c = 0; c < s.faceCounts.size(); ++c)
+      std::size_t face = 0, vertex = 0;
+      for (std::size_t j = 0; j < s.cells.size(); ++j)
       {
-        cells.cellFaces[cellAt[k] + c] = face;
-        face += s.faceCounts[c];
+        const std::size_t c = s.cells[j];
+        std::size_t outFace = cells.cellFaces[c], outVertex = at.vertex[c];
+        for (std::uint32_t f = 0; f < s.faceCounts[j]; ++f, ++face, ++outFace)
+        {
+          cells.faceStart[outFace] = outVertex;
+          cells.faceNeighbors[outFace] = s.neighbors[face];
+          for (std::uint32_t i = 0; i < s.faceSizes[face]; ++i, ++vertex)
+          {
+            const std::uint32_t id = s.vertices[vertex];
+            cells.faceVertices[outVertex++] = id & kOwnVertex
+              ? static_cast<std::uint32_t>(at.crossing[c] + (id & ~kOwnVertex))
+              : pointOf[id];
+          }
+        }
+        cells.volumes[c] = s.volumes[j];
+        cells.areas[c] = s.areas[j];
       }
-      std::size_t vertex = vertexAt[k];
-      for (std::size_t f = 0; f < s.faceSizes.size(); ++f)
+      std::size_t crossing = 0;
+      for (std::size_t j = 0; j < s.cells.size(); ++j)
       {
-        cells.faceStart[faceAt[k] + f] = vertex;
-        vertex += s.faceSizes[f];
+        const std::size_t c = s.cells[j], size = 3 * s.crossings[j];
+        std::copy_n(&s.crossingPoints[crossing], size, &cells.points[3 * at.crossing[c]]);
+        crossing += size;
       }
-      for (std::size_t v = 0; v < s.vertices.size(); ++v)
-      {
-        const std::uint32_t id = s.vertices[v];
-        cells.faceVertices[vertexAt[k] + v] = id & kOwnVertex
-          ? static_cast<std::uint32_t>(pointAt[k] + (id & ~kOwnVertex))
-          : pointOf[id];
-      }
-      std::copy(s.neighbors.begin(), s.neighbors.end(), cells.faceNeighbors.begin() + faceAt[k]);
-      std::copy(s.ownPoints.begin(), s.ownPoints.end(), cells.points.begin() + 3 * pointAt[k]);
-      std::copy(s.volumes.begin(), s.volumes.end(), cells.volumes.begin() + cellAt[k]);
-      std::copy(s.areas.begin(), s.areas.end(), cells.areas.begin() + cellAt[k]);
       parts[k] = Stretch();
     },
-    record);
+    team.newRecord("voronoi clipped"));
 }
 } // namespace
 
@@ -999,28 +1071,66 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
     return cells;
   }
 
-  std::vector<double> centres;
+  Doubles centres;
   std::vector<std::uint8_t> inBox;
-  sortTetrahedra(team, mesh, count + kFarPoints);
-  circumcentres(team, curve.xyz.data(), mesh, cells.box, centres, inBox);
-  const std::vector<std::uint32_t> seeds = starSeeds(team, mesh, count + kFarPoints);
-  std::vector<std::uint32_t> vertices; // the generators, as the mesh numbers them
+  prepareTetrahedra(team, curve.xyz.data(), mesh, cells.box, centres, inBox);
+  const Stars stars = starsOf(mesh, inBox, count + kFarPoints);
+  std::vector<std::uint32_t> vertices, clipped; // the generators as the mesh numbers them
   for (std::uint32_t v = 0; v < count; ++v)
     if (mesh.representative[v] == v && curve.inputId[v] < options.generators)
+    {
+      if (stars.clipped[v])
+        clipped.push_back(static_cast<std::uint32_t>(vertices.size()));
       vertices.push_back(v);
+    }
   cells.generators.resize(vertices.size());
   for (std::size_t c = 0; c < vertices.size(); ++c)
     cells.generators[c] = curve.inputId[vertices[c]];
-  std::vector<Stretch> parts(team.partsFor(vertices.size()));
+
+  // The clipped cells first: their sizes are known once they are clipped.
+  CellSources sources{
+    curve.xyz.data(), curve.inputId, mesh.tetrahedra.data(), stars, inBox, cells.box};
+  sources.centres = centres.data();
+  // A builder per thread, kept for both passes.
+  std::vector<std::unique_ptr<CellBuilder>> builders(team.size());
+  auto builder = [&](std::size_t k) -> CellBuilder& {
+    if (!builders[k])
+      builders[k] = std::make_unique<CellBuilder>(sources, count + kFarPoints);
+    return *builders[k];
+  };
+  std::vector<Stretch> parts(team.partsFor(clipped.size()));
+  team.forRanges(clipped.size(), "voronoi clipped cells",
+    [&](std::size_t k, std::size_t begin, std::size_t end) {
+      CellBuilder& cell = builder(k);
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const std::uint32_t p = vertices[clipped[i]];
+        cell.trace(p);
+        cell.emitClipped(p, clipped[i], parts[k]);
+      }
+    });
+  const CellPlaces at = placeCells(vertices, stars, parts, cells);
+  IdArray pointOf(mesh.numberOfTetrahedra());
+  placeCentres(team, vertices, sources, at, centres, pointOf, cells);
+  Doubles().swap(centres);
+
+  // The whole cells, straight into their places, then the clipped ones.
+  sources.centres = nullptr;
+  sources.pointOf = pointOf.data();
+  sources.points = cells.points.data();
   team.forRanges(
     vertices.size(), "voronoi cells", [&](std::size_t k, std::size_t begin, std::size_t end) {
-      CellBuilder builder(curve.xyz.data(), curve.inputId, mesh, centres, inBox, seeds, cells.box);
+      CellBuilder& cell = builder(k);
       for (std::size_t c = begin; c < end; ++c)
-        builder.build(vertices[c], parts[k]);
+      {
+        const std::uint32_t p = vertices[c];
+        if (stars.clipped[p])
+          continue;
+        cell.trace(p);
+        cell.emitWhole(p, c, cells.cellFaces[c], at.vertex[c], cells);
+      }
     });
-  std::vector<double>().swap(centres);
-  std::vector<std::uint32_t> pointOf(mesh.numberOfTetrahedra());
-  join(team, parts, pointOf, cells);
+  copyClipped(team, parts, at, pointOf, cells);
   return cells;
 }
 

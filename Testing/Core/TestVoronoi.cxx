@@ -24,7 +24,8 @@ namespace
 {
 using Vec = std::array<double, 3>;
 
-Vec point(const std::vector<double>& xyz, std::size_t id)
+template <typename Array>
+Vec point(const Array& xyz, std::size_t id)
 {
   return {xyz[3 * id], xyz[3 * id + 1], xyz[3 * id + 2]};
 }

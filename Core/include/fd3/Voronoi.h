@@ -48,16 +48,23 @@ struct VoronoiCells
   /// the Voronoi vertices' doubles hold. Anything else leaves no cells.
   Status status = Status::Ok;
   std::array<double, 6> box = {0, 0, 0, 0, 0, 0}; ///< the box the cells were clipped to
-  std::vector<double> points;                     ///< the cells' vertices, x,y,z each
+  /// The arrays of doubles and of offsets, in the kernel's allocator (no zero fill).
+  using Doubles = std::vector<double, BulkAllocator<double>>;
+  using Offsets = std::vector<std::size_t, BulkAllocator<std::size_t>>;
+  /// The cells' vertices, x,y,z each: the circumcentres in the box, cell after cell (each cell's
+  /// own, those of the tetrahedra whose lowest vertex is its generator), then the crossings of
+  /// the box, cell after cell (each clipped cell has its own, at the same coordinates as its
+  /// neighbours').
+  Doubles points;
   /// Each cell's input point id; the cells follow a Hilbert curve through the points, an order
   /// that only the points decide.
-  std::vector<std::uint32_t> generators;
-  std::vector<std::size_t> cellFaces;      ///< cell c's faces: [cellFaces[c], cellFaces[c+1])
-  std::vector<std::size_t> faceStart;      ///< face f's vertices: [faceStart[f], faceStart[f+1])
-  std::vector<std::uint32_t> faceVertices; ///< point ids; counter-clockwise seen from outside
+  IdArray generators;
+  Offsets cellFaces;    ///< cell c's faces: [cellFaces[c], cellFaces[c+1])
+  Offsets faceStart;    ///< face f's vertices: [faceStart[f], faceStart[f+1])
+  IdArray faceVertices; ///< point ids; counter-clockwise seen from outside
   /// The input point id of the generator across each face, or kBoxFace + wall.
-  std::vector<std::uint32_t> faceNeighbors;
-  std::vector<double> volumes, areas; ///< per cell; areas include the box's faces
+  IdArray faceNeighbors;
+  Doubles volumes, areas; ///< per cell; areas include the box's faces
   /// The tetrahedralization's figures for the input's points (the kernel adds eight far points
   /// of its own, not counted here).
   Statistics stats;
