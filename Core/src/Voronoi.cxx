@@ -32,6 +32,7 @@
 #include "Geometry.h"
 #include "InsertionOrder.h"
 #include "Threads.h"
+#include "fd3/Distributed.h"
 #include "fd3/Measures.h"
 
 #include <algorithm>
@@ -81,6 +82,8 @@ constexpr TurnTable makeTurnTable()
   return table;
 }
 constexpr TurnTable kTurns = makeTurnTable();
+/// The local indices of a tetrahedron's vertices but one.
+constexpr int kOthers[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
 /// An open-addressing map of 32-bit keys for one cell's work, emptied per cell in the time of
 /// what it held.
@@ -151,8 +154,8 @@ struct Stretch
   std::vector<double> volumes, areas;
 };
 
-/// The tetrahedra around each vertex: those of vertex v are tets[start[v], start[v + 1]), in the
-/// mesh's order. Beside them, what each vertex needs to know of its star before its cell is built.
+/// The tetrahedra around each vertex: those of vertex v are tets[start[v], start[v + 1]), the
+/// ownedCentres[v] ones whose centres its cell owns first, each part in the mesh's order. Beside them, what each vertex needs to know of its star before its cell is built.
 struct Stars
 {
   std::vector<std::size_t> start;
@@ -338,60 +341,62 @@ private:
   /// tetrahedron's step in the ring about each of its other three vertices.
   void linkEdges()
   {
-    link_.clear();
     // A star of n tetrahedra has 2 + n/2 link vertices: below kDenseStar, their indices fit
     // linkOf_'s 16 bits.
     const bool dense = star_.size() < kDenseStar;
     if (!dense)
       linkOfLarge_.clear();
+    link_.resize(3 * star_.size() + 1);
+    links_ = 0;
     for (StarTet& s : star_)
-      for (int k = 0; k < 4; ++k)
-        if (k != s.generator)
-          s.link[k] = linkIndex(s.vertices[k], dense);
+      for (const int k : kOthers[s.generator])
+        s.link[k] = dense ? denseLinkIndex(s.vertices[k]) : largeLinkIndex(s.vertices[k]);
+    link_.resize(links_);
     if (dense)
       for (const std::uint32_t v : link_)
         linkOf_[v] = kNoLink;
-    const std::size_t links = link_.size();
     ++stamp_;
-    if (links <= kDenseLinks && steps_.size() < links * links)
-      steps_.resize(links * links, {0, 0, 0});
-    else if (links > kDenseLinks)
+    if (links_ <= kDenseLinks && steps_.size() < links_ * links_)
+      steps_.resize(links_ * links_, {0, 0, 0});
+    else if (links_ > kDenseLinks)
       stepsLarge_.clear();
-    firstFrom_.assign(links, kNone);
+    firstFrom_.assign(links_, kNone);
+    firstId_.assign(links_, kNone);
     for (std::size_t i = 0; i < star_.size(); ++i)
     {
       const StarTet& s = star_[i];
-      for (int k = 0; k < 4; ++k)
+      for (const int k : kOthers[s.generator])
       {
-        if (k == s.generator)
-          continue;
         // Crossing the face opposite r, the one with the fourth vertex, turns counter-clockwise
         // about p -> q: the ring enters through the face with r and leaves through the other.
         const int r = kTurns.turn[s.generator][k], fourth = 6 - s.generator - k - r;
         const std::uint32_t q = s.link[k], from = s.link[r];
         step(q, from) = {s.link[fourth], static_cast<std::uint32_t>(i), stamp_};
-        std::uint32_t& first = firstFrom_[q];
-        if (first == kNone || link_[from] < link_[first])
-          first = from;
+        // Without a branch: whether a vertex is lower than the ring's lowest so far is a coin
+        // toss.
+        const bool lower = s.vertices[r] < firstId_[q];
+        firstId_[q] = lower ? s.vertices[r] : firstId_[q];
+        firstFrom_[q] = lower ? from : firstFrom_[q];
       }
     }
   }
 
-  std::uint32_t linkIndex(std::uint32_t v, bool dense)
+  /// v's index in link_, which it joins if new (without a branch: new or not is a coin toss).
+  std::uint32_t denseLinkIndex(std::uint32_t v)
   {
-    if (dense)
-    {
-      std::uint16_t& index = linkOf_[v];
-      if (index == kNoLink)
-      {
-        index = static_cast<std::uint16_t>(link_.size());
-        link_.push_back(v);
-      }
-      return index;
-    }
-    const auto found = linkOfLarge_.emplace(v, static_cast<std::uint32_t>(link_.size()));
+    std::uint16_t& index = linkOf_[v];
+    link_[links_] = v;
+    const bool added = index == kNoLink;
+    index = added ? static_cast<std::uint16_t>(links_) : index;
+    links_ += added;
+    return index;
+  }
+
+  std::uint32_t largeLinkIndex(std::uint32_t v)
+  {
+    const auto found = linkOfLarge_.emplace(v, static_cast<std::uint32_t>(links_));
     if (found.second)
-      link_.push_back(v);
+      link_[links_++] = v;
     return found.first->second;
   }
 
@@ -405,30 +410,61 @@ private:
   /// The rings, into loops_ / faceStart_ / neighbors_.
   void traceRings()
   {
-    order_.resize(link_.size());
-    for (std::uint32_t q = 0; q < order_.size(); ++q)
-      order_[q] = std::uint64_t(link_[q]) << 32 | q;
-    std::sort(order_.begin(), order_.end());
-    loops_.clear();
-    faceStart_.assign(1, 0);
-    neighbors_.clear();
-    for (const std::uint64_t key : order_)
+    orderFaces();
+    const std::size_t links = link_.size(), longest = star_.size();
+    loops_.resize(3 * longest);
+    faceStart_.resize(links + 1);
+    neighbors_.resize(links);
+    std::uint32_t* loop = loops_.data();
+    const RingStep* steps = steps_.data();
+    const std::uint32_t stamp = stamp_;
+    std::size_t at = 0;
+    faceStart_[0] = 0;
+    for (std::size_t f = 0; f < links; ++f)
     {
-      const auto q = static_cast<std::uint32_t>(key);
-      const std::uint32_t first = firstFrom_[q];
+      const std::uint32_t q = order_[f], first = firstFrom_[q];
+      const std::size_t begin = at;
       std::uint32_t from = first;
-      std::size_t steps = 0;
       do
       {
-        const RingStep& next = step(q, from);
-        if (next.cell != stamp_ || ++steps > star_.size())
+        const RingStep& next = links <= kDenseLinks ? steps[q * links + from] : step(q, from);
+        if (next.cell != stamp || at - begin >= longest || at == loops_.size())
           throw std::logic_error("voronoiCells: a ring about an edge is open");
-        loops_.push_back(next.star);
+        loop[at++] = next.star;
         from = next.to;
       } while (from != first);
-      faceStart_.push_back(static_cast<std::uint32_t>(loops_.size()));
-      neighbors_.push_back(link_[q]);
+      faceStart_[f + 1] = static_cast<std::uint32_t>(at);
+      neighbors_[f] = link_[q];
     }
+    loops_.resize(at);
+  }
+
+  /// The link vertices by id into order_: each one's rank among them, counted without a branch
+  /// where the link is small, sorted where it is large.
+  void orderFaces()
+  {
+    const std::size_t links = link_.size();
+    order_.resize(links);
+    std::uint32_t* order = order_.data();
+    if (links <= kCountedLinks)
+    {
+      // Vertex ids are below 2^31: signed comparisons, which vectorize.
+      ids_.assign(link_.begin(), link_.end());
+      const std::int32_t* ids = ids_.data();
+      for (std::uint32_t q = 0; q < links; ++q)
+      {
+        const std::int32_t id = ids[q];
+        std::int32_t rank = 0;
+        for (std::size_t other = 0; other < links; ++other)
+          rank += ids[other] < id;
+        order[rank] = q;
+      }
+      return;
+    }
+    for (std::uint32_t q = 0; q < links; ++q)
+      order[q] = q;
+    std::sort(order_.begin(), order_.end(),
+      [&](std::uint32_t a, std::uint32_t b) { return link_[a] < link_[b]; });
   }
 
   /// Adds a face's share of the cell's volume (six times: the face's Newell vector dotted with a
@@ -624,6 +660,8 @@ private:
   /// have their ring steps in a square table.
   static constexpr std::size_t kDenseStar = 1 << 16;
   static constexpr std::size_t kDenseLinks = 256;
+  /// Up to this many link vertices, the faces' order is counted rather than sorted.
+  static constexpr std::size_t kCountedLinks = 64;
   static constexpr std::uint16_t kNoLink = 0xFFFF;
 
   const CellSources& in_;
@@ -637,8 +675,11 @@ private:
   std::vector<RingStep> steps_; ///< links x links, by (q, from)
   std::unordered_map<std::uint64_t, RingStep> stepsLarge_;
   std::uint32_t stamp_ = 0;
-  std::vector<std::uint32_t> firstFrom_; ///< per link vertex: the lowest `from` of its ring
-  std::vector<std::uint64_t> order_;
+  /// Per link vertex: the lowest `from` of its ring, and its vertex id.
+  std::vector<std::uint32_t> firstFrom_, firstId_;
+  std::vector<std::uint32_t> order_; ///< the link vertices by vertex id
+  std::vector<std::int32_t> ids_;
+  std::size_t links_ = 0; ///< link_'s length while it is gathered
   SmallMap localOf_, crossingOf_;
   std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
   Polyhedron cell_;
@@ -811,6 +852,23 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
     a[k] += offset[k];
 }
 
+/// The tetrahedralization of the points, then of the far points, in one frame. Inserted last,
+/// the far points meet the points' hull in a few tests; inserted among the points, they would take
+/// part in the tests of every insertion near the hull, in exact arithmetic where its faces hold
+/// cocircular points (a lattice's), which no sphere through a far point tells apart.
+Triangulation meshOf(const CurvePoints& curve, std::size_t count, const VoronoiOptions& options)
+{
+  Options delaunay;
+  delaunay.threads = options.threads;
+  delaunay.progress = options.progress;
+  delaunay.computeNeighbors = false; // the stars are listed instead
+  IncrementalDelaunay mesh(
+    curve.xyz.data(), count, delaunay, frameOf(curve.xyz.data(), count + kFarPoints), kFarPoints);
+  if (mesh.status() != Status::Aborted)
+    mesh.add(curve.xyz.data() + 3 * count, kFarPoints);
+  return mesh.release();
+}
+
 /// Each tetrahedron's vertices in ascending order, the last two exchanged where that order is an
 /// odd permutation of the mesh's, so that it stays positively oriented; then its circumcentre,
 /// from the vertices in that order, and whether it lies in the closed box. The mesh's rotation of
@@ -875,12 +933,17 @@ Stars starsOf(
   for (std::size_t v = 0; v < vertices; ++v)
     stars.start[v + 1] += stars.start[v];
   stars.tets.resize(4 * tets);
-  for (std::size_t k = 0; k < 4 * tets; ++k)
-    stars.tets[stars.start[t4[k]]++] = static_cast<std::uint32_t>(k / 4);
-  // Each start has moved to its star's end, the next one's start.
-  for (std::size_t v = vertices; v > 0; --v)
-    stars.start[v] = stars.start[v - 1];
-  stars.start[0] = 0;
+  // Each star's owned tetrahedra first.
+  std::vector<std::size_t> owned(stars.start.begin(), stars.start.end() - 1), others(vertices);
+  for (std::size_t v = 0; v < vertices; ++v)
+    others[v] = stars.start[v] + stars.ownedCentres[v];
+  for (std::size_t t = 0; t < tets; ++t)
+  {
+    const std::uint32_t* v = t4 + 4 * t;
+    stars.tets[inBox[t] ? owned[v[0]]++ : others[v[0]]++] = static_cast<std::uint32_t>(t);
+    for (int k = 1; k < 4; ++k)
+      stars.tets[others[v[k]]++] = static_cast<std::uint32_t>(t);
+  }
   return stars;
 }
 
@@ -967,13 +1030,8 @@ void placeCentres(ThreadTeam& team, const std::vector<std::uint32_t>& vertices,
       for (std::size_t c = begin; c < end; ++c)
       {
         const std::uint32_t p = vertices[c];
-        owned.clear();
-        for (std::size_t k = in.stars.start[p]; k < in.stars.start[p + 1]; ++k)
-        {
-          const std::uint32_t t = in.stars.tets[k];
-          if (in.tetrahedra[4 * std::size_t(t)] == p && in.inBox[t])
-            owned.push_back(t);
-        }
+        const auto first = in.stars.tets.begin() + std::ptrdiff_t(in.stars.start[p]);
+        owned.assign(first, first + in.stars.ownedCentres[p]);
         std::sort(owned.begin(), owned.end(), [&](std::uint32_t a, std::uint32_t b) {
           return std::lexicographical_compare(in.tetrahedra + 4 * std::size_t(a) + 1,
             in.tetrahedra + 4 * std::size_t(a) + 4, in.tetrahedra + 4 * std::size_t(b) + 1,
@@ -1058,10 +1116,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
     return cells;
   }
 
-  Options delaunay;
-  delaunay.threads = options.threads;
-  delaunay.progress = options.progress;
-  Triangulation mesh = triangulate(curve.xyz.data(), count + kFarPoints, delaunay);
+  Triangulation mesh = meshOf(curve, count, options);
   cells.stats = mesh.stats;
   cells.stats.inputPoints -= kFarPoints;
   cells.stats.insertedPoints -= kFarPoints;
