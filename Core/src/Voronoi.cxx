@@ -331,7 +331,9 @@ private:
     {
       StarTet s;
       s.tet = in_.stars.tets[k];
-      std::copy_n(in_.tetrahedra + 4 * std::size_t(s.tet), 4, s.vertices);
+      const std::uint32_t* v = in_.tetrahedra + 4 * std::size_t(s.tet);
+      for (int k = 0; k < 4; ++k) // a loop, not a call to memmove
+        s.vertices[k] = v[k];
       s.generator = static_cast<std::uint8_t>(localIndex(s.vertices, p));
       star_.push_back(s);
     }
@@ -777,7 +779,8 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
     {
       const auto id = static_cast<std::uint32_t>(keys[k] & ((std::uint64_t(1) << 31) - 1));
       curve.inputId[k] = id;
-      std::copy_n(xyz + 3 * std::size_t(id), 3, &curve.xyz[3 * k]);
+      for (int a = 0; a < 3; ++a)
+        curve.xyz[3 * k + a] = xyz[3 * std::size_t(id) + a];
     }
   });
   return curve;
@@ -902,7 +905,8 @@ void prepareTetrahedra(ThreadTeam& team, const double* xyz, Triangulation& mesh,
       if (odd)
         std::swap(v[2], v[3]);
       double* x = &centres[3 * t];
-      std::copy_n(xyz + 3 * std::size_t(v[0]), 3, x);
+      for (int a = 0; a < 3; ++a)
+        x[a] = xyz[3 * std::size_t(v[0]) + a];
       addScaledCircumcentre(xyz, v, x);
       inBox[t] = x[0] >= box[0] && x[0] <= box[1] && x[1] >= box[2] && x[1] <= box[3] &&
         x[2] >= box[4] && x[2] <= box[5];
@@ -1041,7 +1045,8 @@ void placeCentres(ThreadTeam& team, const std::vector<std::uint32_t>& vertices,
         {
           const std::size_t point = at.centre[c] + r;
           pointOf[owned[r]] = static_cast<std::uint32_t>(point);
-          std::copy_n(&centres[3 * std::size_t(owned[r])], 3, &cells.points[3 * point]);
+          for (int a = 0; a < 3; ++a)
+            cells.points[3 * point + a] = centres[3 * std::size_t(owned[r]) + a];
         }
       }
     });
