@@ -504,8 +504,17 @@ int vtkFastDelaunay3D::RequestData(
   {
     output->GetPointData()->PassData(pointData);
   }
+  std::vector<double> density; // before the cells take the tetrahedra over
+  if (this->ComputeDensity)
+  {
+    density = fd3::densities(xyz, count, result);
+  }
   this->SetOutputCells(output, xyz, count, result);
   this->AddCellArrays(output, xyz);
+  if (this->ComputeDensity)
+  {
+    AddDensity(output, density);
+  }
   this->OutputSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
@@ -641,6 +650,21 @@ void vtkFastDelaunay3D::AddCellArrays(vtkUnstructuredGrid* output, const double*
   }
 }
 
+void vtkFastDelaunay3D::AddDensity(vtkUnstructuredGrid* output, const std::vector<double>& density)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName("Density");
+  array->SetNumberOfValues(output->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < array->GetNumberOfValues(); ++i)
+  {
+    array->SetValue(i,
+      static_cast<std::size_t>(i) < density.size() ? density[i]
+                                                   : std::numeric_limits<double>::quiet_NaN());
+  }
+  output->GetPointData()->RemoveArray("Density");
+  output->GetPointData()->AddArray(array);
+}
+
 const double* vtkFastDelaunay3D::CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
 {
   vtkDataArray* data = points->GetData();
@@ -731,6 +755,7 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ComputeCircumradius: " << this->ComputeCircumradius << "\n";
   os << indent << "ComputeVolume: " << this->ComputeVolume << "\n";
+  os << indent << "ComputeDensity: " << this->ComputeDensity << "\n";
   os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";
   os << indent << "ComputeStatistics: " << this->ComputeStatistics << "\n";
   for (const Figure& figure : this->Figures())

@@ -222,6 +222,19 @@ public:
 
   ///@{
   /**
+   * When on, a point array "Density": the Delaunay tessellation field estimate, 4 times the input
+   * points at each vertex (it and its merged duplicates) over the volume of the tetrahedra around
+   * it, whose linear field integrates over the hull to the number of points; on the whole
+   * tetrahedralization, with an Alpha too. Hull points have part of a star, so their values run
+   * high. NaN for points on no tetrahedron. Off by default.
+   */
+  vtkSetMacro(ComputeDensity, vtkTypeBool);
+  vtkGetMacro(ComputeDensity, vtkTypeBool);
+  vtkBooleanMacro(ComputeDensity, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * When on, the output's field data holds the figures of the run (see the getters below) as
    * one-tuple arrays named after them. Off by default.
    */
@@ -292,6 +305,7 @@ protected:
   vtkTypeBool ComputeCircumradius = 0;
   vtkTypeBool ComputeVolume = 0;
   vtkTypeBool ComputeRadiusEdgeRatio = 0;
+  vtkTypeBool ComputeDensity = 0;
   vtkTypeBool ComputeStatistics = 0;
 
   vtkIdType NumberOfInsertedPoints = 0;
@@ -324,6 +338,8 @@ protected:
     fd3::Triangulation& result, const CellFilter& keep = CellFilter());
   /// The requested Circumradius, Volume and RadiusEdgeRatio cell arrays; xyz: the output points.
   void AddCellArrays(vtkUnstructuredGrid* output, const double* xyz);
+  /// The Density point array, from `density` for the first output points and NaN for the rest.
+  static void AddDensity(vtkUnstructuredGrid* output, const std::vector<double>& density);
   /// The figures as field data: all of them with ComputeStatistics, else the counts of left-out
   /// points whenever some are.
   void AddFigures(vtkFieldData* fields) const;

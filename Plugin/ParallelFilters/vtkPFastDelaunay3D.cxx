@@ -86,6 +86,12 @@ int vtkPFastDelaunay3D::RequestData(
   }
   try // no rank waits for this one from here on
   {
+    std::vector<double> density; // of the own points, the first; before the cells take the mesh
+    if (this->ComputeDensity)
+    {
+      density = fd3::densities(run.Xyz.data(), run.Xyz.size() / 3, run.Result);
+      density.resize(run.OwnCount());
+    }
     if (run.Result.status == fd3::Status::Ok)
     {
       this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, run.Result,
@@ -98,6 +104,10 @@ int vtkPFastDelaunay3D::RequestData(
     run.SetOutputPoints(output);
     std::vector<double> converted;
     this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));
+    if (this->ComputeDensity)
+    {
+      AddDensity(output, density); // ghosts' stars are partial here: NaN
+    }
   }
   catch (const std::exception& error)
   {

@@ -3,7 +3,8 @@
 // tetrahedra of all pieces (in input ids) are exactly those of vtkFastDelaunay3D on the whole
 // input, each once, and pass the exact validator; every point keeps its point data ("Label", made
 // from its coordinates); the volume Integrate Variables found is that of
-// the convex hull, once. With an alpha, the alpha shape's cells of every dimension are compared.
+// the convex hull, once; the own points' Density is the one-process run's. With an alpha, the alpha
+// shape's cells of every dimension are compared.
 //
 // usage: CheckDistributed <pieces .pvtu> <volume printed by TestMPI.py> [alpha]
 #include "ExactValidator.h"
@@ -125,6 +126,28 @@ std::string compareFigures(vtkUnstructuredGrid* pieces, vtkFastDelaunay3D* seria
   return "";
 }
 
+/// Each rank's own points' Density, against the one-process run's (NaN where it has NaN): the
+/// halo gives a rank every tetrahedron around its points.
+std::string compareDensity(vtkUnstructuredGrid* pieces, vtkUnstructuredGrid* serial,
+  const std::vector<std::uint32_t>& toInput)
+{
+  vtkDataArray* density = pieces->GetPointData()->GetArray("Density");
+  vtkDataArray* expected = serial->GetPointData()->GetArray("Density");
+  auto* ghosts = pieces->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName());
+  if (!density || !expected)
+    return "no Density point array";
+  for (vtkIdType i = 0; i < pieces->GetNumberOfPoints(); ++i)
+  {
+    if (ghosts->GetComponent(i, 0) != 0)
+      continue;
+    const double d = density->GetComponent(i, 0), e = expected->GetComponent(toInput[i], 0);
+    if (std::isnan(d) != std::isnan(e) || std::abs(d - e) > 1e-12 * std::abs(e))
+      return "point " + std::to_string(toInput[i]) + " has density " + std::to_string(d) +
+        ", the one-process run " + std::to_string(e);
+  }
+  return "";
+}
+
 /// The volume of the grid's tetrahedra (with an alpha, of its alpha shape's).
 double volume(vtkUnstructuredGrid* grid, const fd3test::Points& xyz)
 {
@@ -162,6 +185,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkFastDelaunay3D> serial;
   serial->SetInputData(fd3test::toPolyData(input));
   serial->SetAlpha(alpha);
+  serial->ComputeDensityOn();
   serial->Update();
   std::vector<std::uint32_t> identity(inputCount);
   std::iota(identity.begin(), identity.end(), 0u);
@@ -172,6 +196,9 @@ int main(int argc, char* argv[])
       ") differ from the one-process run's (" +
       std::to_string(serial->GetOutput()->GetNumberOfCells()) + ")");
   if (const std::string failure = compareFigures(pieces, serial); !failure.empty())
+    return fail(failure);
+  if (const std::string failure = compareDensity(pieces, serial->GetOutput(), toInput);
+      !failure.empty())
     return fail(failure);
   if (alpha == 0)
   {

@@ -19,6 +19,7 @@
 #include "vtkSMPTools.h"
 #include "vtkStructuredGrid.h"
 #include "vtkTestErrorObserver.h"
+#include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
@@ -141,6 +142,44 @@ TEST(Filter, DuplicatesAreMergedAndReported)
                                           "50 exact duplicates (merged"),
     0);
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 550);
+}
+
+// Density: one value per output point; duplicates carry their vertex's; the linear field
+// through the values integrates over the tetrahedra to the number of points; off by default.
+TEST(Filter, DensityIntegratesToThePoints)
+{
+  fd3test::Points p = fd3test::uniformCube(2000, 5);
+  p.insert(p.end(), p.begin(), p.begin() + 3 * 20);
+  vtkNew<vtkFastDelaunay3D> filter;
+  filter->SetInputData(toPolyData(p));
+  filter->Update();
+  EXPECT_EQ(filter->GetOutput()->GetPointData()->GetArray("Density"), nullptr);
+  filter->ComputeDensityOn();
+  filter->SetAlpha(0.05); // the density is the whole tetrahedralization's
+  filter->Update();
+  vtkDataArray* density = filter->GetOutput()->GetPointData()->GetArray("Density");
+  ASSERT_NE(density, nullptr);
+  ASSERT_EQ(density->GetNumberOfTuples(), 2020);
+  for (vtkIdType i = 0; i < 20; ++i)
+    EXPECT_EQ(density->GetTuple1(2000 + i), density->GetTuple1(i));
+  filter->SetAlpha(0);
+  filter->Update();
+  vtkUnstructuredGrid* out = filter->GetOutput();
+  density = out->GetPointData()->GetArray("Density");
+  const std::vector<std::uint32_t> tets = fd3test::tetrahedra(out);
+  double integral = 0;
+  for (std::size_t t = 0; t < tets.size(); t += 4)
+  {
+    double x[4][3];
+    for (int k = 0; k < 4; ++k)
+      out->GetPoint(tets[t + k], x[k]);
+    const double volume = std::fabs(vtkTetra::ComputeVolume(x[0], x[1], x[2], x[3]));
+    double mean = 0;
+    for (int k = 0; k < 4; ++k)
+      mean += density->GetTuple1(tets[t + k]) / 4;
+    integral += volume * mean;
+  }
+  EXPECT_NEAR(integral, 2020, 1e-9 * 2020);
 }
 
 /// Input points used by at least one output cell.

@@ -80,7 +80,8 @@ if voronoi:
     result = FastVoronoi3D(Input=cloud)
 else:
     result = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1,  # every dimension
-                            ComputeStatistics=1)  # all ranks' figures, as field data
+                            ComputeStatistics=1,  # all ranks' figures, as field data
+                            ComputeDensity=1)
 SaveData(pieces_path, proxy=result)
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 if voronoi:

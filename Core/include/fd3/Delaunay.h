@@ -217,6 +217,15 @@ struct AlphaComplex
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const Triangulation& triangulation,
   double alpha, int threads = 1);
 
+/// The Delaunay tessellation field estimate of the points' density (Schaap and van de Weygaert,
+/// 2000), per input point: 4 m / V, where m counts the input points at its vertex (it, and those
+/// merged into it) and V is the volume of the tetrahedra around it. The piecewise-linear field
+/// through these values integrates over the hull to the number of finite points. A point on the
+/// hull has part of a star, so its estimate runs high, as the estimator's does at any boundary.
+/// NaN for a point on no tetrahedron (not finite, or a status other than Ok).
+std::vector<double> densities(
+  const double* xyz, std::size_t count, const Triangulation& triangulation);
+
 /// Delaunay tetrahedralization of `count` points given as x,y,z triples. Throws std::length_error
 /// beyond 2^30 points or 2^30 tetrahedra (32-bit ids; about 150M uniform points), std::bad_alloc
 /// when memory runs out, and lets exceptions from the progress callback through; all memory is
