@@ -858,8 +858,11 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
 /// The tetrahedralization of the points, then of the far points, in one frame. Inserted last,
 /// the far points meet the points' hull in a few tests; inserted among the points, they would take
 /// part in the tests of every insertion near the hull, in exact arithmetic where its faces hold
-/// cocircular points (a lattice's), which no sphere through a far point tells apart.
-Triangulation meshOf(const CurvePoints& curve, std::size_t count, const VoronoiOptions& options)
+/// cocircular points (a lattice's), which no sphere through a far point tells apart. With
+/// options.density, `density` gets each point's densities() value in the points' own
+/// tetrahedralization, before the far points change the tetrahedra near the hull.
+Triangulation meshOf(const CurvePoints& curve, std::size_t count, const VoronoiOptions& options,
+  std::vector<double>& density)
 {
   Options delaunay;
   delaunay.threads = options.threads;
@@ -867,8 +870,11 @@ Triangulation meshOf(const CurvePoints& curve, std::size_t count, const VoronoiO
   delaunay.computeNeighbors = false; // the stars are listed instead
   IncrementalDelaunay mesh(
     curve.xyz.data(), count, delaunay, frameOf(curve.xyz.data(), count + kFarPoints), kFarPoints);
-  if (mesh.status() != Status::Aborted)
-    mesh.add(curve.xyz.data() + 3 * count, kFarPoints);
+  if (mesh.status() == Status::Aborted)
+    return mesh.release();
+  if (options.density)
+    density = densities(curve.xyz.data(), count, mesh.snapshot());
+  mesh.add(curve.xyz.data() + 3 * count, kFarPoints);
   return mesh.release();
 }
 
@@ -1121,7 +1127,8 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
     return cells;
   }
 
-  Triangulation mesh = meshOf(curve, count, options);
+  std::vector<double> density;
+  Triangulation mesh = meshOf(curve, count, options, density);
   cells.stats = mesh.stats;
   cells.stats.inputPoints -= kFarPoints;
   cells.stats.insertedPoints -= kFarPoints;
@@ -1146,6 +1153,12 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   cells.generators.resize(vertices.size());
   for (std::size_t c = 0; c < vertices.size(); ++c)
     cells.generators[c] = curve.inputId[vertices[c]];
+  if (options.density)
+  {
+    cells.densities.resize(vertices.size());
+    for (std::size_t c = 0; c < vertices.size(); ++c)
+      cells.densities[c] = density[vertices[c]];
+  }
 
   // The clipped cells first: their sizes are known once they are clipped.
   CellSources sources{

@@ -134,6 +134,7 @@ fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
   std::copy(this->Bounds, this->Bounds + 6, options.box.begin());
   options.threads =
     this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.density = this->ComputeDensity;
   options.progress = [this](double fraction) {
     this->UpdateProgress(0.8 * fraction);
     return !this->CheckAbort();
@@ -276,10 +277,16 @@ void vtkFastVoronoi3D::AddCellData(
       neighbors->SetValue(c, static_cast<int>(cells.numberOfNeighbors(cell)));
     }
   });
+  std::vector<vtkDataArray*> arrays = { generatorId, volume, area, faces, neighbors };
+  vtkSmartPointer<vtkDoubleArray> density;
+  if (!cells.densities.empty())
+  {
+    density = NamedArray<vtkDoubleArray>("Density", n);
+    std::copy(cells.densities.begin(), cells.densities.end(), density->GetPointer(0));
+    arrays.push_back(density);
+  }
   // The cells' own arrays take the place of input arrays of the same name.
-  for (vtkDataArray* array : { vtkDataArray::SafeDownCast(generatorId),
-         vtkDataArray::SafeDownCast(volume), vtkDataArray::SafeDownCast(area),
-         vtkDataArray::SafeDownCast(faces), vtkDataArray::SafeDownCast(neighbors) })
+  for (vtkDataArray* array : arrays)
   {
     cellData->RemoveArray(array->GetName());
     cellData->AddArray(array);
@@ -303,6 +310,7 @@ void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
      << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
      << this->Bounds[5] << ")\n";
   os << indent << "Number Of Threads: " << this->NumberOfThreads << "\n";
+  os << indent << "Compute Density: " << this->ComputeDensity << "\n";
   os << indent << "Number Of Generators: " << this->NumberOfGenerators << "\n";
   os << indent << "Number Of Duplicate Points: " << this->NumberOfDuplicatePoints << "\n";
   os << indent << "Number Of Invalid Points: " << this->NumberOfInvalidPoints << "\n";

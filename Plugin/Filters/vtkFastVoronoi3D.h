@@ -16,8 +16,8 @@
  * and the volumes add up to the box's.
  *
  * Cell data: GeneratorId (the input point id), Volume, SurfaceArea (the box's faces included),
- * NumberOfFaces and NumberOfNeighbors (the faces shared with another cell), and the input's point
- * data, each point's values on its cell. The cells follow a Hilbert curve through the points.
+ * NumberOfFaces and NumberOfNeighbors (the faces shared with another cell), Density where asked
+ * for, and the input's point data, each point's values on its cell. The cells follow a Hilbert curve through the points.
  * Circumcentres are points shared by the cells around them; where a cell is clipped, its
  * crossings of the box are points of its own (at the same coordinates as its neighbours').
  *
@@ -75,6 +75,17 @@ public:
 
   ///@{
   /**
+   * When on, a cell array "Density": each generator's Delaunay tessellation field estimate, as
+   * vtkFastDelaunay3D's ComputeDensity gives it (where points are cospherical, its tie-breaks may
+   * pick other tetrahedra, with the same total). Off by default.
+   */
+  vtkSetMacro(ComputeDensity, vtkTypeBool);
+  vtkGetMacro(ComputeDensity, vtkTypeBool);
+  vtkBooleanMacro(ComputeDensity, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Figures of the last run: the distinct finite points (one cell each), the exact duplicates
    * merged and the points with NaN or infinite coordinates left out.
    */
@@ -109,6 +120,7 @@ protected:
 
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   int NumberOfThreads = 0;
+  vtkTypeBool ComputeDensity = 0;
   vtkIdType NumberOfGenerators = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
   vtkIdType NumberOfInvalidPoints = 0;

@@ -6,6 +6,7 @@
 // installed, the volumes of Voro++'s cells to 1e-9.
 #include "CoreTestUtilities.h"
 #include "PointSets.h"
+#include "fd3/Measures.h"
 #include "fd3/Voronoi.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <string>
 
 #ifdef FD3_TEST_WITH_VOROPP
 #include <voro++/voro++.hh>
@@ -291,6 +293,53 @@ TEST(Voronoi, CellsOfAPieceFromItsPointsAndTheirNeighbours)
     for (int k = 0; k < 3; ++k) // the output's vertices, not only the volumes, are the cell's
       EXPECT_NEAR(partCentroids.at(part.generators[c])[k], wholeCentroids.at(p)[k], 1e-12);
   }
+}
+
+// Each cell's density is its generator's in the points' own tetrahedralization (not the one with
+// the far points, whose tetrahedra near the hull differ), duplicates counted; NaN without one.
+// Where points are cospherical, the tie-breaks (a key of the coordinates in the kernel's frame,
+// which the far points widen) may pick other tetrahedra than triangulate()'s: there the stars
+// still fill the hull four times, so the masses over the densities sum to the hull's volume.
+TEST(Voronoi, DensityIsTheTetrahedralizations)
+{
+  for (const char* kind : {"clusters", "cube", "sphere", "lattice"})
+  {
+    fd3test::Points xyz = fd3test::generate(kind, 3000, 6);
+    xyz.insert(xyz.end(), {xyz[0], xyz[1], xyz[2], NAN, 1, 1});
+    const std::size_t n = xyz.size() / 3;
+    fd3::VoronoiOptions options;
+    options.density = true;
+    const fd3::VoronoiCells v = fd3::voronoiCells(xyz.data(), n, options);
+    ASSERT_EQ(v.densities.size(), v.numberOfCells());
+    const fd3::Triangulation mesh = fd3::triangulate(xyz.data(), n);
+    const std::vector<double> expected = fd3::densities(xyz.data(), n, mesh);
+    double hull = 0, volume = 0;
+    for (std::size_t t = 0; t < mesh.numberOfTetrahedra(); ++t)
+    {
+      const std::uint32_t* q = &mesh.tetrahedra[4 * t];
+      hull +=
+        std::fabs(fd3::sixVolume(&xyz[3 * q[0]], &xyz[3 * q[1]], &xyz[3 * q[2]], &xyz[3 * q[3]])) /
+        6;
+    }
+    const bool ties = std::string(kind) == "sphere" || std::string(kind) == "lattice";
+    for (std::size_t c = 0; c < v.numberOfCells(); ++c)
+    {
+      const std::uint32_t p = v.generators[c];
+      volume += (p == 0 ? 2 : 1) / v.densities[c];
+      if (!ties)
+        EXPECT_NEAR(v.densities[c], expected[p], 1e-9 * expected[p]) << kind << " point " << p;
+    }
+    EXPECT_NEAR(volume, hull, 1e-9 * hull) << kind;
+  }
+  const std::vector<double> flat = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  fd3::VoronoiOptions options;
+  options.density = true;
+  options.box = {0, 1, 0, 1, -1, 1};
+  const fd3::VoronoiCells v = fd3::voronoiCells(flat.data(), 4, options);
+  ASSERT_EQ(v.densities.size(), 4u);
+  for (const double d : v.densities)
+    EXPECT_TRUE(std::isnan(d));
+  EXPECT_TRUE(cellsOf(flat).densities.empty()); // not asked for
 }
 
 TEST(Voronoi, BoxSmallerAndLargerThanThePoints)

@@ -2,6 +2,7 @@
 // vtkPolyhedron (closed, its volume ours) and through the XML writer and reader; the cell arrays
 // and the input's point data on the cells; the same cells for any thread count; bad input.
 #include "VtkTestUtilities.h"
+#include "vtkFastDelaunay3D.h"
 #include "vtkFastVoronoi3D.h"
 
 #include <gtest/gtest.h>
@@ -132,6 +133,33 @@ TEST(VoronoiFilter, OnePolyhedronPerPointThatVtkReadsBack)
   ASSERT_EQ(back->GetNumberOfCells(), out->GetNumberOfCells());
   EXPECT_EQ(back->GetNumberOfPoints(), out->GetNumberOfPoints());
   EXPECT_NEAR(Sum(back->GetCellData()->GetArray("Volume")), box, 1e-9 * box);
+}
+
+// Density on the cells: Fast Delaunay 3D's on their generators; absent unless asked for.
+TEST(VoronoiFilter, DensityIsFastDelaunay3Ds)
+{
+  const fd3test::Points p = fd3test::uniformCube(3000, 4);
+  auto points = fd3test::toPolyData(p);
+  vtkNew<vtkFastVoronoi3D> voronoi;
+  voronoi->SetInputData(points);
+  voronoi->Update();
+  EXPECT_EQ(voronoi->GetOutput()->GetCellData()->GetArray("Density"), nullptr);
+  voronoi->ComputeDensityOn();
+  voronoi->Update();
+  vtkNew<vtkFastDelaunay3D> delaunay;
+  delaunay->SetInputData(points);
+  delaunay->ComputeDensityOn();
+  delaunay->Update();
+  vtkDataArray* cells = voronoi->GetOutput()->GetCellData()->GetArray("Density");
+  vtkDataArray* ids = voronoi->GetOutput()->GetCellData()->GetArray("GeneratorId");
+  vtkDataArray* expected = delaunay->GetOutput()->GetPointData()->GetArray("Density");
+  ASSERT_NE(cells, nullptr);
+  ASSERT_EQ(cells->GetNumberOfTuples(), 3000);
+  for (vtkIdType c = 0; c < 3000; ++c)
+  {
+    const double e = expected->GetTuple1(static_cast<vtkIdType>(ids->GetTuple1(c)));
+    EXPECT_NEAR(cells->GetTuple1(c), e, 1e-9 * e) << "cell " << c;
+  }
 }
 
 TEST(VoronoiFilter, SameCellsForAnyThreadCount)

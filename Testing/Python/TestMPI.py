@@ -77,7 +77,7 @@ if distribution == "pvtp":
     SaveData(pieces, proxy=cloud)
     cloud = XMLPartitionedPolydataReader(FileName=[pieces])
 if voronoi:
-    result = FastVoronoi3D(Input=cloud)
+    result = FastVoronoi3D(Input=cloud, ComputeDensity=1)
 else:
     result = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1,  # every dimension
                             ComputeStatistics=1,  # all ranks' figures, as field data

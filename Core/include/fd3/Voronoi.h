@@ -37,6 +37,9 @@ struct VoronoiOptions
   /// A cell is its generator's in the whole set when every Delaunay neighbour of its generator in
   /// the whole set is among the points.
   std::size_t generators = SIZE_MAX;
+  /// Whether to give each cell its generator's Delaunay tessellation field estimate (densities():
+  /// from the tetrahedralization of the points alone, as triangulate() makes it).
+  bool density = false;
 };
 
 /// One cell per generator: each distinct finite input point (duplicates are merged into the first
@@ -65,6 +68,9 @@ struct VoronoiCells
   /// The input point id of the generator across each face, or kBoxFace + wall.
   IdArray faceNeighbors;
   Doubles volumes, areas; ///< per cell; areas include the box's faces
+  /// Per cell, with VoronoiOptions::density: its generator's densities() value (NaN where the
+  /// points have no tetrahedron).
+  Doubles densities;
   /// The tetrahedralization's figures for the input's points (the kernel adds eight far points
   /// of its own, not counted here).
   Statistics stats;
