@@ -15,9 +15,11 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -27,6 +29,7 @@
 #include "fd3/Voronoi.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <sstream>
 #include <vector>
@@ -62,7 +65,21 @@ void AddFieldValue(vtkFieldData* fields, const char* name, double value)
 }
 } // namespace
 
-vtkFastVoronoi3D::vtkFastVoronoi3D() = default;
+vtkFastVoronoi3D::vtkFastVoronoi3D()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+int vtkFastVoronoi3D::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkUnstructuredGrid" : "vtkPolyData");
+  return 1;
+}
+
+vtkPolyData* vtkFastVoronoi3D::GetFacesOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
 
 int vtkFastVoronoi3D::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -75,8 +92,10 @@ int vtkFastVoronoi3D::RequestData(
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  vtkPolyData* faces = vtkPolyData::GetData(outputVector, 1);
   this->RecordFigures(0, 0, 0);
   output->Initialize();
+  faces->Initialize();
   const vtkIdType numberOfPoints = input ? input->GetNumberOfPoints() : 0;
   if (numberOfPoints == 0)
   {
@@ -124,6 +143,10 @@ int vtkFastVoronoi3D::RequestData(
   SetPolyhedra(output, cells);
   this->UpdateProgress(0.9);
   AddCellData(output, cells, input->GetPointData());
+  if (this->GenerateFaces)
+  {
+    SetFaces(faces, cells, output->GetPoints(), [](std::uint32_t id) { return vtkIdType(id); });
+  }
   this->AddFigures(output->GetFieldData());
   return 1;
 }
@@ -294,6 +317,71 @@ void vtkFastVoronoi3D::AddCellData(
   cellData->SetActiveScalars("Volume");
 }
 
+void vtkFastVoronoi3D::SetFaces(vtkPolyData* faces, const fd3::VoronoiCells& cells,
+  vtkPoints* points, const std::function<vtkIdType(std::uint32_t)>& inputId)
+{
+  // Which faces, and where each one's ids go: one pass to count, one to write.
+  const std::size_t n = cells.numberOfCells();
+  std::vector<vtkIdType> generator(n), kept;
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    generator[c] = inputId(cells.generators[c]);
+    for (std::size_t f = cells.cellFaces[c]; f < cells.cellFaces[c + 1]; ++f)
+    {
+      const std::uint32_t q = cells.faceNeighbors[f];
+      if (q >= fd3::kBoxFace || generator[c] < inputId(q))
+      {
+        kept.push_back(static_cast<vtkIdType>(f));
+        kept.push_back(static_cast<vtkIdType>(c));
+      }
+    }
+  }
+  const auto count = static_cast<vtkIdType>(kept.size() / 2);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(count + 1);
+  offsets->SetValue(0, 0);
+  for (vtkIdType k = 0; k < count; ++k)
+  {
+    const auto f = static_cast<std::size_t>(kept[2 * k]);
+    offsets->SetValue(
+      k + 1, offsets->GetValue(k) + vtkIdType(cells.faceStart[f + 1] - cells.faceStart[f]));
+  }
+  connectivity->SetNumberOfValues(offsets->GetValue(count));
+  auto ids = NamedArray<vtkIdTypeArray>("GeneratorIds", 0);
+  ids->SetNumberOfComponents(2);
+  ids->SetNumberOfTuples(count);
+  auto area = NamedArray<vtkDoubleArray>("Area", count);
+  const double* xyz = vtkDoubleArray::SafeDownCast(points->GetData())->GetPointer(0);
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType k = begin; k < end; ++k)
+    {
+      const auto f = static_cast<std::size_t>(kept[2 * k]);
+      const std::size_t first = cells.faceStart[f], last = cells.faceStart[f + 1];
+      double normal[3] = { 0, 0, 0 };
+      for (std::size_t i = first; i < last; ++i)
+      {
+        connectivity->SetValue(offsets->GetValue(k) + vtkIdType(i - first), cells.faceVertices[i]);
+        const double* a = xyz + 3 * std::size_t(cells.faceVertices[i]);
+        const double* b = xyz + 3 * std::size_t(cells.faceVertices[i + 1 < last ? i + 1 : first]);
+        normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+      }
+      const std::uint32_t q = cells.faceNeighbors[f];
+      ids->SetTypedComponent(k, 0, generator[static_cast<std::size_t>(kept[2 * k + 1])]);
+      ids->SetTypedComponent(k, 1, q >= fd3::kBoxFace ? -1 : inputId(q));
+      area->SetValue(k, std::sqrt(vtkMath::Dot(normal, normal)) / 2);
+    }
+  });
+  vtkNew<vtkCellArray> polygons;
+  polygons->SetData(offsets, connectivity);
+  faces->SetPoints(points);
+  faces->SetPolys(polygons);
+  faces->GetCellData()->AddArray(ids);
+  faces->GetCellData()->AddArray(area);
+  faces->GetCellData()->SetActiveScalars("Area");
+}
+
 void vtkFastVoronoi3D::AddFigures(vtkFieldData* fields) const
 {
   if (this->NumberOfDuplicatePoints > 0 || this->NumberOfInvalidPoints > 0)
@@ -311,6 +399,7 @@ void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
      << this->Bounds[5] << ")\n";
   os << indent << "Number Of Threads: " << this->NumberOfThreads << "\n";
   os << indent << "Compute Density: " << this->ComputeDensity << "\n";
+  os << indent << "Generate Faces: " << this->GenerateFaces << "\n";
   os << indent << "Number Of Generators: " << this->NumberOfGenerators << "\n";
   os << indent << "Number Of Duplicate Points: " << this->NumberOfDuplicatePoints << "\n";
   os << indent << "Number Of Invalid Points: " << this->NumberOfInvalidPoints << "\n";

@@ -37,7 +37,11 @@
 
 class vtkFieldData;
 class vtkPointData;
-#include <array> // for std::array
+class vtkPoints;
+class vtkPolyData;
+#include <array>      // for std::array
+#include <cstdint>    // for std::uint32_t
+#include <functional> // for std::function
 
 namespace fd3
 {
@@ -86,6 +90,23 @@ public:
 
   ///@{
   /**
+   * When on, the second output (port 1, a vtkPolyData on the first output's points) holds every
+   * face once, as a polygon: a face that two cells share, from the cell of the lower GeneratorId,
+   * and each face on the box. Cell data: "GeneratorIds", its two generators' input ids (-1 for
+   * the box's side), and "Area". Off by default: the second output is then empty.
+   */
+  vtkSetMacro(GenerateFaces, vtkTypeBool);
+  vtkGetMacro(GenerateFaces, vtkTypeBool);
+  vtkBooleanMacro(GenerateFaces, vtkTypeBool);
+  ///@}
+
+  /**
+   * The faces (port 1; see GenerateFaces).
+   */
+  vtkPolyData* GetFacesOutput();
+
+  ///@{
+  /**
    * Figures of the last run: the distinct finite points (one cell each), the exact duplicates
    * merged and the points with NaN or infinite coordinates left out.
    */
@@ -99,6 +120,7 @@ protected:
   ~vtkFastVoronoi3D() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// The kernel's options from the properties, with progress and abort for the tetrahedralization.
@@ -115,12 +137,17 @@ protected:
   /// data on the cells.
   static void AddCellData(
     vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData);
+  /// Every face once into `faces`, on the cells' `points`; `inputId` maps the kernel's point ids
+  /// (a generator's, a face's neighbour's) to input ids.
+  static void SetFaces(vtkPolyData* faces, const fd3::VoronoiCells& cells, vtkPoints* points,
+    const std::function<vtkIdType(std::uint32_t)>& inputId);
   /// The counts of left-out points as field data, where there are some.
   void AddFigures(vtkFieldData* fields) const;
 
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   int NumberOfThreads = 0;
   vtkTypeBool ComputeDensity = 0;
+  vtkTypeBool GenerateFaces = 0;
   vtkIdType NumberOfGenerators = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
   vtkIdType NumberOfInvalidPoints = 0;

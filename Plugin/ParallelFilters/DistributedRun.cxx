@@ -638,6 +638,26 @@ fd3::Statistics DistributedRun::GlobalFigures(fd3::Status& status)
   return figures.Stats;
 }
 
+std::vector<vtkIdType> DistributedRun::InputIds() const
+{
+  std::vector<vtkIdType> ids;
+  ids.reserve(this->Xyz.size() / 3);
+  std::vector<vtkPointData*> parts{ this->Own.Data };
+  for (const auto& ghosts : this->Ghosts.Parts)
+  {
+    parts.push_back(ghosts->GetPointData());
+  }
+  for (vtkPointData* part : parts)
+  {
+    vtkDataArray* inputIds = part->GetArray(kInputIds);
+    for (vtkIdType i = 0; i < part->GetNumberOfTuples(); ++i)
+    {
+      ids.push_back(static_cast<vtkIdType>(inputIds->GetComponent(i, 0)));
+    }
+  }
+  return ids;
+}
+
 bool DistributedRun::Owns(const std::uint32_t* ids, int size) const
 {
   // Nearly always one rank owns every vertex, and their order does not matter.

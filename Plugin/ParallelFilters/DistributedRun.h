@@ -166,6 +166,8 @@ public:
   std::size_t OwnCount() const { return this->Own.Count; }
   /// The point data of the own points, with every point's input id (kInputIds).
   vtkPointData* OwnData() const { return this->Own.Data; }
+  /// From step 5: the input id of each point of Xyz, the own points' and the received ones'.
+  std::vector<vtkIdType> InputIds() const;
 
   RankGroup Ranks;
   fd3::Bounds GlobalBounds;  ///< from step 2: of every rank's finite points

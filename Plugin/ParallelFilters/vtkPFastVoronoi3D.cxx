@@ -15,6 +15,7 @@
 #include "vtkMPIController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -77,7 +78,9 @@ int vtkPFastVoronoi3D::RequestData(
   }
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  vtkPolyData* faces = vtkPolyData::GetData(outputVector, 1);
   output->Initialize();
+  faces->Initialize();
   this->RecordFigures(0, 0, 0);
   vtkSmartPointer<vtkPoints> inputPoints =
     vtkFastDelaunay3D::InputPoints(input, vtkAlgorithm::DEFAULT_PRECISION);
@@ -124,6 +127,8 @@ int vtkPFastVoronoi3D::RequestData(
     return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
   }
   const std::size_t ghosts = run.Xyz.size() / 3 - run.OwnCount();
+  const std::vector<vtkIdType> inputIds =
+    this->GenerateFaces ? run.InputIds() : std::vector<vtkIdType>();
   fd3::Coordinates().swap(run.Xyz);
 
   // The figures of all ranks: a rank's duplicates and non-finite points are its own points' (a
@@ -149,6 +154,10 @@ int vtkPFastVoronoi3D::RequestData(
   this->UpdateProgress(0.9);
   AddCellData(output, cells, run.OwnData());
   SetGeneratorIds(output);
+  if (this->GenerateFaces)
+  {
+    SetFaces(faces, cells, output->GetPoints(), [&](std::uint32_t id) { return inputIds[id]; });
+  }
   this->AddFigures(output->GetFieldData());
   return 1;
 }

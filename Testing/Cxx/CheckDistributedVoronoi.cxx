@@ -2,10 +2,10 @@
 // one-process run on the same points: every generator has one cell on one rank, with the volume,
 // surface area, faces and neighbours of its one-process cell; the cells keep their points' data
 // ("Label", made from the coordinates); their Density is the one-process run's (but where ties
-// let a rank pick other tetrahedra); the pieces' volumes fill the box; the duplicates are counted
-// across ranks.
+// let a rank pick other tetrahedra); the pieces' volumes fill the box; the ranks' faces outputs
+// together have the one-process faces (count and area); the duplicates are counted across ranks.
 //
-// usage: CheckDistributedVoronoi <pieces .pvtu> <kind, as TestMPI.py's>
+// usage: CheckDistributedVoronoi <pieces .pvtu> <kind, as TestMPI.py's> <faces> <their area>
 #include "VtkTestUtilities.h"
 
 #include "vtkCellData.h"
@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <string>
@@ -75,8 +76,8 @@ std::string cellsOf(vtkUnstructuredGrid* grid, std::map<vtkIdType, Cell>& cells)
 
 int main(int argc, char* argv[])
 {
-  if (argc < 3)
-    return fail("usage: CheckDistributedVoronoi <pieces .pvtu> <kind>");
+  if (argc < 5)
+    return fail("usage: CheckDistributedVoronoi <pieces .pvtu> <kind> <faces> <their area>");
   const bool ties = std::string(argv[2]) == "lattice" || std::string(argv[2]) == "sphere";
   vtkNew<vtkXMLPUnstructuredGridReader> reader;
   reader->SetFileName(argv[1]);
@@ -111,6 +112,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkFastVoronoi3D> serial;
   serial->SetInputData(fd3test::toPolyData(input));
   serial->ComputeDensityOn();
+  serial->GenerateFacesOn();
   serial->Update();
   std::map<vtkIdType, Cell> expected, renumbered;
   if (const std::string failure = cellsOf(serial->GetOutput(), expected); !failure.empty())
@@ -152,6 +154,16 @@ int main(int argc, char* argv[])
   if (!(std::abs(total - boxVolume) <= 1e-9 * boxVolume))
     return fail("the cells' volumes add up to " + std::to_string(total) + ", the box's is " +
       std::to_string(boxVolume));
+  // The faces output of all ranks: each face once, as one process has them.
+  vtkPolyData* faces = serial->GetFacesOutput();
+  vtkDataArray* areas = faces->GetCellData()->GetArray("Area");
+  double area = 0;
+  for (vtkIdType f = 0; f < faces->GetNumberOfCells(); ++f)
+    area += areas->GetTuple1(f);
+  if (std::atoll(argv[3]) != faces->GetNumberOfCells() ||
+    !(std::abs(std::atof(argv[4]) - area) <= 1e-9 * area))
+    return fail(std::string("the ranks' faces: ") + argv[3] + " of area " + argv[4] +
+      "; one process: " + std::to_string(faces->GetNumberOfCells()) + " of area " + text(area));
   vtkDataArray* duplicates = pieces->GetFieldData()->GetArray("NumberOfDuplicatePoints");
   if (!duplicates || duplicates->GetComponent(0, 0) != kDuplicates)
     return fail("the duplicates are not counted across ranks");

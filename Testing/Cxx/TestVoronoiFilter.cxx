@@ -26,6 +26,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -159,6 +160,55 @@ TEST(VoronoiFilter, DensityIsFastDelaunay3Ds)
   {
     const double e = expected->GetTuple1(static_cast<vtkIdType>(ids->GetTuple1(c)));
     EXPECT_NEAR(cells->GetTuple1(c), e, 1e-9 * e) << "cell " << c;
+  }
+}
+
+// The faces output: each shared face once (from the lower generator id), each box face, on the
+// cells' points; a cell's surface area is the sum of its faces' areas there.
+TEST(VoronoiFilter, FacesOnceEachWithTheirGenerators)
+{
+  auto points = fd3test::toPolyData(fd3test::uniformCube(2000, 9));
+  vtkNew<vtkFastVoronoi3D> voronoi;
+  voronoi->SetInputData(points);
+  voronoi->Update();
+  EXPECT_EQ(voronoi->GetFacesOutput()->GetNumberOfCells(), 0);
+  voronoi->GenerateFacesOn();
+  voronoi->Update();
+  vtkUnstructuredGrid* cells = voronoi->GetOutput();
+  vtkPolyData* faces = voronoi->GetFacesOutput();
+  EXPECT_EQ(faces->GetPoints(), cells->GetPoints());
+  vtkDataArray* ids = faces->GetCellData()->GetArray("GeneratorIds");
+  vtkDataArray* area = faces->GetCellData()->GetArray("Area");
+  ASSERT_NE(ids, nullptr);
+  ASSERT_NE(area, nullptr);
+  ASSERT_EQ(ids->GetNumberOfComponents(), 2);
+  vtkDataArray* faceCounts = cells->GetCellData()->GetArray("NumberOfFaces");
+  vtkDataArray* neighborCounts = cells->GetCellData()->GetArray("NumberOfNeighbors");
+  vtkIdType shared = 0, box = 0;
+  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+  {
+    shared += static_cast<vtkIdType>(neighborCounts->GetTuple1(c));
+    box += static_cast<vtkIdType>(faceCounts->GetTuple1(c) - neighborCounts->GetTuple1(c));
+  }
+  EXPECT_EQ(faces->GetNumberOfCells(), shared / 2 + box);
+  std::vector<double> surface(2000, 0);
+  for (vtkIdType f = 0; f < faces->GetNumberOfCells(); ++f)
+  {
+    const auto a = static_cast<vtkIdType>(ids->GetComponent(f, 0));
+    const auto b = static_cast<vtkIdType>(ids->GetComponent(f, 1));
+    EXPECT_TRUE(b == -1 || a < b) << "face " << f;
+    surface[a] += area->GetTuple1(f);
+    if (b >= 0)
+      surface[b] += area->GetTuple1(f);
+  }
+  vtkDataArray* generator = cells->GetCellData()->GetArray("GeneratorId");
+  vtkDataArray* surfaceArea = cells->GetCellData()->GetArray("SurfaceArea");
+  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+  {
+    const double expected = surfaceArea->GetTuple1(c);
+    EXPECT_NEAR(
+      surface[static_cast<std::size_t>(generator->GetTuple1(c))], expected, 1e-9 * expected)
+      << "cell " << c;
   }
 }
 

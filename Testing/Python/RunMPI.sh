@@ -10,7 +10,7 @@ log=$("$mpiexec" -np "$ranks" --allow-run-as-root --oversubscribe "$pvbatch" --m
 echo "$log"
 volume=$(echo "$log" | sed -n 's/^TestMPI: volume \([^ ]*\) on .*/\1/p')
 if [ "$alpha" = voronoi ]; then
-  "$checker" "$out" "$kind"
+  "$checker" "$out" "$kind" $(echo "$log" | sed -n 's/^TestMPI: faces \([^ ]*\) area \([^ ]*\)$/\1 \2/p')
 else
   "$checker" "$out" "$volume" "$alpha"
 fi

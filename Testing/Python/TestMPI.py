@@ -77,7 +77,7 @@ if distribution == "pvtp":
     SaveData(pieces, proxy=cloud)
     cloud = XMLPartitionedPolydataReader(FileName=[pieces])
 if voronoi:
-    result = FastVoronoi3D(Input=cloud, ComputeDensity=1)
+    result = FastVoronoi3D(Input=cloud, ComputeDensity=1, GenerateFaces=1)
 else:
     result = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1,  # every dimension
                             ComputeStatistics=1,  # all ranks' figures, as field data
@@ -88,6 +88,12 @@ if voronoi:
     # ParaView's own volume of a polyhedron (Integrate Variables, Cell Size) is off on some convex
     # cells; CheckDistributedVoronoi sums the cells' Volume instead.
     print("TestMPI: volume - on %d ranks" % ranks)
+    faces = servermanager.Fetch(result, idx=1)  # every rank's, appended
+    area = faces.GetCellData().GetArray("Area")
+    total = 0.0  # not sum(): paraview.simple brings a parallel one
+    for f in range(faces.GetNumberOfCells()):
+        total += area.GetValue(f)
+    print("TestMPI: faces %d area %.17g" % (faces.GetNumberOfCells(), total))
 else:
     volume = IntegrateVariables(Input=result)
     volume.UpdatePipeline()
