@@ -17,9 +17,13 @@
  *
  * Cell data: GeneratorId (the input point id), Volume, SurfaceArea (the box's faces included),
  * NumberOfFaces and NumberOfNeighbors (the faces shared with another cell), Density where asked
- * for, and the input's point data, each point's values on its cell. The cells follow a Hilbert curve through the points.
- * Circumcentres are points shared by the cells around them; where a cell is clipped, its
- * crossings of the box are points of its own (at the same coordinates as its neighbours').
+ * for, and the input's point data, each point's values on its cell. The cells follow a Hilbert
+ * curve through the points. Circumcentres are points shared by the cells around them; where a
+ * cell is clipped, its crossings of the box are points of its own (at the same coordinates as its
+ * neighbours'). The second output holds every face once where asked for (GenerateFaces).
+ *
+ * Use the Volume array: ParaView's own volume of a polyhedron (Integrate Variables, Cell Size) is
+ * wrong on some convex cells.
  *
  * As in vtkFastDelaunay3D, exact duplicate points are merged (the first copy's id makes the cell)
  * and points with NaN or infinite coordinates are left out; both are counted, reported in one
