@@ -1,14 +1,133 @@
 // The Delaunay tessellation field estimate (Schaap and van de Weygaert, 2000): each vertex's
 // density is 4 times its mass over the volume of its star, so that the piecewise-linear field
 // through the vertices integrates over the hull to the total mass, one per finite input point.
+//
+// Volumes are summed as a double times a power of two: a tetrahedron of edges near 1e-150 has a
+// volume near 1e-450, which no double holds, and whose density (near 1e450) rounds to infinity
+// rather than to whatever an underflowed volume would give. Each volume comes from its vertices in
+// one order, whatever the mesh's, so that every run (and every MPI rank) computes it alike.
 #include "fd3/Delaunay.h"
-#include "fd3/Measures.h"
 
+#include <gmp.h>
+
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <limits>
 
 namespace fd3
 {
+namespace
+{
+/// mantissa * 2^exponent.
+struct ScaledSum
+{
+  double mantissa = 0;
+  int exponent = 0;
+
+  void add(double m, int e)
+  {
+    if (mantissa == 0 || e > exponent + 60)
+    {
+      mantissa = (mantissa == 0 ? 0 : std::ldexp(mantissa, exponent - e)) + m;
+      exponent = e;
+    }
+    else
+      mantissa += std::ldexp(m, e - exponent);
+  }
+};
+
+/// Six times the volume of the tetrahedron p[0..3] exactly (GMP integers: every coordinate is an
+/// integer times 2^lowest), as mantissa * 2^exponent.
+void exactSixVolume(const double* const p[4], double& mantissa, int& exponent)
+{
+  int lowest = INT_MAX;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (p[i][k] != 0)
+      {
+        int e;
+        std::frexp(p[i][k], &e);
+        lowest = std::min(lowest, e - 53);
+      }
+  mpz_t x[4][3], u[3][3], t, det;
+  mpz_inits(t, det, nullptr);
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      mpz_init(x[i][k]);
+      int e;
+      const double m = std::frexp(p[i][k], &e);
+      mpz_set_d(x[i][k], std::ldexp(m, 53)); // an integer below 2^53: exact
+      if (p[i][k] != 0)
+        mpz_mul_2exp(x[i][k], x[i][k], static_cast<mp_bitcnt_t>(e - 53 - lowest));
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      mpz_init(u[i][k]);
+      mpz_sub(u[i][k], x[i + 1][k], x[0][k]);
+    }
+  for (int k = 0; k < 3; ++k) // the expansion along the first row
+  {
+    const int a = (k + 1) % 3, b = (k + 2) % 3;
+    mpz_mul(t, u[1][a], u[2][b]);
+    mpz_submul(t, u[1][b], u[2][a]);
+    mpz_addmul(det, u[0][k], t);
+  }
+  mpz_abs(det, det);
+  long e = 0;
+  mantissa = mpz_get_d_2exp(&e, det);
+  exponent = static_cast<int>(e) + 3 * lowest;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      mpz_clear(x[i][k]);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      mpz_clear(u[i][k]);
+  mpz_clears(t, det, nullptr);
+}
+
+/// Six times a tetrahedron's volume as mantissa * 2^exponent, the same whatever the order of its
+/// vertices: from the edges of a path through them in lexicographic order (each edge scaled by a
+/// power of two, exactly, to a length near 1), a path that keeps the digits of close points'
+/// edges beside far ones; exactly where that still cancels too many digits.
+void sixVolumeScaled(const double* const vertices[4], double& mantissa, int& exponent)
+{
+  const double* p[4] = {vertices[0], vertices[1], vertices[2], vertices[3]};
+  std::sort(p, p + 4, [](const double* a, const double* b) {
+    return std::lexicographical_compare(a, a + 3, b, b + 3);
+  });
+  double e[3][3], size = 1;
+  exponent = 0;
+  for (int i = 0; i < 3; ++i)
+  {
+    double longest = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      e[i][k] = p[i + 1][k] - p[i][k];
+      longest = std::max(longest, std::fabs(e[i][k]));
+    }
+    if (!(longest > 0) || !std::isfinite(longest))
+    {
+      mantissa = 0;
+      return;
+    }
+    const int scale = std::ilogb(longest);
+    for (double& x : e[i])
+      x = std::ldexp(x, -scale);
+    exponent += scale;
+    size *= std::sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
+  }
+  mantissa = std::fabs(e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+    e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+    e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]));
+  // The determinant's rounding is a few ulps of the edges' product: below 1e-8 of it, fewer than
+  // 8 digits would be right.
+  if (mantissa < 1e-8 * size)
+    exactSixVolume(p, mantissa, exponent);
+}
+} // namespace
 
 std::vector<double> densities(
   const double* xyz, std::size_t count, const Triangulation& triangulation)
@@ -16,17 +135,19 @@ std::vector<double> densities(
   std::vector<double> density(count, std::numeric_limits<double>::quiet_NaN());
   if (triangulation.status != Status::Ok)
     return density;
-  std::vector<double> starVolume(count, 0), mass(count, 0);
+  std::vector<ScaledSum> star(count);
+  std::vector<double> mass(count, 0);
   const std::uint32_t* t4 = triangulation.tetrahedra.data();
   for (std::size_t t = 0; t < triangulation.numberOfTetrahedra(); ++t)
   {
     const std::uint32_t* v = t4 + 4 * t;
-    const double volume =
-      std::fabs(sixVolume(&xyz[3 * std::size_t(v[0])], &xyz[3 * std::size_t(v[1])],
-        &xyz[3 * std::size_t(v[2])], &xyz[3 * std::size_t(v[3])])) /
-      6;
+    const double* p[4] = {&xyz[3 * std::size_t(v[0])], &xyz[3 * std::size_t(v[1])],
+      &xyz[3 * std::size_t(v[2])], &xyz[3 * std::size_t(v[3])]};
+    double mantissa;
+    int exponent;
+    sixVolumeScaled(p, mantissa, exponent);
     for (int k = 0; k < 4; ++k)
-      starVolume[v[k]] += volume;
+      star[v[k]].add(mantissa, exponent);
   }
   // A point merged into a vertex (an exact duplicate, or one within the tolerance) adds to its
   // mass, and has its density.
@@ -36,8 +157,8 @@ std::vector<double> densities(
   for (std::size_t i = 0; i < count; ++i)
   {
     const std::uint32_t v = triangulation.representative[i];
-    if (v != kNoPoint && starVolume[v] > 0)
-      density[i] = 4 * mass[v] / starVolume[v];
+    if (v != kNoPoint && star[v].mantissa > 0) // 4 m / (six volume / 6)
+      density[i] = std::ldexp(24 * mass[v] / star[v].mantissa, -star[v].exponent);
   }
   return density;
 }

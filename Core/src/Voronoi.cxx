@@ -920,9 +920,11 @@ void prepareTetrahedra(ThreadTeam& team, const double* xyz, Triangulation& mesh,
   });
 }
 
-/// Every vertex's star, in two passes over the tetrahedra (a count, then their ids).
-Stars starsOf(
-  const Triangulation& mesh, const std::vector<std::uint8_t>& inBox, std::size_t vertices)
+/// Every vertex's star, in two passes over the tetrahedra (a count, then their ids). Each thread
+/// scans every tetrahedron for the vertices of its own range, so that no two threads write one
+/// vertex's lists, and a list is in the mesh's order for any thread count.
+Stars starsOf(ThreadTeam& team, const Triangulation& mesh, const std::vector<std::uint8_t>& inBox,
+  std::size_t vertices)
 {
   Stars stars;
   const std::size_t tets = mesh.numberOfTetrahedra();
@@ -930,16 +932,20 @@ Stars starsOf(
   stars.start.assign(vertices + 1, 0);
   stars.ownedCentres.assign(vertices, 0);
   stars.clipped.assign(vertices, 0);
-  for (std::size_t t = 0; t < tets; ++t)
-  {
-    const std::uint32_t* v = t4 + 4 * t;
-    stars.ownedCentres[v[0]] += inBox[t];
-    for (int k = 0; k < 4; ++k)
+  team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    for (std::size_t t = 0; t < tets; ++t)
     {
-      ++stars.start[v[k] + 1];
-      stars.clipped[v[k]] |= !inBox[t];
+      const std::uint32_t* v = t4 + 4 * t;
+      if (v[0] >= lo && v[0] < hi)
+        stars.ownedCentres[v[0]] += inBox[t];
+      for (int k = 0; k < 4; ++k)
+        if (v[k] >= lo && v[k] < hi)
+        {
+          ++stars.start[v[k] + 1];
+          stars.clipped[v[k]] |= !inBox[t];
+        }
     }
-  }
+  });
   for (std::size_t v = 0; v < vertices; ++v)
     stars.start[v + 1] += stars.start[v];
   stars.tets.resize(4 * tets);
@@ -947,13 +953,17 @@ Stars starsOf(
   std::vector<std::size_t> owned(stars.start.begin(), stars.start.end() - 1), others(vertices);
   for (std::size_t v = 0; v < vertices; ++v)
     others[v] = stars.start[v] + stars.ownedCentres[v];
-  for (std::size_t t = 0; t < tets; ++t)
-  {
-    const std::uint32_t* v = t4 + 4 * t;
-    stars.tets[inBox[t] ? owned[v[0]]++ : others[v[0]]++] = static_cast<std::uint32_t>(t);
-    for (int k = 1; k < 4; ++k)
-      stars.tets[others[v[k]]++] = static_cast<std::uint32_t>(t);
-  }
+  team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    for (std::size_t t = 0; t < tets; ++t)
+    {
+      const std::uint32_t* v = t4 + 4 * t;
+      if (v[0] >= lo && v[0] < hi)
+        stars.tets[inBox[t] ? owned[v[0]]++ : others[v[0]]++] = static_cast<std::uint32_t>(t);
+      for (int k = 1; k < 4; ++k)
+        if (v[k] >= lo && v[k] < hi)
+          stars.tets[others[v[k]]++] = static_cast<std::uint32_t>(t);
+    }
+  });
   return stars;
 }
 
@@ -1141,7 +1151,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   Doubles centres;
   std::vector<std::uint8_t> inBox;
   prepareTetrahedra(team, curve.xyz.data(), mesh, cells.box, centres, inBox);
-  const Stars stars = starsOf(mesh, inBox, count + kFarPoints);
+  const Stars stars = starsOf(team, mesh, inBox, count + kFarPoints);
   std::vector<std::uint32_t> vertices, clipped; // the generators as the mesh numbers them
   for (std::uint32_t v = 0; v < count; ++v)
     if (mesh.representative[v] == v && curve.inputId[v] < options.generators)
@@ -1204,6 +1214,8 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
       }
     });
   copyClipped(team, parts, at, pointOf, cells);
+  cells.threadedWork = std::move(mesh.threadedWork);
+  cells.threadedWork.insert(cells.threadedWork.end(), team.records().begin(), team.records().end());
   return cells;
 }
 

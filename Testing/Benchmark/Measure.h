@@ -6,6 +6,7 @@
 #include <malloc.h>
 #include <signal.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -16,6 +17,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "fd3/Delaunay.h"
 
 namespace fd3bench
 {
@@ -34,6 +37,36 @@ struct Measurement
   std::vector<double> figures; // more, as a benchmark defines them
   std::string note;            // why it did not run; or, when it ran, a detail (one line)
 };
+
+/// The calling thread's CPU seconds.
+inline double threadCpuSeconds()
+{
+  timespec now;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
+
+/// A run on a core per thread, modelled from its threads' CPU times (Scaling.cxx): the calling
+/// thread's CPU time outside the threaded work (`caller`: all of it), plus each stretch's longest
+/// thread.
+struct CoreModel
+{
+  double seconds = 0;
+  double serial = 0;
+};
+
+inline CoreModel coreModel(double caller, const std::vector<fd3::ThreadedWork>& work)
+{
+  CoreModel model;
+  model.serial = caller;
+  for (const fd3::ThreadedWork& w : work)
+  {
+    model.serial -= w.callerSeconds;
+    model.seconds += w.longest();
+  }
+  model.seconds += model.serial;
+  return model;
+}
 
 inline double since(Clock::time_point t0)
 {

@@ -28,13 +28,6 @@ namespace fd3bench
 {
 namespace
 {
-double threadCpuSeconds()
-{
-  timespec now;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
-}
-
 double processCpuSeconds()
 {
   rusage usage;
@@ -101,18 +94,17 @@ Measurement runModel(const fd3test::Points& p, int threads)
   m.seconds = since(t0);
   const double caller = threadCpuSeconds() - caller0, process = processCpuSeconds() - process0;
   m.tetrahedra = static_cast<double>(r.numberOfTetrahedra());
-  double serial = caller, longest = 0, helpers = 0, inParallel = 0;
+  double helpers = 0, inParallel = 0;
   for (const fd3::ThreadedWork& w : r.threadedWork)
   {
-    serial -= w.callerSeconds;
-    longest += w.longest();
     helpers +=
       std::accumulate(w.threadSeconds.begin(), w.threadSeconds.end(), 0.0) - w.callerSeconds;
     inParallel += double(w.points - w.left);
   }
+  const CoreModel model = coreModel(caller, r.threadedWork);
   m.figures.resize(kFigures);
-  m.figures[kModelSeconds] = serial + longest;
-  m.figures[kSerialSeconds] = serial;
+  m.figures[kModelSeconds] = model.seconds;
+  m.figures[kSerialSeconds] = model.serial;
   m.figures[kLeftFraction] = 1.0 - inParallel / double(r.stats.insertedPoints);
   m.figures[kThreadCpuSeconds] = caller + helpers;
   m.figures[kProcessCpuSeconds] = process;

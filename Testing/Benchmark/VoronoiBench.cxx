@@ -37,13 +37,15 @@ Measurement runCore(const fd3test::Points& p, int threads)
 {
   fd3::VoronoiOptions options;
   options.threads = threads;
+  const double caller0 = threadCpuSeconds();
   const auto t0 = Clock::now();
   const fd3::VoronoiCells cells = fd3::voronoiCells(p.data(), p.size() / 3, options);
   Measurement m;
   m.seconds = since(t0);
+  const CoreModel model = coreModel(threadCpuSeconds() - caller0, cells.threadedWork);
   m.ran = cells.status == fd3::Status::Ok;
   m.figures = {std::accumulate(cells.volumes.begin(), cells.volumes.end(), 0.0),
-    double(cells.numberOfCells())};
+    double(cells.numberOfCells()), model.seconds, model.serial};
   return m;
 }
 
@@ -127,10 +129,13 @@ int voronoiMain(int argc, char* argv[])
      << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
      << "the points' bounding box with volumes, areas and neighbours; scipy: "
      << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
-     << "Volume: the cells' total over the box's.\n\n"
-     << "| points | n | method | seconds | peak MiB | B/point | volume / box | Voro++ / this |\n"
-     << "|---|---:|---|---:|---:|---:|---:|---:|\n";
-  csv << "kind,n,method,seconds,peak_mib,volume_fraction\n";
+     << "Volume: the cells' total over the box's. Model (Core): the run on a core per thread, "
+     << "from each thread's CPU time (Scaling.cxx), and its serial seconds; real only where each "
+     << "thread has a core.\n\n"
+     << "| points | n | method | seconds | model s | serial s | peak MiB | B/point | volume / box | "
+        "Voro++ / this |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  csv << "kind,n,method,seconds,model_seconds,serial_seconds,peak_mib,volume_fraction\n";
   for (const std::string& kind : settings.kinds)
     for (const std::size_t size : settings.sizes)
     {
@@ -158,13 +163,18 @@ int voronoiMain(int argc, char* argv[])
           continue;
         }
         const double fraction = m.figures.empty() || m.figures[0] == 0 ? 0 : m.figures[0] / box;
-        std::snprintf(line, sizeof line, "| %s | %zu | %s | %.3f | %.0f | %.0f | %s | %s |\n",
-          kind.c_str(), n, name.c_str(), m.seconds, m.peakMiB, m.peakMiB * 1048576.0 / double(n),
-          fraction > 0 ? std::to_string(fraction).c_str() : "-",
+        const bool modelled = m.figures.size() > 3;
+        const std::string model = modelled ? std::to_string(m.figures[2]).substr(0, 6) : "-";
+        const std::string serial = modelled ? std::to_string(m.figures[3]).substr(0, 5) : "-";
+        std::snprintf(line, sizeof line,
+          "| %s | %zu | %s | %.3f | %s | %s | %.0f | %.0f | %s | %s |\n", kind.c_str(), n,
+          name.c_str(), m.seconds, model.c_str(), serial.c_str(), m.peakMiB,
+          m.peakMiB * 1048576.0 / double(n), fraction > 0 ? std::to_string(fraction).c_str() : "-",
           voropp > 0 ? (std::to_string(voropp / m.seconds).substr(0, 5) + "x").c_str() : "-");
         md << line;
-        csv << kind << ',' << n << ',' << name << ',' << m.seconds << ',' << m.peakMiB << ','
-            << fraction << '\n';
+        csv << kind << ',' << n << ',' << name << ',' << m.seconds << ','
+            << (modelled ? m.figures[2] : 0) << ',' << (modelled ? m.figures[3] : 0) << ','
+            << m.peakMiB << ',' << fraction << '\n';
         std::cerr << kind << " " << n << " " << name << ": " << m.seconds << " s\n";
       }
     }

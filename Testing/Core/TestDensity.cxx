@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace
 {
@@ -71,6 +72,55 @@ TEST(Density, UniformPointsNearTheirCount)
   std::nth_element(density.begin(), density.begin() + n / 2, density.end());
   EXPECT_GT(density[n / 2], expected);
   EXPECT_LT(density[n / 2], 1.25 * expected);
+}
+
+// A cluster 1e-150 wide among unit points: its tetrahedra's volumes (near 1e-450) hold in no double,
+// its inner points' density (near 1e450) is infinite, its hull points' finite (their stars reach
+// the unit points); each value is the same whatever the points' order; the masses over the
+// densities still sum to the hull's volume.
+TEST(Density, AnyMagnitudeAndAnyOrder)
+{
+  // Unit points about 0, and the cluster at 0: beside 0.5 it would be one point.
+  fd3test::Points xyz = fd3test::generate("cube", 2000, 3);
+  for (double& x : xyz)
+    x -= 0.5;
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int i = 0; i < 200; ++i)
+    for (int a = 0; a < 3; ++a)
+      xyz.push_back(1e-150 * unit(random));
+  const std::size_t n = xyz.size() / 3;
+  const fd3::Triangulation mesh = fd3::triangulate(xyz.data(), n);
+  ASSERT_EQ(mesh.status, fd3::Status::Ok);
+  const std::vector<double> density = fd3::densities(xyz.data(), n, mesh);
+  std::size_t infinite = 0;
+  double inverse = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ASSERT_GT(density[i], 0) << "point " << i;
+    infinite += std::isinf(density[i]);
+    inverse += 1 / density[i];
+    if (i < 2000)
+      EXPECT_LT(density[i], 1e6) << "point " << i;
+  }
+  EXPECT_GT(infinite, 50u);
+  double hull = 0;
+  for (std::size_t t = 0; t < mesh.numberOfTetrahedra(); ++t)
+  {
+    const std::uint32_t* v = &mesh.tetrahedra[4 * t];
+    hull +=
+      std::fabs(fd3::sixVolume(&xyz[3 * v[0]], &xyz[3 * v[1]], &xyz[3 * v[2]], &xyz[3 * v[3]])) / 6;
+  }
+  EXPECT_NEAR(inverse, hull, 1e-9 * hull);
+
+  // The points reversed: each point keeps its value, bit for bit.
+  fd3test::Points reversed;
+  for (std::size_t i = n; i-- > 0;)
+    reversed.insert(reversed.end(), &xyz[3 * i], &xyz[3 * i + 3]);
+  const fd3::Triangulation again = fd3::triangulate(reversed.data(), n);
+  const std::vector<double> same = fd3::densities(reversed.data(), n, again);
+  for (std::size_t i = 0; i < n; ++i)
+    EXPECT_EQ(same[n - 1 - i], density[i]) << "point " << i;
 }
 
 TEST(Density, NoTetrahedraNoValues)

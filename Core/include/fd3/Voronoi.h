@@ -71,6 +71,9 @@ struct VoronoiCells
   /// Per cell, with VoronoiOptions::density: its generator's densities() value (NaN where the
   /// points have no tetrahedron).
   Doubles densities;
+  /// Every stretch of work split over the threads, the tetrahedralization's then the cells', in
+  /// the order run (Triangulation::threadedWork).
+  std::vector<ThreadedWork> threadedWork;
   /// The tetrahedralization's figures for the input's points (the kernel adds eight far points
   /// of its own, not counted here).
   Statistics stats;
