@@ -155,7 +155,8 @@ struct Stretch
 };
 
 /// The tetrahedra around each vertex: those of vertex v are tets[start[v], start[v + 1]), the
-/// ownedCentres[v] ones whose centres its cell owns first, each part in the mesh's order. Beside them, what each vertex needs to know of its star before its cell is built.
+/// ownedCentres[v] ones whose centres its cell owns first, each part in the mesh's order; beside
+/// them, what each vertex needs to know of its star before its cell is built.
 struct Stars
 {
   std::vector<std::size_t> start;
