@@ -1101,7 +1101,8 @@ void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces
       for (std::size_t j = 0; j < s.cells.size(); ++j)
       {
         const std::size_t c = s.cells[j], size = 3 * s.crossings[j];
-        std::copy_n(&s.crossingPoints[crossing], size, &cells.points[3 * at.crossing[c]]);
+        std::copy_n(
+          s.crossingPoints.data() + crossing, size, cells.points.data() + 3 * at.crossing[c]);
         crossing += size;
       }
       parts[k] = Stretch();
