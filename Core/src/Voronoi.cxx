@@ -990,7 +990,6 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
       clippedPart[parts[k].cells[j]] = static_cast<std::uint32_t>(k);
     }
   std::vector<std::size_t> clippedFace(parts.size(), 0);
-  std::vector<std::size_t> clippedVertex(parts.size(), 0);
   CellPlaces at;
   at.vertex.resize(n + 1);
   at.centre.resize(n + 1);
