@@ -10,7 +10,8 @@
 // 2. Each tetrahedron's vertices are put in ascending order (orientation kept), an order that the
 //    points alone decide (the mesh's own varies with the thread count), and its circumcentre is
 //    computed once, from its vertices in that order (in double-double where it is flat).
-// 3. The stars: the tetrahedra around each vertex, listed in one pass; beside them, the centres
+// 3. The stars: the tetrahedra around each vertex, listed in two passes (a count, then the ids),
+//    each thread keeping the vertices of its own range; beside them, the centres
 //    in the box that each generator's cell owns (those of the tetrahedra whose lowest vertex it
 //    is) and whether any centre of its star lies outside the box.
 // 4. A cell's faces, per generator p: the ring of its star's tetrahedra about each edge (p, q),
