@@ -11,9 +11,9 @@
 //    points alone decide (the mesh's own varies with the thread count), and its circumcentre is
 //    computed once, from its vertices in that order (in double-double where it is flat).
 // 3. The stars: the tetrahedra around each vertex, listed in two passes (a count, then the ids),
-//    each thread keeping the vertices of its own range; beside them, the centres
-//    in the box that each generator's cell owns (those of the tetrahedra whose lowest vertex it
-//    is) and whether any centre of its star lies outside the box.
+//    each thread keeping the vertices of its own range; beside them, the centres in the box that
+//    each generator's cell owns (those of the tetrahedra whose lowest vertex it is) and whether
+//    any centre of its star lies outside the box.
 // 4. A cell's faces, per generator p: the ring of its star's tetrahedra about each edge (p, q),
 //    turning counter-clockwise about p -> q, so the face is counter-clockwise seen from outside;
 //    each ring from the tetrahedron after its lowest link vertex, the faces by q. Where each ring
