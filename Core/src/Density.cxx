@@ -6,12 +6,10 @@
 // volume near 1e-450, which no double holds, and whose density (near 1e450) rounds to infinity
 // rather than to whatever an underflowed volume would give. Each volume comes from its vertices in
 // one order, whatever the mesh's, so that every run (and every MPI rank) computes it alike.
+#include "Predicates.h"
 #include "fd3/Delaunay.h"
 
-#include <gmp.h>
-
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <limits>
 
@@ -36,57 +34,6 @@ struct ScaledSum
       mantissa += std::ldexp(m, e - exponent);
   }
 };
-
-/// Six times the volume of the tetrahedron p[0..3] exactly (GMP integers: every coordinate is an
-/// integer times 2^lowest), as mantissa * 2^exponent.
-void exactSixVolume(const double* const p[4], double& mantissa, int& exponent)
-{
-  int lowest = INT_MAX;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-      if (p[i][k] != 0)
-      {
-        int e;
-        std::frexp(p[i][k], &e);
-        lowest = std::min(lowest, e - 53);
-      }
-  mpz_t x[4][3], u[3][3], t, det;
-  mpz_inits(t, det, nullptr);
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-    {
-      mpz_init(x[i][k]);
-      int e;
-      const double m = std::frexp(p[i][k], &e);
-      mpz_set_d(x[i][k], std::ldexp(m, 53)); // an integer below 2^53: exact
-      if (p[i][k] != 0)
-        mpz_mul_2exp(x[i][k], x[i][k], static_cast<mp_bitcnt_t>(e - 53 - lowest));
-    }
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k)
-    {
-      mpz_init(u[i][k]);
-      mpz_sub(u[i][k], x[i + 1][k], x[0][k]);
-    }
-  for (int k = 0; k < 3; ++k) // the expansion along the first row
-  {
-    const int a = (k + 1) % 3, b = (k + 2) % 3;
-    mpz_mul(t, u[1][a], u[2][b]);
-    mpz_submul(t, u[1][b], u[2][a]);
-    mpz_addmul(det, u[0][k], t);
-  }
-  mpz_abs(det, det);
-  long e = 0;
-  mantissa = mpz_get_d_2exp(&e, det);
-  exponent = static_cast<int>(e) + 3 * lowest;
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-      mpz_clear(x[i][k]);
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k)
-      mpz_clear(u[i][k]);
-  mpz_clears(t, det, nullptr);
-}
 
 /// Six times a tetrahedron's volume as mantissa * 2^exponent, the same whatever the order of its
 /// vertices: from the edges of a path through them in lexicographic order (each edge scaled by a
@@ -125,7 +72,7 @@ void sixVolumeScaled(const double* const vertices[4], double& mantissa, int& exp
   // The determinant's rounding is a few ulps of the edges' product: below 1e-8 of it, fewer than
   // 8 digits would be right.
   if (mantissa < 1e-8 * size)
-    exactSixVolume(p, mantissa, exponent);
+    exactSixVolume(p[0], p[1], p[2], p[3], mantissa, exponent);
 }
 } // namespace
 

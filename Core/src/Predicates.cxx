@@ -81,6 +81,7 @@ public:
         if (x[i][k] != 0)
           lowest = std::min(lowest, exponentOf(x[i][k]));
     }
+    lowest_ = lowest == INT_MAX ? 0 : lowest;
     Integer origin;
     for (int k = 0; k < 3; ++k)
     {
@@ -92,6 +93,9 @@ public:
       }
     }
   }
+
+  /// The power of two that the rows' integers count in: row entry = integer * 2^scale().
+  int scale() const { return lowest_; }
 
   /// det[row i; row j; row k] = row i . (row j x row k).
   void minor3(int i, int j, int k, Integer& out)
@@ -144,8 +148,22 @@ private:
 
   Integer row_[N][3];
   Integer t_;
+  int lowest_ = 0;
 };
 } // namespace
+
+void exactSixVolume(const double* a, const double* b, const double* c, const double* d,
+  double& mantissa, int& exponent)
+{
+  const double* const x[3] = {b, c, d};
+  IntegerRows<3> rows(x, a);
+  Integer det;
+  rows.minor3(0, 1, 2, det);
+  mpz_abs(det.get(), det.get());
+  long e = 0;
+  mantissa = mpz_get_d_2exp(&e, det.get());
+  exponent = static_cast<int>(e) + 3 * rows.scale();
+}
 
 std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
 {

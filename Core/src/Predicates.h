@@ -28,6 +28,11 @@
 namespace fd3
 {
 
+/// |(b - a) x (c - a) . (d - a)|, six times the tetrahedron's volume, as mantissa * 2^exponent
+/// (mantissa in [0.5, 1), or 0), computed exactly from any finite coordinates and rounded once.
+void exactSixVolume(const double* a, const double* b, const double* c, const double* d,
+  double& mantissa, int& exponent);
+
 /// A point's key in the symbolic perturbation's order, from its (normalized) coordinates alone and
 /// the seed: every run computes the same key for the same point, whatever the other points, the
 /// insertion order, the threads or the MPI ranks (which share one frame). Its top 4 bits are 15
