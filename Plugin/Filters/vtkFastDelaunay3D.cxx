@@ -4,6 +4,8 @@
 =========================================================================*/
 #include "vtkFastDelaunay3D.h"
 
+#include "FilterArrays.h"
+
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -374,13 +376,7 @@ std::string LeftOutPoints(const fd3::Statistics& stats)
   return causes.str();
 }
 
-void AddFieldValue(vtkFieldData* fields, const char* name, double value)
-{
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(name);
-  array->InsertNextValue(value);
-  fields->AddArray(array);
-}
+using fd3vtk::AddFieldValue;
 } // namespace
 
 vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
@@ -652,9 +648,7 @@ void vtkFastDelaunay3D::AddCellArrays(vtkUnstructuredGrid* output, const double*
 
 void vtkFastDelaunay3D::AddDensity(vtkUnstructuredGrid* output, const std::vector<double>& density)
 {
-  vtkNew<vtkDoubleArray> array;
-  array->SetName("Density");
-  array->SetNumberOfValues(output->GetNumberOfPoints());
+  auto array = fd3vtk::NamedArray<vtkDoubleArray>("Density", output->GetNumberOfPoints());
   for (vtkIdType i = 0; i < array->GetNumberOfValues(); ++i)
   {
     array->SetValue(i,

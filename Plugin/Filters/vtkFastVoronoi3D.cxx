@@ -4,6 +4,8 @@
 =========================================================================*/
 #include "vtkFastVoronoi3D.h"
 
+#include "FilterArrays.h"
+
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
@@ -47,22 +49,8 @@ void CellPoints(const fd3::VoronoiCells& cells, std::size_t c, std::vector<vtkId
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
 }
 
-template <typename ArrayType>
-vtkSmartPointer<ArrayType> NamedArray(const char* name, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<ArrayType>::New();
-  array->SetName(name);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
-void AddFieldValue(vtkFieldData* fields, const char* name, double value)
-{
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(name);
-  array->InsertNextValue(value);
-  fields->AddArray(array);
-}
+using fd3vtk::AddFieldValue;
+using fd3vtk::NamedArray;
 } // namespace
 
 vtkFastVoronoi3D::vtkFastVoronoi3D()
