@@ -12,6 +12,7 @@
 #include "vtkDataSetAttributesFieldList.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
+#include "vtkMPIController.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -366,6 +367,11 @@ void Take(diy::Master& master, const RankGroup& ranks, Received& received)
   }
 }
 } // namespace
+
+bool IsDistributed(vtkMultiProcessController* controller)
+{
+  return vtkMPIController::SafeDownCast(controller) && controller->GetNumberOfProcesses() > 1;
+}
 
 RankGroup::RankGroup(vtkMultiProcessController* controller)
   : Controller(controller), Rank(controller->GetLocalProcessId()),

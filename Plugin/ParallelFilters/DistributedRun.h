@@ -39,6 +39,10 @@ using fd3::Coordinates;
 
 class SpaceCuts;
 
+/// Whether `controller` runs MPI with two processes or more, where the filters run distributed
+/// (else they run as their one-process superclasses).
+bool IsDistributed(vtkMultiProcessController* controller);
+
 /// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
 /// which catches what it throws; then every rank learns whether all got through, before any
 /// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the

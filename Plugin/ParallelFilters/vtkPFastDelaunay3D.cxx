@@ -7,7 +7,7 @@
 #include "DistributedRun.h"
 
 #include "vtkInformationVector.h"
-#include "vtkMPIController.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -35,8 +35,7 @@ int vtkPFastDelaunay3D::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->NumberOfGhostPoints = 0;
-  if (!vtkMPIController::SafeDownCast(this->Controller) ||
-    this->Controller->GetNumberOfProcesses() < 2)
+  if (!fd3vtk::IsDistributed(this->Controller))
   {
     return this->Superclass::RequestData(request, inputVector, outputVector);
   }

@@ -12,7 +12,7 @@
 #include "vtkFastDelaunay3D.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformationVector.h"
-#include "vtkMPIController.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -71,8 +71,7 @@ int vtkPFastVoronoi3D::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->NumberOfGhostPoints = 0;
-  if (!vtkMPIController::SafeDownCast(this->Controller) ||
-    this->Controller->GetNumberOfProcesses() < 2)
+  if (!fd3vtk::IsDistributed(this->Controller))
   {
     return this->Superclass::RequestData(request, inputVector, outputVector);
   }
