@@ -7,18 +7,20 @@
 //    points and box together, while the corners lie at least 2 sqrt(3) D - D/2 > D from x. So
 //    each cell's part inside the box is unchanged, and every face with a far point lies outside
 //    the box.
-// 2. Each tetrahedron's vertices are put in ascending order (orientation kept), an order that the
-//    points alone decide (the mesh's own varies with the thread count), and its circumcentre is
-//    computed once, from its vertices in that order (in double-double where it is flat).
-// 3. The stars: the tetrahedra around each vertex, listed in two passes (a count, then the ids),
-//    each thread keeping the vertices of its own range; beside them, the centres in the box that
-//    each generator's cell owns (those of the tetrahedra whose lowest vertex it is) and whether
-//    any centre of its star lies outside the box.
+// 2. Each tetrahedron's vertices are put in ascending order (orientation kept), and the
+//    tetrahedra are grouped by their lowest vertex, each group ordered by the other three: an
+//    order that the points alone decide (the mesh's own varies with the thread count). A
+//    tetrahedron's circumcentre is computed once, from its vertices in that order (in
+//    double-double where it is flat); a group's centres in the box are its cell's own, numbered
+//    in the groups' order.
+// 3. The stars: a vertex's own group, then the tetrahedra of lower vertices' groups that hold it,
+//    listed in two passes (a count, then the ids), each thread keeping the vertices of its own
+//    range; beside them, whether any centre of its star lies outside the box.
 // 4. A cell's faces, per generator p: the ring of its star's tetrahedra about each edge (p, q),
-//    turning counter-clockwise about p -> q, so the face is counter-clockwise seen from outside;
-//    each ring from the tetrahedron after its lowest link vertex, the faces by q. Where each ring
-//    starts and the order of the faces follow from the points alone, so the cells do not depend
-//    on the thread count or on how the generators are split among the threads.
+//    turning counter-clockwise about p -> q, so the face is counter-clockwise seen from outside.
+//    The faces go in the order the star meets their q, each ring from the last of the star's
+//    tetrahedra in it: both follow from the star's order, the points' alone, so the cells do not
+//    depend on the thread count or on how the generators are split among the threads.
 // 5. The cells that leave the box first, on the threads: clipped by the box's six planes, each
 //    face keeps its inside part, a crossing of an edge is computed from its two ends taken in
 //    lexicographic order and put exactly on the plane (so the cells around that edge compute the
@@ -54,35 +56,44 @@ constexpr int kFarPoints = 8;
 /// numbers it.
 constexpr std::uint32_t kOwnVertex = 0x80000000u;
 
-/// turn[i][j] = r: crossing the face opposite vertex r of a positive tetrahedron turns counter-
-/// clockwise about its edge i -> j (r is the vertex for which (i, j, r, s) is an even permutation).
-struct TurnTable
+/// The rings of a positive tetrahedron about its edges from vertex g: about g -> `about`, a ring
+/// turning counter-clockwise enters through the face with vertex `from` and leaves through the
+/// face with `to`, where (g, about, from, to) is an even permutation.
+struct RingTurn
 {
-  int turn[4][4] = {};
+  int about = 0, from = 0, to = 0;
+};
+struct RingTurns
+{
+  RingTurn turns[4][3] = {};
 };
 
-constexpr TurnTable makeTurnTable()
+constexpr RingTurns makeRingTurns()
 {
-  TurnTable table;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
+  RingTurns table;
+  for (int g = 0; g < 4; ++g)
+  {
+    int n = 0;
+    for (int about = 0; about < 4; ++about)
     {
-      if (i == j)
+      if (about == g)
         continue;
       int k = 0;
-      while (k == i || k == j)
+      while (k == g || k == about)
         ++k;
-      const int l = 6 - i - j - k;
-      const int order[4] = {i, j, k, l};
+      const int l = 6 - g - about - k;
+      const int order[4] = {g, about, k, l};
       int inversions = 0;
       for (int a = 0; a < 4; ++a)
         for (int b = a + 1; b < 4; ++b)
           inversions += order[a] > order[b];
-      table.turn[i][j] = inversions % 2 == 0 ? k : l;
+      const bool even = inversions % 2 == 0;
+      table.turns[g][n++] = {about, even ? k : l, even ? l : k};
     }
+  }
   return table;
 }
-constexpr TurnTable kTurns = makeTurnTable();
+constexpr RingTurns kRingTurns = makeRingTurns();
 /// The local indices of a tetrahedron's vertices but one.
 constexpr int kOthers[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
@@ -155,18 +166,26 @@ struct Stretch
   std::vector<double> volumes, areas;
 };
 
-/// The tetrahedra around each vertex: those of vertex v are tets[start[v], start[v + 1]), the
-/// ownedCentres[v] ones whose centres its cell owns first, each part in the mesh's order; beside
-/// them, what each vertex needs to know of its star before its cell is built.
+/// Every vertex's star, from the tetrahedra grouped by their lowest vertex (the group's owner):
+/// v's star is its own group and the tetrahedra of lower vertices' groups that hold it.
 struct Stars
 {
-  std::vector<std::size_t> start;
-  IdArray tets;
-  /// The tetrahedra whose lowest vertex it is and whose centre lies in the box: the centres its
-  /// cell owns and numbers.
-  std::vector<std::uint32_t> ownedCentres;
-  /// Whether a tetrahedron of its star has its centre outside the box: its cell is clipped.
+  /// 4 vertices each, in sortVertices' order; vertex v's group is [ownStart[v], ownStart[v + 1]),
+  /// ordered by the tetrahedra's other three vertices, an order the points alone decide.
+  IdArray tetrahedra;
+  std::vector<std::size_t> ownStart;
+  /// The tetrahedra that hold v but not as their lowest vertex, in the groups' order:
+  /// others[otherStart[v], otherStart[v + 1]).
+  IdArray others;
+  std::vector<std::size_t> otherStart;
+  /// Whether a tetrahedron of the vertex's star has its centre outside the box: its cell is
+  /// clipped.
   std::vector<std::uint8_t> clipped;
+
+  std::size_t sizeOf(std::uint32_t v) const
+  {
+    return ownStart[v + 1] - ownStart[v] + otherStart[v + 1] - otherStart[v];
+  }
 };
 
 /// A cell as a polyhedron of local vertices, while it is clipped.
@@ -189,9 +208,7 @@ struct CellSources
 {
   const double* xyz;                         ///< the points, along the curve
   const std::vector<std::uint32_t>& inputId; ///< of each point but the far ones
-  const std::uint32_t* tetrahedra;           ///< 4 vertices each, in sortVertices' order
   const Stars& stars;
-  const std::vector<std::uint8_t>& inBox; ///< per tetrahedron: its centre lies in the closed box
   const std::array<double, 6>& box;
   /// Per tetrahedron: its centre, while the clipped cells are built; then null, and the centres
   /// in the box are read from `points` through `pointOf`.
@@ -209,42 +226,72 @@ public:
     : in_(sources), linkOf_(vertices, kNoLink)
   {}
 
-  /// The faces of p's cell before any clipping: the ring of its star's tetrahedra about each edge
-  /// (p, q), turning counter-clockwise about p -> q (so the face is counter-clockwise seen from
-  /// outside), from the tetrahedron after the lowest vertex of the ring; the faces by q, lowest
-  /// first. The rings as sets are the mesh's; where each starts, and the order of the faces,
-  /// depend on the points alone.
+  /// The faces of p's cell before any clipping, as ring steps (linkEdges): the ring of its star's
+  /// tetrahedra about each edge (p, q), turning counter-clockwise about p -> q, so that the face
+  /// is counter-clockwise seen from outside.
   void trace(std::uint32_t p)
   {
     gatherStar(p);
     linkEdges();
-    traceRings();
   }
 
-  /// A cell inside the box, written where `at` says: its faces are the rings as they are.
+  /// A cell inside the box, written where `at` says: its faces are the rings as they are, each
+  /// traced straight into the output (the volume's and area's sums beside the ring's steps, which
+  /// wait on each other).
   void emitWhole(
     std::uint32_t p, std::size_t cell, std::size_t face, std::size_t vertex, VoronoiCells& out)
   {
-    if (neighbors_.size() != 2 + star_.size() / 2 || loops_.size() != 3 * star_.size())
+    const std::size_t links = link_.size(), longest = star_.size();
+    if (links != 2 + longest / 2)
       throw std::logic_error("voronoiCells: a generator's link is not a sphere");
-    for (StarTet& s : star_)
-      s.point = in_.pointOf[s.tet];
     const double* g = in_.xyz + 3 * std::size_t(p);
+    fromGenerator_.resize(longest);
+    for (std::size_t i = 0; i < longest; ++i)
+    {
+      StarTet& s = star_[i];
+      s.point = in_.pointOf[s.tet];
+      const double* x = in_.points + 3 * std::size_t(s.point);
+      fromGenerator_[i] = {x[0] - g[0], x[1] - g[1], x[2] - g[2]};
+    }
+    const RingStep* steps = steps_.data();
+    const std::array<double, 3>* corner = fromGenerator_.data();
+    const std::size_t end = vertex + 3 * longest;
     double sixVolume = 0, twiceArea = 0;
     out.cellFaces[cell] = face;
-    for (std::size_t f = 0; f < neighbors_.size(); ++f, ++face)
+    for (std::size_t f = 0; f < links; ++f, ++face)
     {
-      const std::uint32_t size = faceStart_[f + 1] - faceStart_[f];
-      const std::uint32_t* ring = &loops_[faceStart_[f]];
+      const auto q = static_cast<std::uint32_t>(f);
+      const std::uint32_t first = firstFrom_[q];
       out.faceStart[face] = vertex;
-      out.faceNeighbors[face] = inputId(neighbors_[f]);
-      for (std::uint32_t k = 0; k < size; ++k)
-        out.faceVertices[vertex++] = star_[ring[k]].point;
-      addFace(
-        g, size,
-        [&](std::uint32_t k) { return in_.points + 3 * std::size_t(star_[ring[k]].point); },
-        sixVolume, twiceArea);
+      out.faceNeighbors[face] = inputId(link_[q]);
+      const std::size_t begin = vertex;
+      std::uint32_t from = first, star = 0;
+      double n[3] = {0, 0, 0}, a[3] = {0, 0, 0}, a0[3] = {0, 0, 0};
+      do
+      {
+        const RingStep& next = links <= kDenseLinks ? steps[q * links + from] : step(q, from);
+        if (next.cell != stamp_ || vertex - begin >= longest || vertex == end)
+          throw std::logic_error("voronoiCells: a ring about an edge is open");
+        star = next.star;
+        out.faceVertices[vertex] = star_[star].point;
+        const double* b = corner[star].data();
+        if (vertex == begin)
+          std::copy_n(b, 3, a0);
+        n[0] += a[1] * b[2] - a[2] * b[1];
+        n[1] += a[2] * b[0] - a[0] * b[2];
+        n[2] += a[0] * b[1] - a[1] * b[0];
+        std::copy_n(b, 3, a);
+        ++vertex;
+        from = next.to;
+      } while (from != first);
+      n[0] += a[1] * a0[2] - a[2] * a0[1];
+      n[1] += a[2] * a0[0] - a[0] * a0[2];
+      n[2] += a[0] * a0[1] - a[1] * a0[0];
+      sixVolume += n[0] * a0[0] + n[1] * a0[1] + n[2] * a0[2];
+      twiceArea += std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     }
+    if (vertex != end)
+      throw std::logic_error("voronoiCells: a generator's link is not a sphere");
     out.volumes[cell] = sixVolume / 6;
     out.areas[cell] = twiceArea / 2;
   }
@@ -252,6 +299,7 @@ public:
   /// A cell that leaves the box, clipped by its six planes, into `out`.
   void emitClipped(std::uint32_t p, std::uint32_t cell, Stretch& out)
   {
+    traceRings();
     makePolyhedron();
     for (int wall = 0; wall < 6 && !cell_.neighbors.empty(); ++wall)
       clip(wall);
@@ -329,58 +377,85 @@ private:
   void gatherStar(std::uint32_t p)
   {
     star_.clear();
-    for (std::size_t k = in_.stars.start[p]; k < in_.stars.start[p + 1]; ++k)
+    const Stars& stars = in_.stars;
+    for (std::size_t t = stars.ownStart[p]; t < stars.ownStart[p + 1]; ++t)
+      addToStar(static_cast<std::uint32_t>(t), 0);
+    for (std::size_t k = stars.otherStart[p]; k < stars.otherStart[p + 1]; ++k)
     {
-      StarTet s;
-      s.tet = in_.stars.tets[k];
-      const std::uint32_t* v = in_.tetrahedra + 4 * std::size_t(s.tet);
-      for (int k = 0; k < 4; ++k) // a loop, not a call to memmove
-        s.vertices[k] = v[k];
-      s.generator = static_cast<std::uint8_t>(localIndex(s.vertices, p));
-      star_.push_back(s);
+      const std::uint32_t t = stars.others[k];
+      addToStar(t, localIndex(stars.tetrahedra.data() + 4 * std::size_t(t), p));
     }
   }
 
-  /// The generator's link (the vertices it is joined to) into link_, and each star
-  /// tetrahedron's step in the ring about each of its other three vertices.
+  void addToStar(std::uint32_t t, int generator)
+  {
+    StarTet s;
+    s.tet = t;
+    const std::uint32_t* v = in_.stars.tetrahedra.data() + 4 * std::size_t(t);
+    for (int k = 0; k < 4; ++k) // a loop, not a call to memmove
+      s.vertices[k] = v[k];
+    s.generator = static_cast<std::uint8_t>(generator);
+    star_.push_back(s);
+  }
+
+  /// The generator's link (the vertices it is joined to) into link_, numbered as the star meets
+  /// them, and each star tetrahedron's step in the ring about each of its other three vertices.
+  /// The star's order is the points' alone (Stars), and so are these numbers, the order of the
+  /// faces (by them) and where each ring starts (at the last of the star's tetrahedra in it).
   void linkEdges()
   {
+    const std::size_t size = star_.size();
+    link_.resize(3 * size + 1);
+    links_ = 0;
     // A star of n tetrahedra has 2 + n/2 link vertices: below kDenseStar, their indices fit
     // linkOf_'s 16 bits.
-    const bool dense = star_.size() < kDenseStar;
-    if (!dense)
+    if (size < kDenseStar)
+    {
+      for (StarTet& s : star_)
+        for (const int k : kOthers[s.generator])
+          s.link[k] = denseLinkIndex(s.vertices[k]);
+      for (std::size_t i = 0; i < links_; ++i)
+        linkOf_[link_[i]] = kNoLink;
+    }
+    else
+    {
       linkOfLarge_.clear();
-    link_.resize(3 * star_.size() + 1);
-    links_ = 0;
-    for (StarTet& s : star_)
-      for (const int k : kOthers[s.generator])
-        s.link[k] = dense ? denseLinkIndex(s.vertices[k]) : largeLinkIndex(s.vertices[k]);
+      for (StarTet& s : star_)
+        for (const int k : kOthers[s.generator])
+          s.link[k] = largeLinkIndex(s.vertices[k]);
+    }
     link_.resize(links_);
-    if (dense)
-      for (const std::uint32_t v : link_)
-        linkOf_[v] = kNoLink;
     ++stamp_;
-    if (links_ <= kDenseLinks && steps_.size() < links_ * links_)
-      steps_.resize(links_ * links_, {0, 0, 0});
-    else if (links_ > kDenseLinks)
+    firstFrom_.resize(links_);
+    if (links_ <= kDenseLinks)
+    {
+      if (steps_.size() < links_ * links_)
+        steps_.resize(links_ * links_, {0, 0, 0});
+      RingStep* steps = steps_.data();
+      const std::size_t links = links_;
+      addSteps(
+        [=](std::uint32_t q, std::uint32_t from) -> RingStep& { return steps[q * links + from]; });
+    }
+    else
+    {
       stepsLarge_.clear();
-    firstFrom_.assign(links_, kNone);
-    firstId_.assign(links_, kNone);
+      addSteps([&](std::uint32_t q, std::uint32_t from) -> RingStep& {
+        return stepsLarge_[std::uint64_t(q) << 32 | from];
+      });
+    }
+  }
+
+  template <typename Step>
+  void addSteps(Step step)
+  {
     for (std::size_t i = 0; i < star_.size(); ++i)
     {
       const StarTet& s = star_[i];
-      for (const int k : kOthers[s.generator])
+      for (const RingTurn& turn : kRingTurns.turns[s.generator])
       {
-        // Crossing the face opposite r, the one with the fourth vertex, turns counter-clockwise
-        // about p -> q: the ring enters through the face with r and leaves through the other.
-        const int r = kTurns.turn[s.generator][k], fourth = 6 - s.generator - k - r;
-        const std::uint32_t q = s.link[k], from = s.link[r];
-        step(q, from) = {s.link[fourth], static_cast<std::uint32_t>(i), stamp_};
-        // Without a branch: whether a vertex is lower than the ring's lowest so far is a coin
-        // toss.
-        const bool lower = s.vertices[r] < firstId_[q];
-        firstId_[q] = lower ? s.vertices[r] : firstId_[q];
-        firstFrom_[q] = lower ? from : firstFrom_[q];
+        const std::uint32_t q = s.link[turn.about], from = s.link[turn.from];
+        step(q, from) = {s.link[turn.to], static_cast<std::uint32_t>(i), stamp_};
+        firstFrom_[q] = from;
       }
     }
   }
@@ -404,17 +479,19 @@ private:
     return found.first->second;
   }
 
-  RingStep& step(std::uint32_t q, std::uint32_t from)
+  const RingStep& step(std::uint32_t q, std::uint32_t from) const
   {
+    static const RingStep none = {0, 0, 0}; // of no cell: stamps start at 1
     const std::size_t links = link_.size();
-    return links <= kDenseLinks ? steps_[q * links + from]
-                                : stepsLarge_[std::uint64_t(q) << 32 | from];
+    if (links <= kDenseLinks)
+      return steps_[q * links + from];
+    const auto found = stepsLarge_.find(std::uint64_t(q) << 32 | from);
+    return found == stepsLarge_.end() ? none : found->second;
   }
 
   /// The rings, into loops_ / faceStart_ / neighbors_.
   void traceRings()
   {
-    orderFaces();
     const std::size_t links = link_.size(), longest = star_.size();
     loops_.resize(3 * longest);
     faceStart_.resize(links + 1);
@@ -426,7 +503,8 @@ private:
     faceStart_[0] = 0;
     for (std::size_t f = 0; f < links; ++f)
     {
-      const std::uint32_t q = order_[f], first = firstFrom_[q];
+      const auto q = static_cast<std::uint32_t>(f);
+      const std::uint32_t first = firstFrom_[q];
       const std::size_t begin = at;
       std::uint32_t from = first;
       do
@@ -441,34 +519,6 @@ private:
       neighbors_[f] = link_[q];
     }
     loops_.resize(at);
-  }
-
-  /// The link vertices by id into order_: each one's rank among them, counted without a branch
-  /// where the link is small, sorted where it is large.
-  void orderFaces()
-  {
-    const std::size_t links = link_.size();
-    order_.resize(links);
-    std::uint32_t* order = order_.data();
-    if (links <= kCountedLinks)
-    {
-      // Vertex ids are below 2^31: signed comparisons, which vectorize.
-      ids_.assign(link_.begin(), link_.end());
-      const std::int32_t* ids = ids_.data();
-      for (std::uint32_t q = 0; q < links; ++q)
-      {
-        const std::int32_t id = ids[q];
-        std::int32_t rank = 0;
-        for (std::size_t other = 0; other < links; ++other)
-          rank += ids[other] < id;
-        order[rank] = q;
-      }
-      return;
-    }
-    for (std::uint32_t q = 0; q < links; ++q)
-      order[q] = q;
-    std::sort(order_.begin(), order_.end(),
-      [&](std::uint32_t a, std::uint32_t b) { return link_[a] < link_[b]; });
   }
 
   /// Adds a face's share of the cell's volume (six times: the face's Newell vector dotted with a
@@ -664,8 +714,6 @@ private:
   /// have their ring steps in a square table.
   static constexpr std::size_t kDenseStar = 1 << 16;
   static constexpr std::size_t kDenseLinks = 256;
-  /// Up to this many link vertices, the faces' order is counted rather than sorted.
-  static constexpr std::size_t kCountedLinks = 64;
   static constexpr std::uint16_t kNoLink = 0xFFFF;
 
   const CellSources& in_;
@@ -679,13 +727,11 @@ private:
   std::vector<RingStep> steps_; ///< links x links, by (q, from)
   std::unordered_map<std::uint64_t, RingStep> stepsLarge_;
   std::uint32_t stamp_ = 0;
-  /// Per link vertex: the lowest `from` of its ring, and its vertex id.
-  std::vector<std::uint32_t> firstFrom_, firstId_;
-  std::vector<std::uint32_t> order_; ///< the link vertices by vertex id
-  std::vector<std::int32_t> ids_;
-  std::size_t links_ = 0; ///< link_'s length while it is gathered
+  std::vector<std::uint32_t> firstFrom_; ///< per link vertex: where its ring starts
+  std::size_t links_ = 0;                ///< link_'s length while it is gathered
   SmallMap localOf_, crossingOf_;
   std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
+  std::vector<std::array<double, 3>> fromGenerator_; ///< per star tetrahedron: its centre - p
   Polyhedron cell_;
   std::vector<std::array<std::uint32_t, 3>> crossings_;
   std::vector<std::pair<std::uint32_t, bool>> events_;
@@ -881,37 +927,128 @@ Triangulation meshOf(const CurvePoints& curve, std::size_t count, const VoronoiO
 }
 
 /// Each tetrahedron's vertices in ascending order, the last two exchanged where that order is an
-/// odd permutation of the mesh's, so that it stays positively oriented; then its circumcentre,
-/// from the vertices in that order, and whether it lies in the closed box. The mesh's rotation of
+/// odd permutation of the mesh's, so that it stays positively oriented. The mesh's rotation of
 /// the vertices varies with the thread count; this order, the centres' rounding and everything
 /// built from them depend on the points alone.
-void prepareTetrahedra(ThreadTeam& team, const double* xyz, Triangulation& mesh,
-  const std::array<double, 6>& box, Doubles& centres, std::vector<std::uint8_t>& inBox)
+void sortVertices(ThreadTeam& team, Triangulation& mesh)
+{
+  std::uint32_t* t4 = mesh.tetrahedra.data();
+  team.forRanges(mesh.numberOfTetrahedra(), "voronoi vertex order",
+    [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        std::uint32_t* v = t4 + 4 * t;
+        // A sorting network of five exchanges; each exchange flips the orientation.
+        bool odd = false;
+        auto exchange = [&](int i, int j) {
+          if (v[j] < v[i])
+          {
+            std::swap(v[i], v[j]);
+            odd = !odd;
+          }
+        };
+        exchange(0, 1);
+        exchange(2, 3);
+        exchange(0, 2);
+        exchange(1, 3);
+        exchange(1, 2);
+        if (odd)
+          std::swap(v[2], v[3]);
+      }
+    });
+}
+
+/// Whether tetrahedron a's other three vertices come before b's, lexicographically.
+bool otherVerticesLess(const std::uint32_t* a, const std::uint32_t* b)
+{
+  return a[1] != b[1] ? a[1] < b[1] : (a[2] != b[2] ? a[2] < b[2] : a[3] < b[3]);
+}
+
+/// Sorts a group's tetrahedra by their other three vertices: by insertion where it is small, as
+/// nearly every group is, else through an index.
+void sortGroup(std::uint32_t* first, std::size_t size, std::vector<std::uint32_t>& scratch)
+{
+  using Tet = std::array<std::uint32_t, 4>;
+  constexpr std::size_t kInsertion = 32;
+  if (size <= kInsertion)
+  {
+    for (std::size_t i = 1; i < size; ++i)
+    {
+      Tet moving;
+      std::copy_n(first + 4 * i, 4, moving.begin());
+      std::size_t j = i;
+      for (; j > 0 && otherVerticesLess(moving.data(), first + 4 * (j - 1)); --j)
+        std::copy_n(first + 4 * (j - 1), 4, first + 4 * j);
+      std::copy_n(moving.begin(), 4, first + 4 * j);
+    }
+    return;
+  }
+  std::vector<Tet> tets(size);
+  for (std::size_t i = 0; i < size; ++i)
+    std::copy_n(first + 4 * i, 4, tets[i].begin());
+  std::sort(tets.begin(), tets.end(),
+    [](const Tet& a, const Tet& b) { return otherVerticesLess(a.data(), b.data()); });
+  scratch.assign(&tets[0][0], &tets[0][0] + 4 * size);
+  std::copy(scratch.begin(), scratch.end(), first);
+}
+
+/// The mesh's tetrahedra grouped by their lowest vertex into stars.tetrahedra (the mesh's array
+/// is let go), and each vertex's other tetrahedra counted. Each thread scans every tetrahedron
+/// for the vertices of its own range, so that no two threads write one vertex's entries.
+void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vertices, Stars& stars)
 {
   const std::size_t tets = mesh.numberOfTetrahedra();
+  const std::uint32_t* t4 = mesh.tetrahedra.data();
+  stars.ownStart.assign(vertices + 1, 0);
+  stars.otherStart.assign(vertices + 1, 0);
+  team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    for (std::size_t t = 0; t < tets; ++t)
+    {
+      const std::uint32_t* v = t4 + 4 * t;
+      // Branches, not sums of flags: a thread must not write another's entries, even unchanged.
+      if (v[0] >= lo && v[0] < hi)
+        ++stars.ownStart[v[0] + 1];
+      for (int k = 1; k < 4; ++k)
+        if (v[k] >= lo && v[k] < hi)
+          ++stars.otherStart[v[k] + 1];
+    }
+  });
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    stars.ownStart[v + 1] += stars.ownStart[v];
+    stars.otherStart[v + 1] += stars.otherStart[v];
+  }
+  stars.tetrahedra.resize(4 * tets);
+  std::vector<std::size_t> next(stars.ownStart.begin(), stars.ownStart.end() - 1);
+  team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    for (std::size_t t = 0; t < tets; ++t)
+    {
+      const std::uint32_t* v = t4 + 4 * t;
+      if (v[0] >= lo && v[0] < hi)
+        std::copy_n(v, 4, stars.tetrahedra.data() + 4 * next[v[0]]++);
+    }
+  });
+  IdArray().swap(mesh.tetrahedra);
+  team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    std::vector<std::uint32_t> scratch;
+    for (std::size_t v = lo; v < hi; ++v)
+      sortGroup(stars.tetrahedra.data() + 4 * stars.ownStart[v],
+        stars.ownStart[v + 1] - stars.ownStart[v], scratch);
+  });
+}
+
+/// Each tetrahedron's circumcentre, from its vertices in their order (in double-double where it
+/// is flat), and whether it lies in the closed box.
+void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedra,
+  const std::array<double, 6>& box, Doubles& centres, std::vector<std::uint8_t>& inBox)
+{
+  const std::size_t tets = tetrahedra.size() / 4;
   centres.resize(3 * tets);
   inBox.resize(tets);
-  std::uint32_t* t4 = mesh.tetrahedra.data();
   team.forRanges(tets, "circumcentres", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
     {
-      std::uint32_t* v = t4 + 4 * t;
-      // A sorting network of five exchanges; each exchange flips the orientation.
-      bool odd = false;
-      auto exchange = [&](int i, int j) {
-        if (v[j] < v[i])
-        {
-          std::swap(v[i], v[j]);
-          odd = !odd;
-        }
-      };
-      exchange(0, 1);
-      exchange(2, 3);
-      exchange(0, 2);
-      exchange(1, 3);
-      exchange(1, 2);
-      if (odd)
-        std::swap(v[2], v[3]);
+      const std::uint32_t* v = tetrahedra.data() + 4 * t;
       double* x = &centres[3 * t];
       for (int a = 0; a < 3; ++a)
         x[a] = xyz[3 * std::size_t(v[0]) + a];
@@ -922,64 +1059,59 @@ void prepareTetrahedra(ThreadTeam& team, const double* xyz, Triangulation& mesh,
   });
 }
 
-/// Every vertex's star, in two passes over the tetrahedra (a count, then their ids). Each thread
-/// scans every tetrahedron for the vertices of its own range, so that no two threads write one
-/// vertex's lists, and a list is in the mesh's order for any thread count.
-Stars starsOf(ThreadTeam& team, const Triangulation& mesh, const std::vector<std::uint8_t>& inBox,
-  std::size_t vertices)
+/// Each vertex's other tetrahedra (those of lower vertices' groups that hold it), and whether
+/// its cell is clipped.
+void listOthers(ThreadTeam& team, const std::vector<std::uint8_t>& inBox, Stars& stars)
 {
-  Stars stars;
-  const std::size_t tets = mesh.numberOfTetrahedra();
-  const std::uint32_t* t4 = mesh.tetrahedra.data();
-  stars.start.assign(vertices + 1, 0);
-  stars.ownedCentres.assign(vertices, 0);
+  const std::size_t tets = inBox.size(), vertices = stars.ownStart.size() - 1;
+  const std::uint32_t* t4 = stars.tetrahedra.data();
+  stars.others.resize(stars.otherStart[vertices]);
   stars.clipped.assign(vertices, 0);
+  std::vector<std::size_t> next(stars.otherStart.begin(), stars.otherStart.end() - 1);
   team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
     for (std::size_t t = 0; t < tets; ++t)
     {
       const std::uint32_t* v = t4 + 4 * t;
       if (v[0] >= lo && v[0] < hi)
-        stars.ownedCentres[v[0]] += inBox[t];
-      for (int k = 0; k < 4; ++k)
+        stars.clipped[v[0]] |= !inBox[t];
+      for (int k = 1; k < 4; ++k)
         if (v[k] >= lo && v[k] < hi)
         {
-          ++stars.start[v[k] + 1];
+          stars.others[next[v[k]]++] = static_cast<std::uint32_t>(t);
           stars.clipped[v[k]] |= !inBox[t];
         }
     }
   });
-  for (std::size_t v = 0; v < vertices; ++v)
-    stars.start[v + 1] += stars.start[v];
-  stars.tets.resize(4 * tets);
-  // Each star's owned tetrahedra first.
-  std::vector<std::size_t> owned(stars.start.begin(), stars.start.end() - 1), others(vertices);
-  for (std::size_t v = 0; v < vertices; ++v)
-    others[v] = stars.start[v] + stars.ownedCentres[v];
-  team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
-    for (std::size_t t = 0; t < tets; ++t)
-    {
-      const std::uint32_t* v = t4 + 4 * t;
-      if (v[0] >= lo && v[0] < hi)
-        stars.tets[inBox[t] ? owned[v[0]]++ : others[v[0]]++] = static_cast<std::uint32_t>(t);
-      for (int k = 1; k < 4; ++k)
-        if (v[k] >= lo && v[k] < hi)
-          stars.tets[others[v[k]]++] = static_cast<std::uint32_t>(t);
-    }
-  });
-  return stars;
 }
 
-/// Where each cell's parts go in the output: its first face, vertex, centre and crossing.
+/// The output point of each centre in the box, numbered in the tetrahedra's order: the centres
+/// of each group, the ones its cell owns, follow each other, cell after cell. One entry more
+/// than the tetrahedra: the count of centres before each one, and in all.
+IdArray numberCentres(const std::vector<std::uint8_t>& inBox)
+{
+  IdArray pointOf(inBox.size() + 1);
+  std::uint32_t point = 0;
+  for (std::size_t t = 0; t < inBox.size(); ++t)
+  {
+    pointOf[t] = point;
+    point += inBox[t];
+  }
+  pointOf[inBox.size()] = point;
+  return pointOf;
+}
+
+/// Where each cell's parts go in the output: its first face vertex and crossing (its first face
+/// is cellFaces', its centres are numbered by numberCentres).
 struct CellPlaces
 {
-  std::vector<std::size_t> vertex, centre, crossing;
+  std::vector<std::size_t> vertex, crossing;
 };
 
 /// The sizes of the cells (those of the clipped ones from their stretches; a whole cell with a
 /// star of n tetrahedra has 2 + n/2 faces, those of its link, a sphere, and 3n face vertices),
 /// summed into places, and the output's arrays made to hold them.
 CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& stars,
-  const std::vector<Stretch>& parts, VoronoiCells& cells)
+  const IdArray& pointOf, const std::vector<Stretch>& parts, VoronoiCells& cells)
 {
   const std::size_t n = vertices.size();
   std::vector<std::uint32_t> clippedAt(n, kNone); // the cell's index in its stretch
@@ -993,17 +1125,16 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
   std::vector<std::size_t> clippedFace(parts.size(), 0);
   CellPlaces at;
   at.vertex.resize(n + 1);
-  at.centre.resize(n + 1);
   at.crossing.resize(n + 1);
   cells.cellFaces.resize(n + 1);
-  cells.cellFaces[0] = at.vertex[0] = at.centre[0] = at.crossing[0] = 0;
+  cells.cellFaces[0] = at.vertex[0] = at.crossing[0] = 0;
   for (std::size_t c = 0; c < n; ++c)
   {
     const std::uint32_t p = vertices[c];
     std::size_t faces, faceVertices, crossings = 0;
     if (clippedAt[c] == kNone)
     {
-      const std::size_t star = stars.start[p + 1] - stars.start[p];
+      const std::size_t star = stars.sizeOf(p);
       faces = 2 + star / 2;
       faceVertices = 3 * star;
     }
@@ -1020,14 +1151,14 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
     }
     cells.cellFaces[c + 1] = cells.cellFaces[c] + faces;
     at.vertex[c + 1] = at.vertex[c] + faceVertices;
-    at.centre[c + 1] = at.centre[c] + stars.ownedCentres[p];
     at.crossing[c + 1] = at.crossing[c] + crossings;
   }
-  const std::size_t points = at.centre[n] + at.crossing[n];
+  const std::size_t centres = n ? pointOf[stars.ownStart[vertices[n - 1] + 1]] : 0;
+  const std::size_t points = centres + at.crossing[n];
   if (points >= kOwnVertex)
     throw std::length_error("voronoiCells: more than 2^31 vertices");
   for (std::size_t& crossing : at.crossing)
-    crossing += at.centre[n];
+    crossing += centres;
   cells.faceStart.resize(cells.cellFaces[n] + 1);
   cells.faceStart[cells.cellFaces[n]] = at.vertex[n];
   cells.faceVertices.resize(at.vertex[n]);
@@ -1038,35 +1169,15 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
   return at;
 }
 
-/// The output's points of the centres in the box, cell after cell: each cell's own (those of the
-/// tetrahedra whose lowest vertex is its generator) by their tetrahedra's other vertices; and
-/// the point of each such tetrahedron.
-void placeCentres(ThreadTeam& team, const std::vector<std::uint32_t>& vertices,
-  const CellSources& in, const CellPlaces& at, const Doubles& centres, IdArray& pointOf,
-  VoronoiCells& cells)
+/// The centres in the box of the tetrahedra of the cells' groups into the output's points.
+void copyCentres(ThreadTeam& team, std::size_t tets, const std::vector<std::uint8_t>& inBox,
+  const IdArray& pointOf, const Doubles& centres, VoronoiCells& cells)
 {
-  team.forRanges(
-    vertices.size(), "voronoi centres", [&](std::size_t, std::size_t begin, std::size_t end) {
-      std::vector<std::uint32_t> owned;
-      for (std::size_t c = begin; c < end; ++c)
-      {
-        const std::uint32_t p = vertices[c];
-        const auto first = in.stars.tets.begin() + std::ptrdiff_t(in.stars.start[p]);
-        owned.assign(first, first + in.stars.ownedCentres[p]);
-        std::sort(owned.begin(), owned.end(), [&](std::uint32_t a, std::uint32_t b) {
-          return std::lexicographical_compare(in.tetrahedra + 4 * std::size_t(a) + 1,
-            in.tetrahedra + 4 * std::size_t(a) + 4, in.tetrahedra + 4 * std::size_t(b) + 1,
-            in.tetrahedra + 4 * std::size_t(b) + 4);
-        });
-        for (std::size_t r = 0; r < owned.size(); ++r)
-        {
-          const std::size_t point = at.centre[c] + r;
-          pointOf[owned[r]] = static_cast<std::uint32_t>(point);
-          for (int a = 0; a < 3; ++a)
-            cells.points[3 * point + a] = centres[3 * std::size_t(owned[r]) + a];
-        }
-      }
-    });
+  team.forRanges(tets, "voronoi centres", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+      if (inBox[t])
+        std::copy_n(&centres[3 * t], 3, &cells.points[3 * std::size_t(pointOf[t])]);
+  });
 }
 
 /// The clipped cells' stretches into the output, their circumcentres numbered through pointOf.
@@ -1150,10 +1261,14 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
     return cells;
   }
 
+  sortVertices(team, mesh);
+  Stars stars;
+  groupByLowestVertex(team, mesh, count + kFarPoints, stars);
   Doubles centres;
   std::vector<std::uint8_t> inBox;
-  prepareTetrahedra(team, curve.xyz.data(), mesh, cells.box, centres, inBox);
-  const Stars stars = starsOf(team, mesh, inBox, count + kFarPoints);
+  circumcentres(team, curve.xyz.data(), stars.tetrahedra, cells.box, centres, inBox);
+  listOthers(team, inBox, stars);
+  const IdArray pointOf = numberCentres(inBox);
   std::vector<std::uint32_t> vertices, clipped; // the generators as the mesh numbers them
   for (std::uint32_t v = 0; v < count; ++v)
     if (mesh.representative[v] == v && curve.inputId[v] < options.generators)
@@ -1173,8 +1288,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   }
 
   // The clipped cells first: their sizes are known once they are clipped.
-  CellSources sources{
-    curve.xyz.data(), curve.inputId, mesh.tetrahedra.data(), stars, inBox, cells.box};
+  CellSources sources{curve.xyz.data(), curve.inputId, stars, cells.box};
   sources.centres = centres.data();
   // A builder per thread, kept for both passes.
   std::vector<std::unique_ptr<CellBuilder>> builders(team.size());
@@ -1194,9 +1308,9 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
         cell.emitClipped(p, clipped[i], parts[k]);
       }
     });
-  const CellPlaces at = placeCells(vertices, stars, parts, cells);
-  IdArray pointOf(mesh.numberOfTetrahedra());
-  placeCentres(team, vertices, sources, at, centres, pointOf, cells);
+  const CellPlaces at = placeCells(vertices, stars, pointOf, parts, cells);
+  if (!vertices.empty())
+    copyCentres(team, stars.ownStart[vertices.back() + 1], inBox, pointOf, centres, cells);
   Doubles().swap(centres);
 
   // The whole cells, straight into their places, then the clipped ones.
