@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -203,6 +204,37 @@ bool lexicographicallyLess(const std::array<double, 3>& a, const std::array<doub
   return a[0] != b[0] ? a[0] < b[0] : (a[1] != b[1] ? a[1] < b[1] : a[2] < b[2]);
 }
 
+/// A face's Newell vector, summed over its edges as its corners come (each from the generator),
+/// then its share of the cell's volume (six times: the vector dotted with a corner) and area
+/// (twice: the vector's length).
+class NewellSum
+{
+public:
+  void add(const double* corner)
+  {
+    if (corners_++ == 0)
+      std::copy_n(corner, 3, first_);
+    addEdge(last_, corner);
+    std::copy_n(corner, 3, last_);
+  }
+  void close(double& sixVolume, double& twiceArea)
+  {
+    addEdge(last_, first_);
+    sixVolume += n_[0] * first_[0] + n_[1] * first_[1] + n_[2] * first_[2];
+    twiceArea += std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]);
+  }
+
+private:
+  void addEdge(const double* a, const double* b)
+  {
+    n_[0] += a[1] * b[2] - a[2] * b[1];
+    n_[1] += a[2] * b[0] - a[0] * b[2];
+    n_[2] += a[0] * b[1] - a[1] * b[0];
+  }
+  double n_[3] = {0, 0, 0}, first_[3] = {0, 0, 0}, last_[3] = {0, 0, 0};
+  std::size_t corners_ = 0;
+};
+
 /// What every cell is built from, shared by the threads (read only while cells are built).
 struct CellSources
 {
@@ -253,26 +285,27 @@ public:
       const double* x = in_.points + 3 * std::size_t(s.point);
       fromGenerator_[i] = {x[0] - g[0], x[1] - g[1], x[2] - g[2]};
     }
-    const RingStep* steps = steps_.data();
-    const std::array<double, 3>* corner = fromGenerator_.data();
     const std::size_t end = vertex + 3 * longest;
+    const RingStep* steps = links <= kDenseLinks ? steps_.data() : nullptr;
+    const std::array<double, 3>* corner = fromGenerator_.data();
+    const std::uint32_t stamp = stamp_;
     double sixVolume = 0, twiceArea = 0;
     out.cellFaces[cell] = face;
-    for (std::size_t f = 0; f < links; ++f, ++face)
+    for (std::uint32_t q = 0; q < links; ++q, ++face)
     {
-      const auto q = static_cast<std::uint32_t>(f);
-      const std::uint32_t first = firstFrom_[q];
       out.faceStart[face] = vertex;
       out.faceNeighbors[face] = inputId(link_[q]);
+      // The Newell sums spelled out: through NewellSum this loop ran markedly slower.
+      const std::uint64_t first = std::uint64_t(q) * links + firstFrom_[q];
+      std::uint64_t key = first;
       const std::size_t begin = vertex;
-      std::uint32_t from = first, star = 0;
       double n[3] = {0, 0, 0}, a[3] = {0, 0, 0}, a0[3] = {0, 0, 0};
       do
       {
-        const RingStep& next = links <= kDenseLinks ? steps[q * links + from] : step(q, from);
-        if (next.cell != stamp_ || vertex - begin >= longest || vertex == end)
+        const RingStep& next = steps ? steps[key] : stepAt(key);
+        if (next.cell != stamp || vertex - begin >= longest || vertex == end)
           throw std::logic_error("voronoiCells: a ring about an edge is open");
-        star = next.star;
+        const std::uint32_t star = next.star;
         out.faceVertices[vertex] = star_[star].point;
         const double* b = corner[star].data();
         if (vertex == begin)
@@ -282,8 +315,8 @@ public:
         n[2] += a[0] * b[1] - a[1] * b[0];
         std::copy_n(b, 3, a);
         ++vertex;
-        from = next.to;
-      } while (from != first);
+        key = next.next;
+      } while (key != first);
       n[0] += a[1] * a0[2] - a[2] * a0[1];
       n[1] += a[2] * a0[0] - a[0] * a0[2];
       n[2] += a[0] * a0[1] - a[1] * a0[0];
@@ -333,9 +366,14 @@ public:
         }
         out.vertices.push_back(kOwnVertex | id);
       }
-      addFace(
-        g, size, [&](std::uint32_t k) { return c.x[c.loops[begin + k]].data(); }, sixVolume,
-        twiceArea);
+      NewellSum newell;
+      for (std::uint32_t k = 0; k < size; ++k)
+      {
+        const std::array<double, 3>& x = c.x[c.loops[begin + k]];
+        const double corner[3] = {x[0] - g[0], x[1] - g[1], x[2] - g[2]};
+        newell.add(corner);
+      }
+      newell.close(sixVolume, twiceArea);
     }
     out.crossings.push_back(crossings);
     out.volumes.push_back(sixVolume / 6);
@@ -352,11 +390,13 @@ private:
     std::uint32_t point;    ///< its centre's output point, once looked up
     std::uint8_t generator; ///< the generator's local index
   };
-  /// A tetrahedron's step in the ring about (p, q): from its face with link vertex `from` to its
-  /// face with `to`, in the turning order. `cell` tells the cell that wrote it.
+  /// A tetrahedron's step in the ring about (p, q), kept under the key of (q, the link vertex of
+  /// the face it enters by): `next` is the key of the step after it, `star` the tetrahedron's
+  /// index in the star, `cell` the cell that wrote it.
   struct RingStep
   {
-    std::uint32_t to, star, cell;
+    std::uint64_t next;
+    std::uint32_t star, cell;
   };
 
   /// A face's neighbour as the output names it: the input id of a point, or a box wall.
@@ -432,29 +472,27 @@ private:
       if (steps_.size() < links_ * links_)
         steps_.resize(links_ * links_, {0, 0, 0});
       RingStep* steps = steps_.data();
-      const std::size_t links = links_;
-      addSteps(
-        [=](std::uint32_t q, std::uint32_t from) -> RingStep& { return steps[q * links + from]; });
+      addSteps([=](std::uint64_t key) -> RingStep& { return steps[key]; });
     }
     else
     {
       stepsLarge_.clear();
-      addSteps([&](std::uint32_t q, std::uint32_t from) -> RingStep& {
-        return stepsLarge_[std::uint64_t(q) << 32 | from];
-      });
+      addSteps([&](std::uint64_t key) -> RingStep& { return stepsLarge_[key]; });
     }
   }
 
   template <typename Step>
   void addSteps(Step step)
   {
+    const std::uint64_t links = links_;
     for (std::size_t i = 0; i < star_.size(); ++i)
     {
       const StarTet& s = star_[i];
       for (const RingTurn& turn : kRingTurns.turns[s.generator])
       {
         const std::uint32_t q = s.link[turn.about], from = s.link[turn.from];
-        step(q, from) = {s.link[turn.to], static_cast<std::uint32_t>(i), stamp_};
+        step(q * links + from) = {
+          q * links + s.link[turn.to], static_cast<std::uint32_t>(i), stamp_};
         firstFrom_[q] = from;
       }
     }
@@ -479,71 +517,39 @@ private:
     return found.first->second;
   }
 
-  const RingStep& step(std::uint32_t q, std::uint32_t from) const
+  const RingStep& stepAt(std::uint64_t key) const
   {
     static const RingStep none = {0, 0, 0}; // of no cell: stamps start at 1
-    const std::size_t links = link_.size();
-    if (links <= kDenseLinks)
-      return steps_[q * links + from];
-    const auto found = stepsLarge_.find(std::uint64_t(q) << 32 | from);
+    if (link_.size() <= kDenseLinks)
+      return steps_[key];
+    const auto found = stepsLarge_.find(key);
     return found == stepsLarge_.end() ? none : found->second;
   }
 
   /// The rings, into loops_ / faceStart_ / neighbors_.
   void traceRings()
   {
-    const std::size_t links = link_.size(), longest = star_.size();
-    loops_.resize(3 * longest);
+    const std::size_t links = link_.size();
+    loops_.clear();
     faceStart_.resize(links + 1);
     neighbors_.resize(links);
-    std::uint32_t* loop = loops_.data();
-    const RingStep* steps = steps_.data();
-    const std::uint32_t stamp = stamp_;
-    std::size_t at = 0;
     faceStart_[0] = 0;
-    for (std::size_t f = 0; f < links; ++f)
+    for (std::uint32_t q = 0; q < links; ++q)
     {
-      const auto q = static_cast<std::uint32_t>(f);
-      const std::uint32_t first = firstFrom_[q];
-      const std::size_t begin = at;
-      std::uint32_t from = first;
+      const std::uint64_t first = std::uint64_t(q) * links + firstFrom_[q];
+      std::uint64_t key = first;
+      const std::size_t begin = loops_.size();
       do
       {
-        const RingStep& next = links <= kDenseLinks ? steps[q * links + from] : step(q, from);
-        if (next.cell != stamp || at - begin >= longest || at == loops_.size())
+        const RingStep& step = stepAt(key);
+        if (step.cell != stamp_ || loops_.size() - begin == star_.size())
           throw std::logic_error("voronoiCells: a ring about an edge is open");
-        loop[at++] = next.star;
-        from = next.to;
-      } while (from != first);
-      faceStart_[f + 1] = static_cast<std::uint32_t>(at);
-      neighbors_[f] = link_[q];
+        loops_.push_back(step.star);
+        key = step.next;
+      } while (key != first);
+      faceStart_[q + 1] = static_cast<std::uint32_t>(loops_.size());
+      neighbors_[q] = link_[q];
     }
-    loops_.resize(at);
-  }
-
-  /// Adds a face's share of the cell's volume (six times: the face's Newell vector dotted with a
-  /// vertex, both from the generator) and area (twice), the Newell vector summed over its edges.
-  template <typename Corner>
-  static void addFace(
-    const double* g, std::uint32_t size, Corner corner, double& sixVolume, double& twiceArea)
-  {
-    double n[3] = {0, 0, 0};
-    const double* first = corner(0);
-    double a[3] = {first[0] - g[0], first[1] - g[1], first[2] - g[2]};
-    const double a0[3] = {a[0], a[1], a[2]};
-    for (std::uint32_t k = 1; k <= size; ++k)
-    {
-      const double* next = corner(k < size ? k : 0);
-      const double b[3] = {next[0] - g[0], next[1] - g[1], next[2] - g[2]};
-      n[0] += a[1] * b[2] - a[2] * b[1];
-      n[1] += a[2] * b[0] - a[0] * b[2];
-      n[2] += a[0] * b[1] - a[1] * b[0];
-      a[0] = b[0];
-      a[1] = b[1];
-      a[2] = b[2];
-    }
-    sixVolume += n[0] * a0[0] + n[1] * a0[1] + n[2] * a0[2];
-    twiceArea += std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   }
 
   void makePolyhedron()
@@ -869,6 +875,24 @@ void circumcentreInDoubleDouble(
     offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]).value() / twiceVolume * up;
 }
 
+/// ilogb(x) for a finite x > 0, read from its bits where it is normal.
+int binaryExponent(double x)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const int biased = static_cast<int>(bits >> 52);
+  return biased > 0 ? biased - 1023 : std::ilogb(x);
+}
+
+/// 2^e for -1022 <= e <= 1023, built from its bits.
+double powerOfTwo(int e)
+{
+  const std::uint64_t bits = std::uint64_t(1023 + e) << 52;
+  double x;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 /// Adds to `a` (the first vertex's coordinates) the circumcentre's offset from it, computed on
 /// edges scaled by a power of two (exact) to a length near 1, so that their squares and cubes
 /// neither underflow nor overflow at any magnitude of the input; in double-double where the
@@ -887,9 +911,9 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
     }
   if (!(longest > 0) || !std::isfinite(longest))
     return;
-  const int exponent = std::ilogb(longest);
+  const int exponent = binaryExponent(longest);
   const bool normal = exponent > -1000 && exponent < 1000; // 2^-exponent is a double
-  const double down = normal ? std::ldexp(1.0, -exponent) : 0, up = normal ? 1 / down : 0;
+  const double down = normal ? powerOfTwo(-exponent) : 0, up = normal ? powerOfTwo(exponent) : 0;
   for (auto& edge : edges)
     for (double& x : edge)
       x = normal ? x * down : std::ldexp(x, -exponent);
@@ -897,7 +921,7 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
   double offset[3];
   for (int k = 0; k < 3; ++k)
     offset[k] = normal ? c.offset[k] * up : std::ldexp(c.offset[k], exponent);
-  if (normal && std::fabs(c.sixVolume) < kFlat * std::sqrt(c.edgeProduct2))
+  if (normal && c.sixVolume * c.sixVolume < kFlat * kFlat * c.edgeProduct2)
     circumcentreInDoubleDouble(xyz, ids, down, up, offset);
   for (int k = 0; k < 3; ++k)
     a[k] += offset[k];
@@ -939,21 +963,23 @@ void sortVertices(ThreadTeam& team, Triangulation& mesh)
       {
         std::uint32_t* v = t4 + 4 * t;
         // A sorting network of five exchanges; each exchange flips the orientation.
+        // Without branches: each exchange is a coin toss.
         bool odd = false;
         auto exchange = [&](int i, int j) {
-          if (v[j] < v[i])
-          {
-            std::swap(v[i], v[j]);
-            odd = !odd;
-          }
+          const std::uint32_t a = v[i], b = v[j];
+          const bool swap = b < a;
+          v[i] = swap ? b : a;
+          v[j] = swap ? a : b;
+          odd ^= swap;
         };
         exchange(0, 1);
         exchange(2, 3);
         exchange(0, 2);
         exchange(1, 3);
         exchange(1, 2);
-        if (odd)
-          std::swap(v[2], v[3]);
+        const std::uint32_t third = v[2], fourth = v[3];
+        v[2] = odd ? fourth : third;
+        v[3] = odd ? third : fourth;
       }
     });
 }
