@@ -258,13 +258,42 @@ public:
     : in_(sources), linkOf_(vertices, kNoLink)
   {}
 
-  /// The faces of p's cell before any clipping, as ring steps (linkEdges): the ring of its star's
-  /// tetrahedra about each edge (p, q), turning counter-clockwise about p -> q, so that the face
-  /// is counter-clockwise seen from outside.
+  /// The faces of p's cell before any clipping, as ring steps: the ring of its star's tetrahedra
+  /// about each edge (p, q), turning counter-clockwise about p -> q, so that the face is
+  /// counter-clockwise seen from outside. The link vertices q are numbered as the star meets them;
+  /// the star's order is the points' alone (Stars), and so are these numbers, the order of the
+  /// faces (by them) and where each ring starts (at the last of the star's tetrahedra in it).
   void trace(std::uint32_t p)
   {
-    gatherStar(p);
-    linkEdges();
+    const std::size_t size = in_.stars.sizeOf(p);
+    links_ = 2 + size / 2; // the link is a sphere
+    met_ = 0;
+    link_.resize(links_ + 3); // room for a tetrahedron's three before they are counted
+    firstFrom_.resize(links_);
+    star_.resize(size);
+    ++stamp_;
+    if (links_ <= kDenseLinks)
+    {
+      if (steps_.size() < links_ * links_)
+        steps_.resize(links_ * links_, {0, 0, 0});
+      RingStep* steps = steps_.data();
+      addStar(
+        p, [this](std::uint32_t v) { return denseLinkIndex(v); },
+        [steps](std::uint64_t key) -> RingStep& { return steps[key]; });
+      for (std::size_t i = 0; i < met_; ++i)
+        linkOf_[link_[i]] = kNoLink;
+    }
+    else
+    {
+      linkOfLarge_.clear();
+      stepsLarge_.clear();
+      addStar(
+        p, [this](std::uint32_t v) { return largeLinkIndex(v); },
+        [this](std::uint64_t key) -> RingStep& { return stepsLarge_[key]; });
+    }
+    if (met_ != links_)
+      throw std::logic_error("voronoiCells: a generator's link is not a sphere");
+    link_.resize(links_);
   }
 
   /// A cell inside the box, written where `at` says: its faces are the rings as they are, each
@@ -274,15 +303,13 @@ public:
     std::uint32_t p, std::size_t cell, std::size_t face, std::size_t vertex, VoronoiCells& out)
   {
     const std::size_t links = link_.size(), longest = star_.size();
-    if (links != 2 + longest / 2)
-      throw std::logic_error("voronoiCells: a generator's link is not a sphere");
     const double* g = in_.xyz + 3 * std::size_t(p);
     fromGenerator_.resize(longest);
+    pointOf_.resize(longest);
     for (std::size_t i = 0; i < longest; ++i)
     {
-      StarTet& s = star_[i];
-      s.point = in_.pointOf[s.tet];
-      const double* x = in_.points + 3 * std::size_t(s.point);
+      pointOf_[i] = in_.pointOf[star_[i]];
+      const double* x = in_.points + 3 * std::size_t(pointOf_[i]);
       fromGenerator_[i] = {x[0] - g[0], x[1] - g[1], x[2] - g[2]};
     }
     const std::size_t end = vertex + 3 * longest;
@@ -303,10 +330,10 @@ public:
       do
       {
         const RingStep& next = steps ? steps[key] : stepAt(key);
-        if (next.cell != stamp || vertex - begin >= longest || vertex == end)
+        if (next.cell != stamp || vertex == end)
           throw std::logic_error("voronoiCells: a ring about an edge is open");
         const std::uint32_t star = next.star;
-        out.faceVertices[vertex] = star_[star].point;
+        out.faceVertices[vertex] = pointOf_[star];
         const double* b = corner[star].data();
         if (vertex == begin)
           std::copy_n(b, 3, a0);
@@ -381,15 +408,6 @@ public:
   }
 
 private:
-  /// A tetrahedron of the generator's star.
-  struct StarTet
-  {
-    std::uint32_t tet;
-    std::uint32_t vertices[4];
-    std::uint32_t link[4];  ///< each other vertex's index in link_
-    std::uint32_t point;    ///< its centre's output point, once looked up
-    std::uint8_t generator; ///< the generator's local index
-  };
   /// A tetrahedron's step in the ring about (p, q), kept under the key of (q, the link vertex of
   /// the face it enters by): `next` is the key of the step after it, `star` the tetrahedron's
   /// index in the star, `cell` the cell that wrote it.
@@ -414,87 +432,36 @@ private:
                        : in_.points + 3 * std::size_t(in_.pointOf[t]);
   }
 
-  void gatherStar(std::uint32_t p)
+  /// The star's tetrahedra into star_, their link vertices numbered by linkIndex(v), and each
+  /// one's steps in the rings about its three link vertices, through step(key).
+  template <typename LinkIndex, typename Step>
+  void addStar(std::uint32_t p, LinkIndex linkIndex, Step step)
   {
-    star_.clear();
     const Stars& stars = in_.stars;
+    const std::uint32_t* t4 = stars.tetrahedra.data();
+    const std::uint64_t links = links_;
+    std::uint32_t i = 0;
+    auto add = [&](std::uint32_t t, int generator) {
+      const std::uint32_t* v = t4 + 4 * std::size_t(t);
+      std::uint32_t link[4] = {0, 0, 0, 0};
+      for (const int k : kOthers[generator])
+        link[k] = linkIndex(v[k]);
+      if (met_ > links_)
+        throw std::logic_error("voronoiCells: a generator's link is not a sphere");
+      for (const RingTurn& turn : kRingTurns.turns[generator])
+      {
+        const std::uint32_t q = link[turn.about], from = link[turn.from];
+        step(q * links + from) = {q * links + link[turn.to], i, stamp_};
+        firstFrom_[q] = from;
+      }
+      star_[i++] = t;
+    };
     for (std::size_t t = stars.ownStart[p]; t < stars.ownStart[p + 1]; ++t)
-      addToStar(static_cast<std::uint32_t>(t), 0);
+      add(static_cast<std::uint32_t>(t), 0);
     for (std::size_t k = stars.otherStart[p]; k < stars.otherStart[p + 1]; ++k)
     {
       const std::uint32_t t = stars.others[k];
-      addToStar(t, localIndex(stars.tetrahedra.data() + 4 * std::size_t(t), p));
-    }
-  }
-
-  void addToStar(std::uint32_t t, int generator)
-  {
-    StarTet s;
-    s.tet = t;
-    const std::uint32_t* v = in_.stars.tetrahedra.data() + 4 * std::size_t(t);
-    for (int k = 0; k < 4; ++k) // a loop, not a call to memmove
-      s.vertices[k] = v[k];
-    s.generator = static_cast<std::uint8_t>(generator);
-    star_.push_back(s);
-  }
-
-  /// The generator's link (the vertices it is joined to) into link_, numbered as the star meets
-  /// them, and each star tetrahedron's step in the ring about each of its other three vertices.
-  /// The star's order is the points' alone (Stars), and so are these numbers, the order of the
-  /// faces (by them) and where each ring starts (at the last of the star's tetrahedra in it).
-  void linkEdges()
-  {
-    const std::size_t size = star_.size();
-    link_.resize(3 * size + 1);
-    links_ = 0;
-    // A star of n tetrahedra has 2 + n/2 link vertices: below kDenseStar, their indices fit
-    // linkOf_'s 16 bits.
-    if (size < kDenseStar)
-    {
-      for (StarTet& s : star_)
-        for (const int k : kOthers[s.generator])
-          s.link[k] = denseLinkIndex(s.vertices[k]);
-      for (std::size_t i = 0; i < links_; ++i)
-        linkOf_[link_[i]] = kNoLink;
-    }
-    else
-    {
-      linkOfLarge_.clear();
-      for (StarTet& s : star_)
-        for (const int k : kOthers[s.generator])
-          s.link[k] = largeLinkIndex(s.vertices[k]);
-    }
-    link_.resize(links_);
-    ++stamp_;
-    firstFrom_.resize(links_);
-    if (links_ <= kDenseLinks)
-    {
-      if (steps_.size() < links_ * links_)
-        steps_.resize(links_ * links_, {0, 0, 0});
-      RingStep* steps = steps_.data();
-      addSteps([=](std::uint64_t key) -> RingStep& { return steps[key]; });
-    }
-    else
-    {
-      stepsLarge_.clear();
-      addSteps([&](std::uint64_t key) -> RingStep& { return stepsLarge_[key]; });
-    }
-  }
-
-  template <typename Step>
-  void addSteps(Step step)
-  {
-    const std::uint64_t links = links_;
-    for (std::size_t i = 0; i < star_.size(); ++i)
-    {
-      const StarTet& s = star_[i];
-      for (const RingTurn& turn : kRingTurns.turns[s.generator])
-      {
-        const std::uint32_t q = s.link[turn.about], from = s.link[turn.from];
-        step(q * links + from) = {
-          q * links + s.link[turn.to], static_cast<std::uint32_t>(i), stamp_};
-        firstFrom_[q] = from;
-      }
+      add(t, localIndex(t4 + 4 * std::size_t(t), p));
     }
   }
 
@@ -502,18 +469,18 @@ private:
   std::uint32_t denseLinkIndex(std::uint32_t v)
   {
     std::uint16_t& index = linkOf_[v];
-    link_[links_] = v;
+    link_[met_] = v;
     const bool added = index == kNoLink;
-    index = added ? static_cast<std::uint16_t>(links_) : index;
-    links_ += added;
+    index = added ? static_cast<std::uint16_t>(met_) : index;
+    met_ += added;
     return index;
   }
 
   std::uint32_t largeLinkIndex(std::uint32_t v)
   {
-    const auto found = linkOfLarge_.emplace(v, static_cast<std::uint32_t>(links_));
+    const auto found = linkOfLarge_.emplace(v, static_cast<std::uint32_t>(met_));
     if (found.second)
-      link_[links_++] = v;
+      link_[met_++] = v;
     return found.first->second;
   }
 
@@ -565,15 +532,15 @@ private:
     {
       for (std::uint32_t k = faceStart_[f]; k < faceStart_[f + 1]; ++k)
       {
-        const StarTet& s = star_[loops_[k]];
+        const std::uint32_t t = star_[loops_[k]];
         bool inserted;
         const std::uint32_t v =
           localOf_.find(loops_[k], static_cast<std::uint32_t>(c.x.size()), inserted);
         if (inserted)
         {
-          const double* x = centre(s.tet);
+          const double* x = centre(t);
           c.x.push_back({x[0], x[1], x[2]});
-          c.tet.push_back(s.tet);
+          c.tet.push_back(t);
         }
         c.loops.push_back(v);
       }
@@ -716,15 +683,14 @@ private:
     }
   }
 
-  /// Stars of fewer tetrahedra number their link in linkOf_; link vertices up to this many
-  /// have their ring steps in a square table.
-  static constexpr std::size_t kDenseStar = 1 << 16;
+  /// Links of up to this many vertices are numbered in linkOf_ and have their ring steps in a
+  /// square table.
   static constexpr std::size_t kDenseLinks = 256;
   static constexpr std::uint16_t kNoLink = 0xFFFF;
 
   const CellSources& in_;
   // One cell's scratch, kept between cells for its memory.
-  std::vector<StarTet> star_;
+  std::vector<std::uint32_t> star_; ///< the tetrahedra around the generator
   std::vector<std::uint32_t> link_; ///< the vertices joined to the generator, as met
   /// Each vertex's index in link_ while a cell is traced (kNoLink otherwise): two bytes a vertex
   /// per thread, against a hash map's several lookups.
@@ -734,10 +700,12 @@ private:
   std::unordered_map<std::uint64_t, RingStep> stepsLarge_;
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> firstFrom_; ///< per link vertex: where its ring starts
-  std::size_t links_ = 0;                ///< link_'s length while it is gathered
+  std::size_t links_ = 0; ///< the link's vertices: 2 + n/2 for a star of n tetrahedra
+  std::size_t met_ = 0;   ///< the link's vertices met so far
   SmallMap localOf_, crossingOf_;
   std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
   std::vector<std::array<double, 3>> fromGenerator_; ///< per star tetrahedron: its centre - p
+  std::vector<std::uint32_t> pointOf_;               ///< per star tetrahedron: its centre's point
   Polyhedron cell_;
   std::vector<std::array<std::uint32_t, 3>> crossings_;
   std::vector<std::pair<std::uint32_t, bool>> events_;
