@@ -34,6 +34,7 @@
 #include "DoubleDouble.h"
 #include "Geometry.h"
 #include "InsertionOrder.h"
+#include "Platform.h"
 #include "Threads.h"
 #include "fd3/Distributed.h"
 #include "fd3/Measures.h"
@@ -458,8 +459,14 @@ private:
     };
     for (std::size_t t = stars.ownStart[p]; t < stars.ownStart[p + 1]; ++t)
       add(static_cast<std::uint32_t>(t), 0);
-    for (std::size_t k = stars.otherStart[p]; k < stars.otherStart[p + 1]; ++k)
+    // The others lie in the groups of lower vertices, some long left behind: fetched ahead.
+    const std::size_t first = stars.otherStart[p], last = stars.otherStart[p + 1];
+    for (std::size_t k = first; k < last && k < first + kAhead; ++k)
+      prefetch(t4 + 4 * std::size_t(stars.others[k]));
+    for (std::size_t k = first; k < last; ++k)
     {
+      if (k + kAhead < last)
+        prefetch(t4 + 4 * std::size_t(stars.others[k + kAhead]));
       const std::uint32_t t = stars.others[k];
       add(t, localIndex(t4 + 4 * std::size_t(t), p));
     }
@@ -686,6 +693,8 @@ private:
   /// Links of up to this many vertices are numbered in linkOf_ and have their ring steps in a
   /// square table.
   static constexpr std::size_t kDenseLinks = 256;
+  /// How far ahead in a star's list its tetrahedra are fetched.
+  static constexpr std::size_t kAhead = 8;
   static constexpr std::uint16_t kNoLink = 0xFFFF;
 
   const CellSources& in_;
@@ -987,7 +996,7 @@ void sortGroup(std::uint32_t* first, std::size_t size, std::vector<std::uint32_t
 }
 
 /// The mesh's tetrahedra grouped by their lowest vertex into stars.tetrahedra (the mesh's array
-/// is let go), and each vertex's other tetrahedra counted. Each thread scans every tetrahedron
+/// goes to stars.others), and each vertex's other tetrahedra counted. Each thread scans every tetrahedron
 /// for the vertices of its own range, so that no two threads write one vertex's entries.
 void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vertices, Stars& stars)
 {
@@ -1022,7 +1031,9 @@ void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vert
         std::copy_n(v, 4, stars.tetrahedra.data() + 4 * next[v[0]]++);
     }
   });
-  IdArray().swap(mesh.tetrahedra);
+  // The mesh's array (4 entries a tetrahedron) is the room for the others' list (3 a
+  // tetrahedron), in pages already the process's.
+  stars.others.swap(mesh.tetrahedra);
   team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
     std::vector<std::uint32_t> scratch;
     for (std::size_t v = lo; v < hi; ++v)
