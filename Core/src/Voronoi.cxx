@@ -99,61 +99,6 @@ constexpr RingTurns kRingTurns = makeRingTurns();
 /// The local indices of a tetrahedron's vertices but one.
 constexpr int kOthers[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
-/// An open-addressing map of 32-bit keys for one cell's work, emptied per cell in the time of
-/// what it held.
-class SmallMap
-{
-public:
-  /// The value of `key`, inserting `value` when absent; `inserted` tells which.
-  std::uint32_t find(std::uint32_t key, std::uint32_t value, bool& inserted)
-  {
-    if (2 * (used_.size() + 1) > slots_.size())
-      grow();
-    std::size_t slot = (std::uint64_t(key) * 0x9E3779B97F4A7C15ull >> 32) & mask_;
-    while (slots_[slot].key != kNone && slots_[slot].key != key)
-      slot = (slot + 1) & mask_;
-    inserted = slots_[slot].key == kNone;
-    if (inserted)
-    {
-      slots_[slot] = {key, value};
-      used_.push_back(static_cast<std::uint32_t>(slot));
-    }
-    return slots_[slot].value;
-  }
-  bool insert(std::uint32_t key)
-  {
-    bool inserted;
-    find(key, 0, inserted);
-    return inserted;
-  }
-  void clear()
-  {
-    for (const std::uint32_t slot : used_)
-      slots_[slot].key = kNone;
-    used_.clear();
-  }
-
-private:
-  struct Slot
-  {
-    std::uint32_t key = kNone, value = 0;
-  };
-  void grow()
-  {
-    std::vector<Slot> old(std::max<std::size_t>(256, 2 * slots_.size()));
-    old.swap(slots_);
-    mask_ = slots_.size() - 1;
-    const std::vector<std::uint32_t> used = std::move(used_);
-    used_.clear();
-    bool inserted;
-    for (const std::uint32_t slot : used)
-      find(old[slot].key, old[slot].value, inserted);
-  }
-  std::vector<Slot> slots_;
-  std::vector<std::uint32_t> used_;
-  std::size_t mask_ = 0;
-};
-
 /// The clipped cells of one stretch of generators, with vertex ids that are tetrahedra (their
 /// circumcentres) or kOwnVertex + the index of one of the cell's crossings of the box.
 struct Stretch
@@ -368,7 +313,7 @@ public:
     const std::size_t faces = c.neighbors.size();
     out.cells.push_back(cell);
     out.faceCounts.push_back(static_cast<std::uint32_t>(faces));
-    crossingOf_.clear();
+    crossingOf_.assign(c.x.size(), kNone);
     const double* g = in_.xyz + 3 * std::size_t(p);
     double sixVolume = 0, twiceArea = 0;
     std::uint32_t crossings = 0;
@@ -385,14 +330,12 @@ public:
           out.vertices.push_back(t);
           continue;
         }
-        bool inserted;
-        const std::uint32_t id = crossingOf_.find(v, crossings, inserted);
-        if (inserted)
+        if (crossingOf_[v] == kNone)
         {
-          ++crossings;
+          crossingOf_[v] = crossings++;
           out.crossingPoints.insert(out.crossingPoints.end(), c.x[v].begin(), c.x[v].end());
         }
-        out.vertices.push_back(kOwnVertex | id);
+        out.vertices.push_back(kOwnVertex | crossingOf_[v]);
       }
       NewellSum newell;
       for (std::uint32_t k = 0; k < size; ++k)
@@ -534,17 +477,16 @@ private:
     c.loops.clear();
     c.faceStart.assign(1, 0);
     c.neighbors.clear();
-    localOf_.clear();
+    localOf_.assign(star_.size(), kNone);
     for (std::size_t f = 0; f + 1 < faceStart_.size(); ++f)
     {
       for (std::uint32_t k = faceStart_[f]; k < faceStart_[f + 1]; ++k)
       {
-        const std::uint32_t t = star_[loops_[k]];
-        bool inserted;
-        const std::uint32_t v =
-          localOf_.find(loops_[k], static_cast<std::uint32_t>(c.x.size()), inserted);
-        if (inserted)
+        std::uint32_t& v = localOf_[loops_[k]];
+        if (v == kNone)
         {
+          const std::uint32_t t = star_[loops_[k]];
+          v = static_cast<std::uint32_t>(c.x.size());
           const double* x = centre(t);
           c.x.push_back({x[0], x[1], x[2]});
           c.tet.push_back(t);
@@ -583,7 +525,12 @@ private:
     }
     crossings_.clear();
     capEdges_.clear();
-    std::vector<std::uint32_t> loops, faceStart{0}, neighbors;
+    std::vector<std::uint32_t>& loops = keptLoops_;
+    std::vector<std::uint32_t>& faceStart = keptStarts_;
+    std::vector<std::uint32_t>& neighbors = keptNeighbors_;
+    loops.clear();
+    faceStart.assign(1, 0);
+    neighbors.clear();
     for (std::size_t f = 0; f + 1 < c.faceStart.size(); ++f)
     {
       const std::uint32_t begin = c.faceStart[f], size = c.faceStart[f + 1] - begin;
@@ -711,7 +658,11 @@ private:
   std::vector<std::uint32_t> firstFrom_; ///< per link vertex: where its ring starts
   std::size_t links_ = 0; ///< the link's vertices: 2 + n/2 for a star of n tetrahedra
   std::size_t met_ = 0;   ///< the link's vertices met so far
-  SmallMap localOf_, crossingOf_;
+  /// A clipped cell's local vertex of each star tetrahedron, and its crossing of each local
+  /// vertex (kNone where it has none yet).
+  std::vector<std::uint32_t> localOf_, crossingOf_;
+  /// The faces a clip keeps, swapped into cell_.
+  std::vector<std::uint32_t> keptLoops_, keptStarts_, keptNeighbors_;
   std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
   std::vector<std::array<double, 3>> fromGenerator_; ///< per star tetrahedron: its centre - p
   std::vector<std::uint32_t> pointOf_;               ///< per star tetrahedron: its centre's point
