@@ -1,6 +1,7 @@
 // Voronoi cells of the same points by Core (fd3::voronoiCells, on each thread count asked for),
-// by Voro++ (its container in the points' bounding box, cells with volumes, areas and
-// neighbours, as Core gives them) where the benchmark is built with it, and by
+// by Voro++ where the benchmark is built with it (its container in the points' bounding box; each
+// cell's volume, area and neighbours, and in a second run also its polyhedron, vertices and faces
+// copied out as a program that draws or writes the cells does, as Core gives them), and by
 // scipy.spatial.Voronoi (Qhull's unbounded diagram alone) where /usr/bin/python3 has scipy.
 // Each run in a forked child with its own peak memory.
 #include "VoronoiBench.h"
@@ -50,7 +51,10 @@ Measurement runCore(const fd3test::Points& p, int threads)
 }
 
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-Measurement runVoropp(const fd3test::Points& p)
+/// Voro++'s cells; with `polyhedra`, each one's vertices (in the box's coordinates) and faces
+/// appended to arrays of all the cells, a VTK polyhedron's face stream (each face's size, then
+/// its vertices).
+Measurement runVoropp(const fd3test::Points& p, bool polyhedra)
 {
   const std::size_t n = p.size() / 3;
   const std::array<double, 6> b = boundsOf(p);
@@ -67,7 +71,9 @@ Measurement runVoropp(const fd3test::Points& p)
     box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
   voro::c_loop_all loop(box);
   voro::voronoicell_neighbor cell;
-  std::vector<int> neighbors;
+  std::vector<int> neighbors, faces;
+  std::vector<double> vertices, points;
+  std::vector<long long> faceStream;
   double total = 0, area = 0;
   std::size_t cells = 0;
   if (loop.start())
@@ -78,6 +84,20 @@ Measurement runVoropp(const fd3test::Points& p)
         area += cell.surface_area();
         cell.neighbors(neighbors);
         ++cells;
+        if (!polyhedra)
+          continue;
+        double x, y, z;
+        loop.pos(x, y, z);
+        cell.vertices(x, y, z, vertices);
+        cell.face_vertices(faces); // each face's size, then its vertices
+        const auto first = static_cast<long long>(points.size() / 3);
+        points.insert(points.end(), vertices.begin(), vertices.end());
+        for (std::size_t k = 0; k < faces.size(); k += std::size_t(faces[k]) + 1)
+        {
+          faceStream.push_back(faces[k]);
+          for (int i = 1; i <= faces[k]; ++i)
+            faceStream.push_back(first + faces[k + i]);
+        }
       }
     while (loop.inc());
   Measurement m;
@@ -125,16 +145,18 @@ int voronoiMain(int argc, char* argv[])
     return 2;
   const std::string script = std::string(FD3_BENCHMARK_SOURCE_DIR) + "/scipy_voronoi.py";
   std::ostringstream md, csv;
-  md << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
-     << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
-     << "the points' bounding box with volumes, areas and neighbours; scipy: "
-     << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
-     << "Volume: the cells' total over the box's. Model (Core): the run on a core per thread, "
-     << "from each thread's CPU time (Scaling.cxx), and its serial seconds; real only where each "
-     << "thread has a core.\n\n"
-     << "| points | n | method | seconds | model s | serial s | peak MiB | B/point | volume / box | "
-        "Voro++ / this |\n"
-     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  md
+    << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
+    << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
+    << "the points' bounding box with volumes, areas and neighbours, and their polyhedra for "
+    << "Core and Voro++ polyhedra (vertices and faces copied out of each Voro++ cell); scipy: "
+    << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
+    << "Volume: the cells' total over the box's. Model (Core): the run on a core per thread, "
+    << "from each thread's CPU time (Scaling.cxx), and its serial seconds; real only where each "
+    << "thread has a core.\n\n"
+    << "| points | n | method | seconds | model s | serial s | peak MiB | B/point | volume / box | "
+       "Voro++ / this | Voro++ polyhedra / this |\n"
+    << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   csv << "kind,n,method,seconds,model_seconds,serial_seconds,peak_mib,volume_fraction\n";
   for (const std::string& kind : settings.kinds)
     for (const std::size_t size : settings.sizes)
@@ -147,13 +169,22 @@ int voronoiMain(int argc, char* argv[])
       for (const int t : settings.threads)
         rows.push_back({"Core-" + std::to_string(t), measure([&] { return runCore(p, t); }, 1e9)});
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-      rows.push_back({"Voro++", measure([&] { return runVoropp(p); }, settings.limit)});
+      rows.push_back({"Voro++", measure([&] { return runVoropp(p, false); }, settings.limit)});
+      rows.push_back(
+        {"Voro++ polyhedra", measure([&] { return runVoropp(p, true); }, settings.limit)});
 #endif
       rows.push_back({"scipy", runScipy(p, script)});
-      double voropp = 0;
+      double voropp = 0, voroppPolyhedra = 0;
       for (const auto& [name, m] : rows)
+      {
         if (name == "Voro++" && m.ran)
           voropp = m.seconds;
+        if (name == "Voro++ polyhedra" && m.ran)
+          voroppPolyhedra = m.seconds;
+      }
+      auto ratio = [](double other, double seconds) {
+        return other > 0 ? std::to_string(other / seconds).substr(0, 5) + "x" : std::string("-");
+      };
       for (const auto& [name, m] : rows)
       {
         char line[256];
@@ -167,10 +198,10 @@ int voronoiMain(int argc, char* argv[])
         const std::string model = modelled ? std::to_string(m.figures[2]).substr(0, 6) : "-";
         const std::string serial = modelled ? std::to_string(m.figures[3]).substr(0, 5) : "-";
         std::snprintf(line, sizeof line,
-          "| %s | %zu | %s | %.3f | %s | %s | %.0f | %.0f | %s | %s |\n", kind.c_str(), n,
+          "| %s | %zu | %s | %.3f | %s | %s | %.0f | %.0f | %s | %s | %s |\n", kind.c_str(), n,
           name.c_str(), m.seconds, model.c_str(), serial.c_str(), m.peakMiB,
           m.peakMiB * 1048576.0 / double(n), fraction > 0 ? std::to_string(fraction).c_str() : "-",
-          voropp > 0 ? (std::to_string(voropp / m.seconds).substr(0, 5) + "x").c_str() : "-");
+          ratio(voropp, m.seconds).c_str(), ratio(voroppPolyhedra, m.seconds).c_str());
         md << line;
         csv << kind << ',' << n << ',' << name << ',' << m.seconds << ','
             << (modelled ? m.figures[2] : 0) << ',' << (modelled ? m.figures[3] : 0) << ','
