@@ -13,9 +13,6 @@ namespace fd3
 {
 namespace
 {
-// The sort's scratch: written right after it is made, so never filled first.
-using Words = std::vector<std::uint64_t, BulkAllocator<std::uint64_t>>;
-
 // The smallest run of equal curve keys worth sorting again inside its own box (smaller runs are
 // ordered by their coordinates).
 constexpr std::size_t kRunWorthRefining = 8;
@@ -108,10 +105,9 @@ private:
   std::uint16_t entry_[kStates][64];
 };
 
-// Least-significant-digit radix sort (stable) of words holding a key in their high half and an id
-// in their low half, by the key's low `bits` bits: linear passes instead of std::sort's n log n
-// comparisons. One word per entry, not a key array and an id array, so that each pass scatters
-// one stream. With a team, each thread counts and scatters a stretch of the words.
+} // namespace
+
+// One word per entry, not a key array and an id array, so that each pass scatters one stream.
 void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
 {
   constexpr int kDigit = 10;
@@ -150,6 +146,8 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
   }
 }
 
+namespace
+{
 bool lexicographicallyLess(const double* xyz, std::uint32_t a, std::uint32_t b)
 {
   const double* p = xyz + 3 * std::size_t(a);

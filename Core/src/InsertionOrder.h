@@ -25,6 +25,15 @@ constexpr int kHilbertBits = 10;
 /// face, and every aligned block of 2^k cells a side takes 8^k consecutive positions.
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z);
 
+/// Words holding a key in their high half and an id in their low half (in the kernel's
+/// allocator: a sort's scratch is written right after it is made, never filled first).
+using Words = std::vector<std::uint64_t, BulkAllocator<std::uint64_t>>;
+
+/// Sorts `words` by the low `bits` bits of their keys, stably (least-significant-digit radix
+/// sort: linear passes instead of std::sort's n log n comparisons); with a team, each thread
+/// counts and scatters a stretch of the words.
+void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team);
+
 struct InsertionPlan
 {
   /// Input ids of the distinct points, in the order of insertion.

@@ -188,6 +188,7 @@ struct CellSources
   const std::vector<std::uint32_t>& inputId; ///< of each point but the far ones
   const Stars& stars;
   const std::array<double, 6>& box;
+  bool polyhedra; ///< VoronoiOptions::polyhedra
   /// Per tetrahedron: its centre, while the clipped cells are built; then null, and the centres
   /// in the box are read from `points` through `pointOf`.
   const double* centres = nullptr;
@@ -245,6 +246,7 @@ public:
   /// A cell inside the box, written where `at` says: its faces are the rings as they are, each
   /// traced straight into the output (the volume's and area's sums beside the ring's steps, which
   /// wait on each other).
+  template <bool Polyhedra>
   void emitWhole(
     std::uint32_t p, std::size_t cell, std::size_t face, std::size_t vertex, VoronoiCells& out)
   {
@@ -254,8 +256,14 @@ public:
     pointOf_.resize(longest);
     for (std::size_t i = 0; i < longest; ++i)
     {
-      pointOf_[i] = in_.pointOf[star_[i]];
-      const double* x = in_.points + 3 * std::size_t(pointOf_[i]);
+      const double* x;
+      if constexpr (Polyhedra)
+      {
+        pointOf_[i] = in_.pointOf[star_[i]];
+        x = in_.points + 3 * std::size_t(pointOf_[i]);
+      }
+      else
+        x = in_.centres + 3 * std::size_t(star_[i]);
       fromGenerator_[i] = {x[0] - g[0], x[1] - g[1], x[2] - g[2]};
     }
     const std::size_t end = vertex + 3 * longest;
@@ -266,7 +274,8 @@ public:
     out.cellFaces[cell] = face;
     for (std::uint32_t q = 0; q < links; ++q, ++face)
     {
-      out.faceStart[face] = vertex;
+      if constexpr (Polyhedra)
+        out.faceStart[face] = vertex;
       out.faceNeighbors[face] = inputId(link_[q]);
       // The Newell sums spelled out: through NewellSum this loop ran markedly slower.
       const std::uint64_t first = std::uint64_t(q) * links + firstFrom_[q];
@@ -279,7 +288,8 @@ public:
         if (next.cell != stamp || vertex == end)
           throw std::logic_error("voronoiCells: a ring about an edge is open");
         const std::uint32_t star = next.star;
-        out.faceVertices[vertex] = pointOf_[star];
+        if constexpr (Polyhedra)
+          out.faceVertices[vertex] = pointOf_[star];
         const double* b = corner[star].data();
         if (vertex == begin)
           std::copy_n(b, 3, a0);
@@ -322,7 +332,7 @@ public:
       const std::uint32_t begin = c.faceStart[f], size = c.faceStart[f + 1] - begin;
       out.faceSizes.push_back(size);
       out.neighbors.push_back(inputId(c.neighbors[f]));
-      for (std::uint32_t k = 0; k < size; ++k)
+      for (std::uint32_t k = 0; k < size && in_.polyhedra; ++k)
       {
         const std::uint32_t v = c.loops[begin + k], t = c.tet[v];
         if (t != kNone)
@@ -735,12 +745,13 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
         return {};
       curve.xyz[3 * (count + k) + a] = x;
     }
-  std::vector<std::uint64_t> keys(count);
+  Words keys(count); // position along the curve << 32 | id
   team.forRanges(count, "voronoi curve", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
       const double* p = xyz + 3 * i;
-      std::uint64_t position = std::uint64_t(1) << 32; // after every finite point
+      // Not finite: after every finite point.
+      std::uint64_t position = std::uint64_t(1) << (3 * kHilbertBits + 1);
       if (isFinite(p))
       {
         std::uint32_t cell[3];
@@ -751,15 +762,15 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
         if (i >= generators) // after every generator: see circumcentres' owners
           position |= std::uint64_t(1) << (3 * kHilbertBits);
       }
-      keys[i] = position << 31 | i; // ids below 2^30
+      keys[i] = position << 32 | i;
     }
   });
-  std::sort(keys.begin(), keys.end());
+  radixSortByHighHalf(keys, 3 * kHilbertBits + 2, &team);
   curve.inputId.resize(count);
   team.forRanges(count, "voronoi curve", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k)
     {
-      const auto id = static_cast<std::uint32_t>(keys[k] & ((std::uint64_t(1) << 31) - 1));
+      const auto id = static_cast<std::uint32_t>(keys[k]);
       curve.inputId[k] = id;
       for (int a = 0; a < 3; ++a)
         curve.xyz[3 * k + a] = xyz[3 * std::size_t(id) + a];
@@ -1109,6 +1120,14 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
     at.vertex[c + 1] = at.vertex[c] + faceVertices;
     at.crossing[c + 1] = at.crossing[c] + crossings;
   }
+  cells.faceNeighbors.resize(cells.cellFaces[n]);
+  cells.volumes.resize(n);
+  cells.areas.resize(n);
+  if (pointOf.empty()) // no polyhedra
+  {
+    cells.faceStart.clear();
+    return at;
+  }
   const std::size_t centres = n ? pointOf[stars.ownStart[vertices[n - 1] + 1]] : 0;
   const std::size_t points = centres + at.crossing[n];
   if (points >= kOwnVertex)
@@ -1118,10 +1137,7 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
   cells.faceStart.resize(cells.cellFaces[n] + 1);
   cells.faceStart[cells.cellFaces[n]] = at.vertex[n];
   cells.faceVertices.resize(at.vertex[n]);
-  cells.faceNeighbors.resize(cells.cellFaces[n]);
   cells.points.resize(3 * points);
-  cells.volumes.resize(n);
-  cells.areas.resize(n);
   return at;
 }
 
@@ -1136,7 +1152,8 @@ void copyCentres(ThreadTeam& team, std::size_t tets, const std::vector<std::uint
   });
 }
 
-/// The clipped cells' stretches into the output, their circumcentres numbered through pointOf.
+/// The clipped cells' stretches into the output, their circumcentres numbered through pointOf
+/// (empty without polyhedra).
 void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces& at,
   const IdArray& pointOf, VoronoiCells& cells)
 {
@@ -1151,8 +1168,10 @@ void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces
         std::size_t outFace = cells.cellFaces[c], outVertex = at.vertex[c];
         for (std::uint32_t f = 0; f < s.faceCounts[j]; ++f, ++face, ++outFace)
         {
-          cells.faceStart[outFace] = outVertex;
           cells.faceNeighbors[outFace] = s.neighbors[face];
+          if (pointOf.empty()) // no polyhedra
+            continue;
+          cells.faceStart[outFace] = outVertex;
           for (std::uint32_t i = 0; i < s.faceSizes[face]; ++i, ++vertex)
           {
             const std::uint32_t id = s.vertices[vertex];
@@ -1224,7 +1243,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   std::vector<std::uint8_t> inBox;
   circumcentres(team, curve.xyz.data(), stars.tetrahedra, cells.box, centres, inBox);
   listOthers(team, inBox, stars);
-  const IdArray pointOf = numberCentres(inBox);
+  const IdArray pointOf = options.polyhedra ? numberCentres(inBox) : IdArray();
   std::vector<std::uint32_t> vertices, clipped; // the generators as the mesh numbers them
   for (std::uint32_t v = 0; v < count; ++v)
     if (mesh.representative[v] == v && curve.inputId[v] < options.generators)
@@ -1244,7 +1263,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   }
 
   // The clipped cells first: their sizes are known once they are clipped.
-  CellSources sources{curve.xyz.data(), curve.inputId, stars, cells.box};
+  CellSources sources{curve.xyz.data(), curve.inputId, stars, cells.box, options.polyhedra};
   sources.centres = centres.data();
   // A builder per thread, kept for both passes.
   std::vector<std::unique_ptr<CellBuilder>> builders(team.size());
@@ -1265,14 +1284,17 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
       }
     });
   const CellPlaces at = placeCells(vertices, stars, pointOf, parts, cells);
-  if (!vertices.empty())
-    copyCentres(team, stars.ownStart[vertices.back() + 1], inBox, pointOf, centres, cells);
-  Doubles().swap(centres);
+  if (options.polyhedra)
+  {
+    if (!vertices.empty())
+      copyCentres(team, stars.ownStart[vertices.back() + 1], inBox, pointOf, centres, cells);
+    Doubles().swap(centres);
+    sources.centres = nullptr;
+    sources.pointOf = pointOf.data();
+    sources.points = cells.points.data();
+  }
 
   // The whole cells, straight into their places, then the clipped ones.
-  sources.centres = nullptr;
-  sources.pointOf = pointOf.data();
-  sources.points = cells.points.data();
   team.forRanges(
     vertices.size(), "voronoi cells", [&](std::size_t k, std::size_t begin, std::size_t end) {
       CellBuilder& cell = builder(k);
@@ -1282,7 +1304,10 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
         if (stars.clipped[p])
           continue;
         cell.trace(p);
-        cell.emitWhole(p, c, cells.cellFaces[c], at.vertex[c], cells);
+        if (options.polyhedra)
+          cell.emitWhole<true>(p, c, cells.cellFaces[c], at.vertex[c], cells);
+        else
+          cell.emitWhole<false>(p, c, cells.cellFaces[c], at.vertex[c], cells);
       }
     });
   copyClipped(team, parts, at, pointOf, cells);

@@ -205,6 +205,26 @@ TEST(Voronoi, SameCellsForAnyThreadCount)
   }
 }
 
+TEST_P(VoronoiSets, FiguresWithoutPolyhedraAreThePolyhedras)
+{
+  const fd3test::Points xyz = fd3test::generate(GetParam(), 3000, 7);
+  const fd3::VoronoiCells full = cellsOf(xyz, 1);
+  for (const int threads : {1, 3})
+  {
+    fd3::VoronoiOptions options;
+    options.threads = threads;
+    options.polyhedra = false;
+    const fd3::VoronoiCells figures = fd3::voronoiCells(xyz.data(), xyz.size() / 3, options);
+    EXPECT_EQ(figures.generators, full.generators) << threads << " threads";
+    EXPECT_EQ(figures.cellFaces, full.cellFaces);
+    EXPECT_EQ(figures.faceNeighbors, full.faceNeighbors);
+    EXPECT_EQ(figures.volumes, full.volumes);
+    EXPECT_EQ(figures.areas, full.areas);
+    EXPECT_TRUE(
+      figures.points.empty() && figures.faceStart.empty() && figures.faceVertices.empty());
+  }
+}
+
 /// Each cell's vertex centroid, by generator.
 std::map<std::uint32_t, Vec> vertexCentroids(const fd3::VoronoiCells& v)
 {

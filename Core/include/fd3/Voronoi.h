@@ -40,6 +40,10 @@ struct VoronoiOptions
   /// Whether to give each cell its generator's Delaunay tessellation field estimate (densities():
   /// from the tetrahedralization of the points alone, as triangulate() makes it).
   bool density = false;
+  /// Whether to give the cells' polyhedra (points, faceStart, faceVertices). Without them each
+  /// cell still has its faces' neighbours, its volume and its area (what a Voronoi density, a
+  /// neighbour graph or a size distribution needs), in about half the memory.
+  bool polyhedra = true;
 };
 
 /// One cell per generator: each distinct finite input point (duplicates are merged into the first
@@ -54,7 +58,8 @@ struct VoronoiCells
   /// The arrays of doubles and of offsets, in the kernel's allocator (no zero fill).
   using Doubles = std::vector<double, BulkAllocator<double>>;
   using Offsets = std::vector<std::size_t, BulkAllocator<std::size_t>>;
-  /// The cells' vertices, x,y,z each: the circumcentres in the box, cell after cell (each cell's
+  /// The cells' vertices (empty without VoronoiOptions::polyhedra, as are faceStart and
+  /// faceVertices), x,y,z each: the circumcentres in the box, cell after cell (each cell's
   /// own, those of the tetrahedra whose lowest vertex is its generator), then the crossings of
   /// the box, cell after cell (each clipped cell has its own, at the same coordinates as its
   /// neighbours').
