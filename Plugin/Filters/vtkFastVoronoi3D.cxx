@@ -128,12 +128,12 @@ int vtkFastVoronoi3D::RequestData(
   {
     return 1;
   }
-  SetPolyhedra(output, cells);
+  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, xyz);
   this->UpdateProgress(0.9);
   AddCellData(output, cells, input->GetPointData());
   if (this->GenerateFaces)
   {
-    SetFaces(faces, cells, output->GetPoints(), [](std::uint32_t id) { return vtkIdType(id); });
+    SetFaces(faces, cells, vertices, [](std::uint32_t id) { return vtkIdType(id); });
   }
   this->AddFigures(output->GetFieldData());
   return 1;
@@ -146,6 +146,7 @@ fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
   options.threads =
     this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
   options.density = this->ComputeDensity;
+  options.polyhedra = this->GeneratePolyhedra || this->GenerateFaces;
   options.progress = [this](double fraction) {
     this->UpdateProgress(0.8 * fraction);
     return !this->CheckAbort();
@@ -183,15 +184,62 @@ bool vtkFastVoronoi3D::ReportOnInput(
   return true;
 }
 
-void vtkFastVoronoi3D::SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells)
+vtkSmartPointer<vtkPoints> vtkFastVoronoi3D::SetGeometry(
+  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz) const
 {
+  vtkSmartPointer<vtkPoints> vertices;
+  if (this->GeneratePolyhedra || this->GenerateFaces)
+  {
+    vtkNew<vtkDoubleArray> coordinates;
+    coordinates->SetNumberOfComponents(3);
+    coordinates->SetNumberOfTuples(static_cast<vtkIdType>(cells.points.size() / 3));
+    std::copy(cells.points.begin(), cells.points.end(), coordinates->GetPointer(0));
+    vertices = vtkSmartPointer<vtkPoints>::New();
+    vertices->SetData(coordinates);
+  }
+  if (this->GeneratePolyhedra)
+  {
+    SetPolyhedra(output, cells, vertices);
+  }
+  else
+  {
+    SetGenerators(output, cells, xyz);
+  }
+  return vertices;
+}
+
+void vtkFastVoronoi3D::SetGenerators(
+  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz)
+{
+  const auto n = static_cast<vtkIdType>(cells.numberOfCells());
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(cells.points.size() / 3));
-  std::copy(cells.points.begin(), cells.points.end(), coordinates->GetPointer(0));
+  coordinates->SetNumberOfTuples(n);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(n);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType c = begin; c < end; ++c)
+    {
+      const double* p = xyz + 3 * std::size_t(cells.generators[static_cast<std::size_t>(c)]);
+      coordinates->SetTypedTuple(c, p);
+      offsets->SetValue(c, c);
+      connectivity->SetValue(c, c);
+    }
+  });
+  offsets->SetValue(n, n);
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   output->SetPoints(points);
+  vtkNew<vtkCellArray> vertices;
+  vertices->SetData(offsets, connectivity);
+  output->SetCells(VTK_VERTEX, vertices);
+}
+
+void vtkFastVoronoi3D::SetPolyhedra(
+  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPoints* vertices)
+{
+  output->SetPoints(vertices);
 
   // Each cell's distinct points, then its face stream (faces, then each face's size and ids).
   const auto n = static_cast<vtkIdType>(cells.numberOfCells());
@@ -387,6 +435,7 @@ void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
      << this->Bounds[5] << ")\n";
   os << indent << "Number Of Threads: " << this->NumberOfThreads << "\n";
   os << indent << "Compute Density: " << this->ComputeDensity << "\n";
+  os << indent << "Generate Polyhedra: " << this->GeneratePolyhedra << "\n";
   os << indent << "Generate Faces: " << this->GenerateFaces << "\n";
   os << indent << "Number Of Generators: " << this->NumberOfGenerators << "\n";
   os << indent << "Number Of Duplicate Points: " << this->NumberOfDuplicatePoints << "\n";

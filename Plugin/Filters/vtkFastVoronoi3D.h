@@ -20,7 +20,9 @@
  * for, and the input's point data, each point's values on its cell. The cells follow a Hilbert
  * curve through the points. Circumcentres are points shared by the cells around them; where a
  * cell is clipped, its crossings of the box are points of its own (at the same coordinates as its
- * neighbours'). The second output holds every face once where asked for (GenerateFaces).
+ * neighbours'). The second output holds every face once where asked for (GenerateFaces). With
+ * GeneratePolyhedra off, each cell is a VTK_VERTEX at its generator instead, with the same cell
+ * data.
  *
  * Use the Volume array: ParaView's own volume of a polyhedron (Integrate Variables, Cell Size) is
  * wrong on some convex cells.
@@ -37,6 +39,7 @@
 #define vtkFastVoronoi3D_h
 
 #include "FastDelaunay3DFiltersModule.h" // For export macro
+#include "vtkSmartPointer.h"             // For the cells' points
 #include "vtkUnstructuredGridAlgorithm.h"
 
 class vtkFieldData;
@@ -94,7 +97,18 @@ public:
 
   ///@{
   /**
-   * When on, the second output (port 1, a vtkPolyData on the first output's points) holds every
+   * When on (the default), each cell is its Voronoi polyhedron, a VTK_POLYHEDRON. When off, each
+   * cell is a VTK_VERTEX at its generator (the input point) with the same cell data: every
+   * point's Voronoi volume, area and neighbours in a small part of the polyhedra's memory.
+   */
+  vtkSetMacro(GeneratePolyhedra, vtkTypeBool);
+  vtkGetMacro(GeneratePolyhedra, vtkTypeBool);
+  vtkBooleanMacro(GeneratePolyhedra, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * When on, the second output (port 1, a vtkPolyData on the polyhedra's points) holds every
    * face once, as a polygon: a face that two cells share, from the cell of the lower GeneratorId,
    * and each face on the box. Cell data: "GeneratorIds", its two generators' input ids (-1 for
    * the box's side), and "Area". Off by default: the second output is then empty.
@@ -135,8 +149,17 @@ protected:
   /// kernel, `box`, the box the cells were clipped to); false when there are no cells to output.
   bool ReportOnInput(
     fd3::Status status, const std::array<double, 6>& box, vtkIdType numberOfPoints);
-  /// The cells' points and VTK_POLYHEDRON cells (VTK_EMPTY_CELL where a cell has no faces).
-  static void SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells);
+  /// The first output's points and cells, polyhedra or generators as GeneratePolyhedra says
+  /// (`xyz`: the points the kernel was given); returns the polyhedra's points, which the faces
+  /// are on (null where the kernel made no polyhedra).
+  vtkSmartPointer<vtkPoints> SetGeometry(
+    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz) const;
+  /// VTK_POLYHEDRON cells on `vertices` (VTK_EMPTY_CELL where a cell has no faces).
+  static void SetPolyhedra(
+    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPoints* vertices);
+  /// A VTK_VERTEX cell at each cell's generator.
+  static void SetGenerators(
+    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz);
   /// GeneratorId, Volume, SurfaceArea, NumberOfFaces, NumberOfNeighbors and the input's point
   /// data on the cells.
   static void AddCellData(
@@ -151,6 +174,7 @@ protected:
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
   int NumberOfThreads = 0;
   vtkTypeBool ComputeDensity = 0;
+  vtkTypeBool GeneratePolyhedra = 1;
   vtkTypeBool GenerateFaces = 0;
   vtkIdType NumberOfGenerators = 0;
   vtkIdType NumberOfDuplicatePoints = 0;

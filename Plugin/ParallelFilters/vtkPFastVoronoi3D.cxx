@@ -128,7 +128,10 @@ int vtkPFastVoronoi3D::RequestData(
   const std::size_t ghosts = run.Xyz.size() / 3 - run.OwnCount();
   const std::vector<vtkIdType> inputIds =
     this->GenerateFaces ? run.InputIds() : std::vector<vtkIdType>();
-  fd3::Coordinates().swap(run.Xyz);
+  if (this->GeneratePolyhedra)
+  {
+    fd3::Coordinates().swap(run.Xyz); // else the generators' points come from it
+  }
 
   // The figures of all ranks: a rank's duplicates and non-finite points are its own points' (a
   // position is one rank's, and the halo is finite).
@@ -149,13 +152,13 @@ int vtkPFastVoronoi3D::RequestData(
   {
     return 1;
   }
-  SetPolyhedra(output, cells);
+  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, run.Xyz.data());
   this->UpdateProgress(0.9);
   AddCellData(output, cells, run.OwnData());
   SetGeneratorIds(output);
   if (this->GenerateFaces)
   {
-    SetFaces(faces, cells, output->GetPoints(), [&](std::uint32_t id) { return inputIds[id]; });
+    SetFaces(faces, cells, vertices, [&](std::uint32_t id) { return inputIds[id]; });
   }
   this->AddFigures(output->GetFieldData());
   return 1;

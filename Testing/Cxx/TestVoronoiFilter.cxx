@@ -212,6 +212,44 @@ TEST(VoronoiFilter, FacesOnceEachWithTheirGenerators)
   }
 }
 
+TEST(VoronoiFilter, WithoutPolyhedraEachCellIsItsGeneratorWithTheSameArrays)
+{
+  auto points = fd3test::toPolyData(fd3test::generate("clusters", 3000, 5));
+  vtkNew<vtkFastVoronoi3D> voronoi;
+  voronoi->SetInputData(points);
+  voronoi->GenerateFacesOn();
+  voronoi->Update();
+  vtkNew<vtkUnstructuredGrid> polyhedra;
+  polyhedra->ShallowCopy(voronoi->GetOutput());
+  const vtkIdType faceCount = voronoi->GetFacesOutput()->GetNumberOfCells();
+  voronoi->GeneratePolyhedraOff();
+  voronoi->Update();
+  vtkUnstructuredGrid* vertices = voronoi->GetOutput();
+  ASSERT_EQ(vertices->GetNumberOfCells(), polyhedra->GetNumberOfCells());
+  EXPECT_EQ(vertices->GetNumberOfPoints(), vertices->GetNumberOfCells());
+  EXPECT_EQ(voronoi->GetFacesOutput()->GetNumberOfCells(), faceCount);
+  vtkDataArray* generator = vertices->GetCellData()->GetArray("GeneratorId");
+  for (vtkIdType c = 0; c < vertices->GetNumberOfCells(); ++c)
+  {
+    ASSERT_EQ(vertices->GetCellType(c), VTK_VERTEX);
+    vtkNew<vtkIdList> ids;
+    vertices->GetCellPoints(c, ids);
+    ASSERT_EQ(ids->GetNumberOfIds(), 1);
+    const auto id = static_cast<vtkIdType>(generator->GetTuple1(c));
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(vertices->GetPoint(ids->GetId(0))[k], points->GetPoint(id)[k]) << "cell " << c;
+  }
+  for (const char* name :
+    {"GeneratorId", "Volume", "SurfaceArea", "NumberOfFaces", "NumberOfNeighbors"})
+  {
+    vtkDataArray* a = vertices->GetCellData()->GetArray(name);
+    vtkDataArray* b = polyhedra->GetCellData()->GetArray(name);
+    ASSERT_NE(a, nullptr) << name;
+    for (vtkIdType c = 0; c < vertices->GetNumberOfCells(); ++c)
+      ASSERT_EQ(a->GetTuple1(c), b->GetTuple1(c)) << name << ", cell " << c;
+  }
+}
+
 TEST(VoronoiFilter, SameCellsForAnyThreadCount)
 {
   auto cloud = fd3test::toPolyData(fd3test::generate("cube", 20000, 2));

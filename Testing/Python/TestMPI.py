@@ -3,7 +3,8 @@
 usage: mpiexec -np N pvbatch --mpi TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution> [port [alpha | voronoi]]
 port: connect as the client of a pvserver under MPI on this machine ("-" for none); alpha: the
 filter's Alpha (default 0); voronoi: FastVoronoi3D in place of FastDelaunay3D, with every point's
-coordinates as a "Position" array too (CheckDistributedVoronoi then compares the cells).
+coordinates as a "Position" array too (CheckDistributedVoronoi then compares the cells), and again
+without polyhedra (the same volumes, on vertex cells).
 
 kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points),
 outlier (the cube and one point at 1e100), speck (the cube centred on 0 and a cluster 1e-150
@@ -94,6 +95,16 @@ if voronoi:
     for f in range(faces.GetNumberOfCells()):
         total += area.GetValue(f)
     print("TestMPI: faces %d area %.17g" % (faces.GetNumberOfCells(), total))
+    # Without polyhedra, each rank's cells are vertices at its own points with the same volumes.
+    def volumes(proxy):
+        cells = servermanager.Fetch(proxy)
+        array = cells.GetCellData().GetArray("Volume")
+        return cells.GetNumberOfCells(), sorted(array.GetValue(c) for c in range(array.GetNumberOfTuples()))
+    vertices = FastVoronoi3D(Input=cloud, GeneratePolyhedra=0)
+    assert volumes(vertices) == volumes(result), "GeneratePolyhedra=0 changed the volumes"
+    fetched = servermanager.Fetch(vertices)
+    types = set(fetched.GetCellType(c) for c in range(fetched.GetNumberOfCells()))
+    assert types <= {1}, types  # VTK_VERTEX
 else:
     volume = IntegrateVariables(Input=result)
     volume.UpdatePipeline()

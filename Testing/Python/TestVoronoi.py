@@ -1,7 +1,7 @@
 """pvpython: Fast Voronoi 3D through the plugin. The proxy's properties; one polyhedron per
 point of a clustered cloud, whose volumes (Volume, summed) fill the box, as ParaView's own
-Integrate Variables measures them; the Bounds clip; and an image regression of the cells, shrunk
-and coloured by volume.
+Integrate Variables measures them; the same volumes on vertex cells without polyhedra; the Bounds
+clip; and an image regression of the cells, shrunk and coloured by volume.
 
 usage: pvpython TestVoronoi.py <plugin .so> -V <absolute baseline> -T <output dir>
 """
@@ -30,8 +30,9 @@ points.SetData(numpy_to_vtk(xyz, deep=True))
 self.GetPolyDataOutput().SetPoints(points)
 """
 voronoi = FastVoronoi3D(Input=cloud)
-for name in ("Bounds", "NumberOfThreads"):
+for name in ("Bounds", "NumberOfThreads", "GeneratePolyhedra"):
     assert name in voronoi.ListProperties(), name
+assert voronoi.GeneratePolyhedra == 1
 assert list(voronoi.Bounds) == [0, -1, 0, -1, 0, -1], voronoi.Bounds
 voronoi.UpdatePipeline()
 output = servermanager.Fetch(voronoi)
@@ -48,6 +49,15 @@ measured = servermanager.Fetch(integrated).GetCellData().GetArray("Volume").GetV
 # Integrate Variables tetrahedralizes each polyhedron its own way (1e-5 off here): a coarser,
 # independent measure.
 assert abs(measured - box) <= 1e-4 * box, (measured, box)
+
+voronoi.GeneratePolyhedra = 0
+voronoi.UpdatePipeline()
+vertices = servermanager.Fetch(voronoi)
+assert vertices.GetNumberOfCells() == 1200, vertices.GetNumberOfCells()
+types = set(vertices.GetCellType(c) for c in range(vertices.GetNumberOfCells()))
+assert types == {1}, types  # VTK_VERTEX, at each generator
+assert (vtk_to_numpy(vertices.GetCellData().GetArray("Volume")) == volume).all()
+voronoi.GeneratePolyhedra = 1
 
 voronoi.Bounds = [0.25, 0.75, 0.25, 0.75, 0.25, 0.75]
 voronoi.UpdatePipeline()
