@@ -1,4 +1,5 @@
-// Voronoi cells of the same points by Core (fd3::voronoiCells, on each thread count asked for),
+// Voronoi cells of the same points by Core (fd3::voronoiCells, on each thread count asked for,
+// with the cells' polyhedra and with their figures alone),
 // by Voro++ where the benchmark is built with it (its container in the points' bounding box; each
 // cell's volume, area and neighbours, and in a second run also its polyhedron, vertices and faces
 // copied out as a program that draws or writes the cells does, as Core gives them), and by
@@ -34,10 +35,13 @@ std::array<double, 6> boundsOf(const fd3test::Points& p)
   return b;
 }
 
-Measurement runCore(const fd3test::Points& p, int threads)
+/// Core's cells; without `polyhedra`, their figures alone (volumes, areas, neighbours), as Voro++'s
+/// first run gives them.
+Measurement runCore(const fd3test::Points& p, int threads, bool polyhedra)
 {
   fd3::VoronoiOptions options;
   options.threads = threads;
+  options.polyhedra = polyhedra;
   const double caller0 = threadCpuSeconds();
   const auto t0 = Clock::now();
   const fd3::VoronoiCells cells = fd3::voronoiCells(p.data(), p.size() / 3, options);
@@ -149,7 +153,8 @@ int voronoiMain(int argc, char* argv[])
     << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
     << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
     << "the points' bounding box with volumes, areas and neighbours, and their polyhedra for "
-    << "Core and Voro++ polyhedra (vertices and faces copied out of each Voro++ cell); scipy: "
+    << "Core (but Core figures) and Voro++ polyhedra (vertices and faces copied out of each "
+    << "Voro++ cell); scipy: "
     << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
     << "Volume: the cells' total over the box's. Model (Core): the run on a core per thread, "
     << "from each thread's CPU time (Scaling.cxx), and its serial seconds; real only where each "
@@ -166,8 +171,10 @@ int voronoiMain(int argc, char* argv[])
       const std::array<double, 6> b = boundsOf(p);
       const double box = (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
       std::vector<std::pair<std::string, Measurement>> rows;
-      for (const int t : settings.threads)
-        rows.push_back({"Core-" + std::to_string(t), measure([&] { return runCore(p, t); }, 1e9)});
+      for (const bool polyhedra : {true, false})
+        for (const int t : settings.threads)
+          rows.push_back({"Core-" + std::to_string(t) + (polyhedra ? "" : " figures"),
+            measure([&] { return runCore(p, t, polyhedra); }, 1e9)});
 #ifdef FD3_BENCHMARK_WITH_VOROPP
       rows.push_back({"Voro++", measure([&] { return runVoropp(p, false); }, settings.limit)});
       rows.push_back(
