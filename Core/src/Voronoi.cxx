@@ -253,7 +253,8 @@ public:
     const std::size_t links = link_.size(), longest = star_.size();
     const double* g = in_.xyz + 3 * std::size_t(p);
     fromGenerator_.resize(longest);
-    pointOf_.resize(longest);
+    if constexpr (Polyhedra)
+      pointOf_.resize(longest);
     for (std::size_t i = 0; i < longest; ++i)
     {
       const double* x;
