@@ -28,7 +28,8 @@
 //    whole cell with a star of n tetrahedra has 2 + n/2 faces and 3n face vertices), every cell
 //    has its place in the output: the centres each cell owns are numbered there, and the whole
 //    cells are written straight into their places. Volume and surface area come from each face's
-//    Newell vector.
+//    Newell vector. Without polyhedra (VoronoiOptions::polyhedra), the cells are traced and
+//    clipped alike, but only their faces' neighbours, volumes and areas are written.
 #include "fd3/Voronoi.h"
 
 #include "DoubleDouble.h"
