@@ -455,13 +455,12 @@ private:
     return found == stepsLarge_.end() ? none : found->second;
   }
 
-  /// The rings, into loops_ / faceStart_ / neighbors_.
+  /// The rings, into loops_ / faceStart_: face q's is the ring about link_[q].
   void traceRings()
   {
     const std::size_t links = link_.size();
     loops_.clear();
     faceStart_.resize(links + 1);
-    neighbors_.resize(links);
     faceStart_[0] = 0;
     for (std::uint32_t q = 0; q < links; ++q)
     {
@@ -477,7 +476,6 @@ private:
         key = step.next;
       } while (key != first);
       faceStart_[q + 1] = static_cast<std::uint32_t>(loops_.size());
-      neighbors_[q] = link_[q];
     }
   }
 
@@ -506,7 +504,7 @@ private:
         c.loops.push_back(v);
       }
       c.faceStart.push_back(static_cast<std::uint32_t>(c.loops.size()));
-      c.neighbors.push_back(neighbors_[f]);
+      c.neighbors.push_back(link_[f]);
     }
   }
 
@@ -675,7 +673,7 @@ private:
   std::vector<std::uint32_t> localOf_, crossingOf_;
   /// The faces a clip keeps, swapped into cell_.
   std::vector<std::uint32_t> keptLoops_, keptStarts_, keptNeighbors_;
-  std::vector<std::uint32_t> loops_, faceStart_, neighbors_;
+  std::vector<std::uint32_t> loops_, faceStart_;
   std::vector<std::array<double, 3>> fromGenerator_; ///< per star tetrahedron: its centre - p
   std::vector<std::uint32_t> pointOf_;               ///< per star tetrahedron: its centre's point
   Polyhedron cell_;
