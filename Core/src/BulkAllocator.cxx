@@ -48,11 +48,21 @@ void* allocateBulk(std::size_t bytes)
   return p;
 }
 
+std::size_t pageSize() noexcept
+{
+#if defined(__linux__)
+  static const std::size_t page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  return page;
+#else
+  return 4096;
+#endif
+}
+
 void releasePages(void* begin, std::size_t bytes) noexcept
 {
 #if defined(__linux__)
-  // madvise needs a page-aligned start: 4 KB on x86-64, 16 or 64 KB on some ARM systems.
-  static const std::uintptr_t page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  // madvise needs a page-aligned start.
+  const std::uintptr_t page = pageSize();
   const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) & ~(page - 1);
   const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(begin) + bytes) & ~(page - 1);
   if (first < end)

@@ -144,6 +144,8 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
     });
     words.swap(buffer);
   }
+  if (team)
+    team->release(buffer, "sort");
 }
 
 namespace
@@ -289,6 +291,8 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
       begin = end;
     }
   });
+  if (team)
+    team->release(entries, "sort");
 }
 
 /// Keeps the first of every run of equal points in `sorted` (the unmarked one) and lists the
@@ -326,6 +330,7 @@ void mergeDuplicates(IdArray& sorted,
   for (const auto& part : found)
     duplicates.insert(duplicates.end(), part.begin(), part.end());
   sorted.swap(kept);
+  team.release(kept, "sort");
 }
 
 /// BRIO rounds: round r holds about half the points of round r + 1 and the smallest goes first;
@@ -387,6 +392,7 @@ InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray
   {
     case InsertionOrder::Brio:
       plan.order = brioRounds(ids, key, plan.roundStarts, team);
+      team.release(ids, "sort");
       break;
     case InsertionOrder::Input:
       std::sort(ids.begin(), ids.end());

@@ -59,7 +59,7 @@ double worthwhileYield(std::size_t threads)
 } // namespace
 
 Partition::Partition(
-  const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes)
+  const Mesh& mesh, const IdArray& vertices, int parts, const std::vector<int>& axes)
   : mesh_(mesh), axes_(axes)
 {
   const std::size_t wanted = kSamplePerRegion * std::size_t(parts);
@@ -111,7 +111,7 @@ int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, c
   return index;
 }
 
-std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) const
+std::vector<int> Triangulator::cutAxes(const IdArray& vertices) const
 {
   Box box = Box::around(point(vertices[0]));
   for (std::size_t i = 0; i < vertices.size();
@@ -121,7 +121,7 @@ std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) cons
   // the round (whose records are all current between passes; a point added as a duplicate of a
   // vertex has none).
   double width[3] = {0, 0, 0};
-  const VertId inserted = *std::min_element(vertices.begin(), vertices.end());
+  const VertId inserted = vertices.front();
   for (VertId v = 0; v < inserted; v += std::max<VertId>(1, inserted / kShapeSample))
   {
     if (mesh_.vertices[v].tet == kNoTet)
@@ -160,8 +160,7 @@ std::vector<int> Triangulator::cutAxes(const std::vector<VertId>& vertices) cons
   return axes;
 }
 
-bool Triangulator::insertInParallel(
-  std::vector<VertId> vertices, const std::function<bool(double)>& progress)
+bool Triangulator::insertInParallel(IdArray vertices, const std::function<bool(double)>& progress)
 {
   const std::size_t regions = std::min<std::size_t>(
     team_.size(), vertices.size() / std::max<std::size_t>(1, mesh_.options.pointsPerThread));
@@ -178,7 +177,6 @@ bool Triangulator::insertInParallel(
       vertices = runRegionPass(
         vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes), progress);
       regionYield_ = 1.0 - double(vertices.size()) / double(count);
-      std::sort(vertices.begin(), vertices.end()); // back to curve order
     }
   }
   // Each locking pass takes half the threads of the one before: what a pass put off lies where
@@ -225,7 +223,7 @@ void Triangulator::startInRegion(
 
 // Each thread sorts a stretch of the points into regions; then each gathers its region's points
 // from every stretch, in curve order, and finds its start.
-void Triangulator::shareOut(const std::vector<VertId>& vertices, const Partition& partition,
+void Triangulator::shareOut(const IdArray& vertices, const Partition& partition,
   std::vector<std::vector<VertId>>& share, std::vector<std::vector<VertId>>& putOff)
 {
   const std::size_t parts = static_cast<std::size_t>(partition.parts());
@@ -251,8 +249,8 @@ void Triangulator::shareOut(const std::vector<VertId>& vertices, const Partition
     record);
 }
 
-std::vector<VertId> Triangulator::runRegionPass(const std::vector<VertId>& vertices,
-  const Partition& partition, const std::function<bool(double)>& progress)
+IdArray Triangulator::runRegionPass(
+  const IdArray& vertices, const Partition& partition, const std::function<bool(double)>& progress)
 {
   makeRoomFor(vertices.size());
   std::vector<std::vector<VertId>> share, putOff;
@@ -289,11 +287,51 @@ std::vector<VertId> Triangulator::runRegionPass(const std::vector<VertId>& verti
   team_.run(share.size(), work, record, progressPoll(progress));
   done_ += passDone_;
   passDone_ = 0;
-  std::vector<VertId> left;
+  record.left = 0;
   for (const auto& list : putOff)
-    left.insert(left.end(), list.begin(), list.end());
-  record.left = left.size();
-  return left;
+    record.left += list.size();
+  // Each share is in curve order, and so is what it put off.
+  return mergeAscending(vertices, putOff, record.left, team_.newRecord("regions"));
+}
+
+IdArray Triangulator::mergeAscending(const IdArray& vertices,
+  const std::vector<std::vector<VertId>>& putOff, std::size_t count, ThreadedWork& record)
+{
+  IdArray merged(count);
+  if (count == 0)
+    return merged;
+  const VertId first = vertices.front();
+  const std::size_t span = std::size_t(vertices.back() - first) + 1;
+  std::vector<std::uint8_t, BulkAllocator<std::uint8_t>> marked(span);
+  const std::size_t parts = team_.partsFor(span);
+  team_.run(
+    parts,
+    [&](std::size_t k) {
+      std::fill(marked.begin() + std::ptrdiff_t(span * k / parts),
+        marked.begin() + std::ptrdiff_t(span * (k + 1) / parts), std::uint8_t(0));
+    },
+    record);
+  team_.run(
+    putOff.size(),
+    [&](std::size_t k) {
+      for (const VertId v : putOff[k])
+        marked[v - first] = 1;
+    },
+    record);
+  std::size_t written = 0;
+  team_.countThenWrite(
+    record, 0, span, written,
+    [&](std::size_t begin, std::size_t end) {
+      return std::size_t(std::count(
+        marked.begin() + std::ptrdiff_t(begin), marked.begin() + std::ptrdiff_t(end), 1));
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (marked[i])
+          merged[next++] = static_cast<VertId>(first + i);
+      return next;
+    });
+  return merged;
 }
 
 void Triangulator::prepareOwners()
@@ -315,8 +353,8 @@ void Triangulator::prepareOwners()
 
 // Each thread takes a stretch of the curve, which keeps the threads far apart and their
 // insertions' cavities apart but where two meet.
-std::vector<VertId> Triangulator::runLockingPass(const std::vector<VertId>& vertices,
-  std::size_t parts, int pass, const std::function<bool(double)>& progress)
+IdArray Triangulator::runLockingPass(
+  const IdArray& vertices, std::size_t parts, int pass, const std::function<bool(double)>& progress)
 {
   makeRoomFor(vertices.size());
   prepareOwners();
@@ -362,7 +400,8 @@ std::vector<VertId> Triangulator::runLockingPass(const std::vector<VertId>& vert
   for (const auto& pool : pools_)
     for (const TetId t : pool->freeSlots())
       owners_.get()[t].store(0, std::memory_order_relaxed);
-  std::vector<VertId> left;
+  // Each thread's stretch is in curve order: what they put off is, one after another.
+  IdArray left;
   for (const auto& list : putOff)
     left.insert(left.end(), list.begin(), list.end());
   record.left = left.size();

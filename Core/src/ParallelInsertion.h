@@ -15,8 +15,7 @@ namespace fd3
 class Partition
 {
 public:
-  Partition(
-    const Mesh& mesh, const std::vector<VertId>& vertices, int parts, const std::vector<int>& axes);
+  Partition(const Mesh& mesh, const IdArray& vertices, int parts, const std::vector<int>& axes);
   int parts() const { return static_cast<int>(regions_.size()); }
   const Region& region(int k) const { return regions_[static_cast<std::size_t>(k)]; }
   /// The region that holds p (as Region::contains() decides).

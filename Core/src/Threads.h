@@ -68,6 +68,24 @@ public:
     std::size_t& written, Count count, Write write);
   /// forRanges() as Stretches, recorded as `phase` (the team must outlive it).
   Stretches stretches(const char* phase);
+  /// Gives the whole pages of [begin, begin + bytes) back to the system (detail::releasePages),
+  /// each thread a stretch of kMinBytesPerPart or more, recorded as `phase`. The kernel's work per
+  /// page is what a large array's free() costs, and free() does it on one thread.
+  void releasePages(void* begin, std::size_t bytes, const char* phase);
+  static constexpr std::size_t kMinBytesPerPart = std::size_t(4) << 20;
+  /// Gives back the memory of `v` beyond its size (fd3::releaseSpareCapacity) on the team's threads.
+  template <typename T>
+  void releaseSpareCapacity(std::vector<T, BulkAllocator<T>>& v, const char* phase)
+  {
+    releasePages(v.data() + v.size(), (v.capacity() - v.size()) * sizeof(T), phase);
+  }
+  /// Frees `v`, its pages given back on the team's threads first.
+  template <typename T>
+  void release(std::vector<T, BulkAllocator<T>>& v, const char* phase)
+  {
+    releasePages(v.data(), v.capacity() * sizeof(T), phase);
+    std::vector<T, BulkAllocator<T>>().swap(v);
+  }
 
 private:
   void startHelpers();

@@ -140,7 +140,7 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
   records.resize(4 * count);
   // The compacted tetrahedra take half of the records' 32 bytes or less: the rest is given back
   // before the caller converts them (the VTK filter's peak).
-  releaseSpareCapacity(records);
+  team.releaseSpareCapacity(records, "output");
   out.tetrahedra = std::move(records);
 }
 
@@ -316,8 +316,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   }
   status = Status::Ok;
   VertexArray records = vertices(xyz, plan.order, 0, room);
-  IdArray().swap(plan.order);
-  Keys().swap(key);
+  team->release(plan.order, "sort");
+  team->release(key, "sort");
   if (takesPoints)
     freeRecoverablePoints(); // xyz, which may be `held`, is not read after this
   stats.secondsSort = secondsSince(start);
@@ -438,6 +438,7 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
     out.representative[copy] = out.representative[original];
   if (release)
   {
+    triangulator->releasePages();
     triangulator.reset();
     released = true;
   }

@@ -74,8 +74,12 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
     bool ok = false;
     if (parallel && last - first >= 2 * kMinPointsPerThread)
     {
-      std::vector<VertId> round(last - first);
-      std::iota(round.begin(), round.end(), static_cast<VertId>(first));
+      IdArray round(last - first);
+      team_.forRanges(
+        round.size(), "regions", [&](std::size_t, std::size_t begin, std::size_t end) {
+          std::iota(round.begin() + std::ptrdiff_t(begin), round.begin() + std::ptrdiff_t(end),
+            static_cast<VertId>(first + begin));
+        });
       ok = insertInParallel(std::move(round), progress);
     }
     else
@@ -171,6 +175,13 @@ TetMesh& Triangulator::releaseWorkspace()
   pools_.clear();
   mesh_.grid = BackgroundGrid();
   return mesh_.tets;
+}
+
+void Triangulator::releasePages()
+{
+  team_.release(mesh_.vertices, "output");
+  if (owners_)
+    team_.releasePages(owners_.get(), ownerSlots_ * sizeof(OwnerTable), "output");
 }
 
 const std::uint32_t* Triangulator::packPointIds()

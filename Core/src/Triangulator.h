@@ -60,6 +60,9 @@ public:
   /// Frees the grid and the inserters' scratch: only the mesh and its vertices are left for the
   /// output.
   TetMesh& releaseWorkspace();
+  /// Gives the pages of the vertices and the owner table back on the team's threads: what the
+  /// triangulator's destruction would do on one thread. Nothing is read from them afterwards.
+  void releasePages();
   /// Ends the vertices: their input point ids, by insertion rank, are written over the start of
   /// the vertex array, 4 bytes each where a record takes 32, so that the output's look-ups stay in
   /// cache and no memory is added. The coordinates and vertex records are gone afterwards.
@@ -89,26 +92,31 @@ private:
   /// Inserts `vertices` (one BRIO round, in curve order) with every thread: in regions, then in
   /// locking passes, then serially what those could not take; a pass whose kind last yielded too
   /// little to pay for itself is left out. ParallelInsertion.cxx.
-  bool insertInParallel(std::vector<VertId> vertices, const std::function<bool(double)>& progress);
-  /// The axis each level of a partition of `vertices` (a round's) cuts across: from the mesh's
-  /// tetrahedra and the points' box.
-  std::vector<int> cutAxes(const std::vector<VertId>& vertices) const;
+  bool insertInParallel(IdArray vertices, const std::function<bool(double)>& progress);
+  /// The axis each level of a partition of `vertices` (a round's, ascending) cuts across: from the
+  /// mesh's tetrahedra and the points' box.
+  std::vector<int> cutAxes(const IdArray& vertices) const;
   /// Each region's points, in the order of `vertices` (the round's curve order), each inserter
   /// restricted to its region from a start in it; the points of a share before the first one that
   /// has a start go to putOff.
-  void shareOut(const std::vector<VertId>& vertices, const Partition& partition,
+  void shareOut(const IdArray& vertices, const Partition& partition,
     std::vector<std::vector<VertId>>& share, std::vector<std::vector<VertId>>& putOff);
   void startInRegion(
     std::size_t k, const Region& region, std::vector<VertId>& share, std::vector<VertId>& putOff);
   /// Inserts `vertices` in the partition's regions, one thread each; returns those that had to be
   /// put off.
-  std::vector<VertId> runRegionPass(const std::vector<VertId>& vertices, const Partition& partition,
+  IdArray runRegionPass(const IdArray& vertices, const Partition& partition,
     const std::function<bool(double)>& progress);
+  /// The lists of `putOff`, each ascending, merged into one, ascending, on every thread: each
+  /// marks its list's vertices in a flag per rank of `vertices` (ascending), then each stretch of
+  /// the flags writes its own.
+  IdArray mergeAscending(const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff,
+    std::size_t count, ThreadedWork& record);
   /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads, each holding
   /// the tetrahedra it reads and writes in the owner table; returns those put off because another
   /// thread held a tetrahedron they needed. ParallelInsertion.cxx.
-  std::vector<VertId> runLockingPass(const std::vector<VertId>& vertices, std::size_t parts,
-    int pass, const std::function<bool(double)>& progress);
+  IdArray runLockingPass(const IdArray& vertices, std::size_t parts, int pass,
+    const std::function<bool(double)>& progress);
   /// The owner table for every slot the mesh has room for, each pool's free slots marked its own.
   void prepareOwners();
   /// What the calling thread does while the others insert: report progress.

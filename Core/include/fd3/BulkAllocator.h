@@ -23,6 +23,8 @@ void freeBulk(void* p, std::size_t bytes) noexcept;
 /// Gives the whole pages within [begin, begin + bytes) back to the system (Linux; elsewhere it does
 /// nothing); they read as zeros when touched again.
 void releasePages(void* begin, std::size_t bytes) noexcept;
+/// The system's page size: 4 KB on x86-64, 16 or 64 KB on some ARM systems.
+std::size_t pageSize() noexcept;
 } // namespace detail
 
 template <typename T>
