@@ -66,6 +66,10 @@ public:
   template <typename Count, typename Write>
   void countThenWrite(ThreadedWork& record, std::size_t first, std::size_t last,
     std::size_t& written, Count count, Write write);
+  /// Running sums: v[i] becomes v[0] + ... + v[i], each stretch of v summed on its own thread,
+  /// then added to the sum of the stretches before it. Recorded as `phase`.
+  template <typename Vector>
+  void accumulate(Vector& v, const char* phase);
   /// forRanges() as Stretches, recorded as `phase` (the team must outlive it).
   Stretches stretches(const char* phase);
   /// Gives the whole pages of [begin, begin + bytes) back to the system (detail::releasePages),
@@ -130,6 +134,38 @@ void ThreadTeam::countThenWrite(ThreadedWork& record, std::size_t first, std::si
   run(
     parts, [&](std::size_t k) { write(k, begin(k), begin(k + 1), offset[k]); }, record);
   written = offset[parts];
+}
+
+template <typename Vector>
+void ThreadTeam::accumulate(Vector& v, const char* phase)
+{
+  using Value = typename Vector::value_type;
+  const std::size_t n = v.size(), parts = partsFor(n);
+  const auto begin = [&](std::size_t k) { return n * k / parts; };
+  std::vector<Value> before(parts + 1, Value(0)); // the sum of the stretches before each
+  ThreadedWork& record = newRecord(phase);
+  if (parts > 1)
+  {
+    run(
+      parts,
+      [&](std::size_t k) {
+        Value sum(0);
+        for (std::size_t i = begin(k); i < begin(k + 1); ++i)
+          sum += v[i];
+        before[k + 1] = sum;
+      },
+      record);
+    for (std::size_t k = 0; k < parts; ++k)
+      before[k + 1] += before[k];
+  }
+  run(
+    parts,
+    [&](std::size_t k) {
+      Value sum = before[k];
+      for (std::size_t i = begin(k); i < begin(k + 1); ++i)
+        v[i] = sum += v[i];
+    },
+    record);
 }
 
 } // namespace fd3

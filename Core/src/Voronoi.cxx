@@ -45,6 +45,7 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -97,6 +98,9 @@ constexpr RingTurns makeRingTurns()
   return table;
 }
 constexpr RingTurns kRingTurns = makeRingTurns();
+/// One byte per tetrahedron or vertex, written by the threads that own them (no zero fill first).
+using Flags = std::vector<std::uint8_t, BulkAllocator<std::uint8_t>>;
+
 /// The local indices of a tetrahedron's vertices but one.
 constexpr int kOthers[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 
@@ -121,14 +125,14 @@ struct Stars
   /// 4 vertices each, in sortVertices' order; vertex v's group is [ownStart[v], ownStart[v + 1]),
   /// ordered by the tetrahedra's other three vertices, an order the points alone decide.
   IdArray tetrahedra;
-  std::vector<std::size_t> ownStart;
+  VoronoiCells::Offsets ownStart;
   /// The tetrahedra that hold v but not as their lowest vertex, in the groups' order:
   /// others[otherStart[v], otherStart[v + 1]).
   IdArray others;
-  std::vector<std::size_t> otherStart;
+  VoronoiCells::Offsets otherStart;
   /// Whether a tetrahedron of the vertex's star has its centre outside the box: its cell is
   /// clipped.
-  std::vector<std::uint8_t> clipped;
+  Flags clipped;
 
   std::size_t sizeOf(std::uint32_t v) const
   {
@@ -185,8 +189,8 @@ private:
 /// What every cell is built from, shared by the threads (read only while cells are built).
 struct CellSources
 {
-  const double* xyz;                         ///< the points, along the curve
-  const std::vector<std::uint32_t>& inputId; ///< of each point but the far ones
+  const double* xyz;      ///< the points, along the curve
+  const IdArray& inputId; ///< of each point but the far ones
   const Stars& stars;
   const std::array<double, 6>& box;
   bool polyhedra; ///< VoronoiOptions::polyhedra
@@ -684,19 +688,32 @@ private:
 };
 
 /// The bounding box of the finite points, in VTK's order; false when there is none.
-bool finiteBounds(const double* xyz, std::size_t count, std::array<double, 6>& bounds)
+bool finiteBounds(
+  ThreadTeam& team, const double* xyz, std::size_t count, std::array<double, 6>& bounds)
 {
-  std::size_t i = 0;
-  while (i < count && !isFinite(xyz + 3 * i))
-    ++i;
-  if (i == count)
-    return false;
-  Box box = Box::around(xyz + 3 * i);
-  for (; i < count; ++i)
-    if (isFinite(xyz + 3 * i))
-      box.include(xyz + 3 * i);
-  bounds = {box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2], box.hi[2]};
-  return true;
+  std::vector<std::optional<Box>> boxes(team.partsFor(count)); // each stretch's
+  team.forRanges(count, "voronoi curve", [&](std::size_t k, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      if (isFinite(xyz + 3 * i))
+      {
+        if (boxes[k])
+          boxes[k]->include(xyz + 3 * i);
+        else
+          boxes[k] = Box::around(xyz + 3 * i);
+      }
+  });
+  std::optional<Box> box;
+  for (const std::optional<Box>& b : boxes)
+    if (b && box)
+    {
+      box->include(b->lo);
+      box->include(b->hi);
+    }
+    else if (b)
+      box = b;
+  if (box)
+    bounds = {box->lo[0], box->hi[0], box->lo[1], box->hi[1], box->lo[2], box->hi[2]};
+  return box.has_value();
 }
 
 bool isBox(const std::array<double, 6>& b)
@@ -715,8 +732,8 @@ bool isBox(const std::array<double, 6>& b)
 /// other in memory.
 struct CurvePoints
 {
-  std::vector<double> xyz;            ///< empty when the corners are not finite
-  std::vector<std::uint32_t> inputId; ///< of each point but the corners
+  VoronoiCells::Doubles xyz; ///< empty when the corners are not finite
+  IdArray inputId;           ///< of each point but the corners
 };
 
 CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
@@ -776,6 +793,7 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
         curve.xyz[3 * k + a] = xyz[3 * std::size_t(id) + a];
     }
   });
+  team.release(keys, "voronoi curve");
   return curve;
 }
 
@@ -964,9 +982,12 @@ void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vert
 {
   const std::size_t tets = mesh.numberOfTetrahedra();
   const std::uint32_t* t4 = mesh.tetrahedra.data();
-  stars.ownStart.assign(vertices + 1, 0);
-  stars.otherStart.assign(vertices + 1, 0);
+  stars.ownStart.resize(vertices + 1);
+  stars.otherStart.resize(vertices + 1);
+  stars.ownStart[0] = stars.otherStart[0] = 0;
   team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    std::fill(&stars.ownStart[lo + 1], &stars.ownStart[hi] + 1, 0);
+    std::fill(&stars.otherStart[lo + 1], &stars.otherStart[hi] + 1, 0);
     for (std::size_t t = 0; t < tets; ++t)
     {
       const std::uint32_t* v = t4 + 4 * t;
@@ -978,14 +999,12 @@ void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vert
           ++stars.otherStart[v[k] + 1];
     }
   });
-  for (std::size_t v = 0; v < vertices; ++v)
-  {
-    stars.ownStart[v + 1] += stars.ownStart[v];
-    stars.otherStart[v + 1] += stars.otherStart[v];
-  }
+  team.accumulate(stars.ownStart, "voronoi stars");
+  team.accumulate(stars.otherStart, "voronoi stars");
   stars.tetrahedra.resize(4 * tets);
-  std::vector<std::size_t> next(stars.ownStart.begin(), stars.ownStart.end() - 1);
+  VoronoiCells::Offsets next(vertices); // where each group's next tetrahedron goes
   team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    std::copy(&stars.ownStart[lo], &stars.ownStart[hi], &next[lo]);
     for (std::size_t t = 0; t < tets; ++t)
     {
       const std::uint32_t* v = t4 + 4 * t;
@@ -1007,7 +1026,7 @@ void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vert
 /// Each tetrahedron's circumcentre, from its vertices in their order (in double-double where it
 /// is flat), and whether it lies in the closed box.
 void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedra,
-  const std::array<double, 6>& box, Doubles& centres, std::vector<std::uint8_t>& inBox)
+  const std::array<double, 6>& box, Doubles& centres, Flags& inBox)
 {
   const std::size_t tets = tetrahedra.size() / 4;
   centres.resize(3 * tets);
@@ -1028,14 +1047,16 @@ void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedr
 
 /// Each vertex's other tetrahedra (those of lower vertices' groups that hold it), and whether
 /// its cell is clipped.
-void listOthers(ThreadTeam& team, const std::vector<std::uint8_t>& inBox, Stars& stars)
+void listOthers(ThreadTeam& team, const Flags& inBox, Stars& stars)
 {
   const std::size_t tets = inBox.size(), vertices = stars.ownStart.size() - 1;
   const std::uint32_t* t4 = stars.tetrahedra.data();
   stars.others.resize(stars.otherStart[vertices]);
-  stars.clipped.assign(vertices, 0);
-  std::vector<std::size_t> next(stars.otherStart.begin(), stars.otherStart.end() - 1);
+  stars.clipped.resize(vertices);
+  VoronoiCells::Offsets next(vertices); // where each vertex's next other tetrahedron goes
   team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
+    std::copy(&stars.otherStart[lo], &stars.otherStart[hi], &next[lo]);
+    std::fill(&stars.clipped[lo], &stars.clipped[hi], 0);
     for (std::size_t t = 0; t < tets; ++t)
     {
       const std::uint32_t* v = t4 + 4 * t;
@@ -1054,72 +1075,126 @@ void listOthers(ThreadTeam& team, const std::vector<std::uint8_t>& inBox, Stars&
 /// The output point of each centre in the box, numbered in the tetrahedra's order: the centres
 /// of each group, the ones its cell owns, follow each other, cell after cell. One entry more
 /// than the tetrahedra: the count of centres before each one, and in all.
-IdArray numberCentres(const std::vector<std::uint8_t>& inBox)
+IdArray numberCentres(ThreadTeam& team, const Flags& inBox)
 {
-  IdArray pointOf(inBox.size() + 1);
-  std::uint32_t point = 0;
-  for (std::size_t t = 0; t < inBox.size(); ++t)
-  {
-    pointOf[t] = point;
-    point += inBox[t];
-  }
-  pointOf[inBox.size()] = point;
+  const std::size_t tets = inBox.size();
+  IdArray pointOf(tets + 1);
+  std::size_t points = 0;
+  team.countThenWrite(
+    team.newRecord("voronoi centres"), 0, tets, points,
+    [&](std::size_t begin, std::size_t end) {
+      return std::size_t(std::count(inBox.begin() + std::ptrdiff_t(begin),
+        inBox.begin() + std::ptrdiff_t(end), std::uint8_t(1)));
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t point) {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        pointOf[t] = static_cast<std::uint32_t>(point);
+        point += inBox[t];
+      }
+      return point;
+    });
+  pointOf[tets] = static_cast<std::uint32_t>(points);
   return pointOf;
+}
+
+/// The generators as the mesh numbers them (the points of the first `generators` ids that are
+/// vertices, not merged into another), ascending, and the indices among them of the clipped
+/// cells.
+void listGenerators(ThreadTeam& team, const Triangulation& mesh, const IdArray& inputId,
+  std::size_t generators, const Stars& stars, IdArray& vertices, IdArray& clipped)
+{
+  const std::size_t count = inputId.size();
+  const auto isGenerator = [&](std::size_t v) {
+    return mesh.representative[v] == v && inputId[v] < generators;
+  };
+  ThreadedWork& record = team.newRecord("voronoi generators");
+  vertices.resize(count);
+  std::size_t cells = 0;
+  team.countThenWrite(
+    record, 0, count, cells,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t n = 0;
+      for (std::size_t v = begin; v < end; ++v)
+        n += isGenerator(v);
+      return n;
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t v = begin; v < end; ++v)
+        if (isGenerator(v))
+          vertices[next++] = static_cast<std::uint32_t>(v);
+      return next;
+    });
+  vertices.resize(cells);
+  clipped.resize(cells);
+  std::size_t clippedCells = 0;
+  team.countThenWrite(
+    record, 0, cells, clippedCells,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t n = 0;
+      for (std::size_t c = begin; c < end; ++c)
+        n += stars.clipped[vertices[c]];
+      return n;
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t c = begin; c < end; ++c)
+        if (stars.clipped[vertices[c]])
+          clipped[next++] = static_cast<std::uint32_t>(c);
+      return next;
+    });
+  clipped.resize(clippedCells);
 }
 
 /// Where each cell's parts go in the output: its first face vertex and crossing (its first face
 /// is cellFaces', its centres are numbered by numberCentres).
 struct CellPlaces
 {
-  std::vector<std::size_t> vertex, crossing;
+  VoronoiCells::Offsets vertex, crossing;
 };
 
 /// The sizes of the cells (those of the clipped ones from their stretches; a whole cell with a
 /// star of n tetrahedra has 2 + n/2 faces, those of its link, a sphere, and 3n face vertices),
 /// summed into places, and the output's arrays made to hold them.
-CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& stars,
+CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& stars,
   const IdArray& pointOf, const std::vector<Stretch>& parts, VoronoiCells& cells)
 {
   const std::size_t n = vertices.size();
-  std::vector<std::uint32_t> clippedAt(n, kNone); // the cell's index in its stretch
-  std::vector<std::uint32_t> clippedPart(n, kNone);
-  for (std::size_t k = 0; k < parts.size(); ++k)
-    for (std::size_t j = 0; j < parts[k].cells.size(); ++j)
-    {
-      clippedAt[parts[k].cells[j]] = static_cast<std::uint32_t>(j);
-      clippedPart[parts[k].cells[j]] = static_cast<std::uint32_t>(k);
-    }
-  std::vector<std::size_t> clippedFace(parts.size(), 0);
   CellPlaces at;
   at.vertex.resize(n + 1);
   at.crossing.resize(n + 1);
   cells.cellFaces.resize(n + 1);
-  cells.cellFaces[0] = at.vertex[0] = at.crossing[0] = 0;
-  for (std::size_t c = 0; c < n; ++c)
-  {
-    const std::uint32_t p = vertices[c];
-    std::size_t faces, faceVertices, crossings = 0;
-    if (clippedAt[c] == kNone)
-    {
-      const std::size_t star = stars.sizeOf(p);
-      faces = 2 + star / 2;
-      faceVertices = 3 * star;
-    }
-    else
-    {
-      const Stretch& s = parts[clippedPart[c]];
-      const std::uint32_t j = clippedAt[c];
-      faces = s.faceCounts[j];
-      std::size_t& face = clippedFace[clippedPart[c]];
-      faceVertices = std::accumulate(
-        s.faceSizes.begin() + face, s.faceSizes.begin() + face + faces, std::size_t(0));
-      face += faces;
-      crossings = s.crossings[j];
-    }
-    cells.cellFaces[c + 1] = cells.cellFaces[c] + faces;
-    at.vertex[c + 1] = at.vertex[c] + faceVertices;
-    at.crossing[c + 1] = at.crossing[c] + crossings;
-  }
+  // Each cell's sizes after its place, then their running sums. The crossings are numbered after
+  // the centres that the cells own.
+  cells.cellFaces[0] = at.vertex[0] = 0;
+  at.crossing[0] = n && !pointOf.empty() ? pointOf[stars.ownStart[vertices[n - 1] + 1]] : 0;
+  team.forRanges(n, "voronoi places", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
+      if (const std::uint32_t p = vertices[c]; !stars.clipped[p])
+      {
+        const std::size_t star = stars.sizeOf(p);
+        cells.cellFaces[c + 1] = 2 + star / 2;
+        at.vertex[c + 1] = 3 * star;
+        at.crossing[c + 1] = 0;
+      }
+  });
+  team.run(
+    parts.size(),
+    [&](std::size_t k) {
+      const Stretch& s = parts[k];
+      auto face = s.faceSizes.begin();
+      for (std::size_t j = 0; j < s.cells.size(); ++j)
+      {
+        const std::size_t c = s.cells[j];
+        cells.cellFaces[c + 1] = s.faceCounts[j];
+        at.vertex[c + 1] = std::accumulate(face, face + s.faceCounts[j], std::size_t(0));
+        at.crossing[c + 1] = s.crossings[j];
+        face += s.faceCounts[j];
+      }
+    },
+    team.newRecord("voronoi places"));
+  team.accumulate(cells.cellFaces, "voronoi places");
+  team.accumulate(at.vertex, "voronoi places");
+  team.accumulate(at.crossing, "voronoi places");
   cells.faceNeighbors.resize(cells.cellFaces[n]);
   cells.volumes.resize(n);
   cells.areas.resize(n);
@@ -1128,12 +1203,9 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
     cells.faceStart.clear();
     return at;
   }
-  const std::size_t centres = n ? pointOf[stars.ownStart[vertices[n - 1] + 1]] : 0;
-  const std::size_t points = centres + at.crossing[n];
+  const std::size_t points = at.crossing[n];
   if (points >= kOwnVertex)
     throw std::length_error("voronoiCells: more than 2^31 vertices");
-  for (std::size_t& crossing : at.crossing)
-    crossing += centres;
   cells.faceStart.resize(cells.cellFaces[n] + 1);
   cells.faceStart[cells.cellFaces[n]] = at.vertex[n];
   cells.faceVertices.resize(at.vertex[n]);
@@ -1142,8 +1214,8 @@ CellPlaces placeCells(const std::vector<std::uint32_t>& vertices, const Stars& s
 }
 
 /// The centres in the box of the tetrahedra of the cells' groups into the output's points.
-void copyCentres(ThreadTeam& team, std::size_t tets, const std::vector<std::uint8_t>& inBox,
-  const IdArray& pointOf, const Doubles& centres, VoronoiCells& cells)
+void copyCentres(ThreadTeam& team, std::size_t tets, const Flags& inBox, const IdArray& pointOf,
+  const Doubles& centres, VoronoiCells& cells)
 {
   team.forRanges(tets, "voronoi centres", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t)
@@ -1209,16 +1281,16 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   cells.cellFaces.assign(1, 0);
   cells.faceStart.assign(1, 0);
   cells.stats.inputPoints = count;
+  ThreadTeam team(boundedThreads(options.threads));
   std::array<double, 6> bounds;
-  if (!finiteBounds(xyz, count, bounds))
+  if (!finiteBounds(team, xyz, count, bounds))
   {
     cells.status = Status::Empty;
     cells.stats.nonFinitePoints = count;
     return cells;
   }
   cells.box = isBox(options.box) ? options.box : bounds;
-  ThreadTeam team(boundedThreads(options.threads));
-  const CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
+  CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
   if (curve.xyz.empty())
   {
     cells.status = Status::OutOfRange;
@@ -1240,27 +1312,24 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   Stars stars;
   groupByLowestVertex(team, mesh, count + kFarPoints, stars);
   Doubles centres;
-  std::vector<std::uint8_t> inBox;
+  Flags inBox;
   circumcentres(team, curve.xyz.data(), stars.tetrahedra, cells.box, centres, inBox);
   listOthers(team, inBox, stars);
-  const IdArray pointOf = options.polyhedra ? numberCentres(inBox) : IdArray();
-  std::vector<std::uint32_t> vertices, clipped; // the generators as the mesh numbers them
-  for (std::uint32_t v = 0; v < count; ++v)
-    if (mesh.representative[v] == v && curve.inputId[v] < options.generators)
-    {
-      if (stars.clipped[v])
-        clipped.push_back(static_cast<std::uint32_t>(vertices.size()));
-      vertices.push_back(v);
-    }
+  IdArray pointOf = options.polyhedra ? numberCentres(team, inBox) : IdArray();
+  IdArray vertices, clipped;
+  listGenerators(team, mesh, curve.inputId, options.generators, stars, vertices, clipped);
   cells.generators.resize(vertices.size());
-  for (std::size_t c = 0; c < vertices.size(); ++c)
-    cells.generators[c] = curve.inputId[vertices[c]];
   if (options.density)
-  {
     cells.densities.resize(vertices.size());
-    for (std::size_t c = 0; c < vertices.size(); ++c)
-      cells.densities[c] = density[vertices[c]];
-  }
+  team.forRanges(
+    vertices.size(), "voronoi cells", [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        cells.generators[c] = curve.inputId[vertices[c]];
+        if (options.density)
+          cells.densities[c] = density[vertices[c]];
+      }
+    });
 
   // The clipped cells first: their sizes are known once they are clipped.
   CellSources sources{curve.xyz.data(), curve.inputId, stars, cells.box, options.polyhedra};
@@ -1283,12 +1352,12 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
         cell.emitClipped(p, clipped[i], parts[k]);
       }
     });
-  const CellPlaces at = placeCells(vertices, stars, pointOf, parts, cells);
+  const CellPlaces at = placeCells(team, vertices, stars, pointOf, parts, cells);
   if (options.polyhedra)
   {
     if (!vertices.empty())
       copyCentres(team, stars.ownStart[vertices.back() + 1], inBox, pointOf, centres, cells);
-    Doubles().swap(centres);
+    team.release(centres, "voronoi centres");
     sources.centres = nullptr;
     sources.pointOf = pointOf.data();
     sources.points = cells.points.data();
@@ -1311,6 +1380,12 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
       }
     });
   copyClipped(team, parts, at, pointOf, cells);
+  // What the cells came from, its pages given back on every thread: on return, one thread would.
+  team.release(centres, "voronoi release");
+  team.release(pointOf, "voronoi release");
+  team.release(stars.tetrahedra, "voronoi release");
+  team.release(stars.others, "voronoi release");
+  team.release(curve.xyz, "voronoi release");
   cells.threadedWork = std::move(mesh.threadedWork);
   cells.threadedWork.insert(cells.threadedWork.end(), team.records().begin(), team.records().end());
   return cells;
