@@ -28,7 +28,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <new>
 
@@ -339,16 +338,32 @@ void Triangulator::prepareOwners()
   const std::size_t slots = mesh_.tets.capacity();
   if (ownerSlots_ < slots)
   {
-    // Every slot free; calloc's zeros cost nothing until a page is touched, by the thread that
-    // touches it.
-    owners_.reset(static_cast<OwnerTable*>(std::calloc(slots, sizeof(OwnerTable))));
-    if (!owners_)
-      throw std::bad_alloc();
+    if (owners_)
+      team_.releasePages(owners_.get(), ownerSlots_ * sizeof(OwnerTable), "owners");
+    owners_ = {
+      static_cast<OwnerTable*>(detail::allocateBulk(slots * sizeof(OwnerTable))), Free{slots}};
     ownerSlots_ = slots;
+    // Every slot free, written on every thread: calloc() would zero a block that its heap
+    // recycles on this thread alone.
+    OwnerTable* table = owners_.get();
+    team_.forRanges(slots, "owners", [table](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t)
+        new (table + t) OwnerTable(0);
+    });
   }
-  for (std::size_t k = 0; k < pools_.size(); ++k)
-    for (const TetId t : pools_[k]->freeSlots())
-      owners_.get()[t].store(static_cast<std::uint8_t>(k + 1), std::memory_order_relaxed);
+  markFreeSlots(true);
+}
+
+void Triangulator::markFreeSlots(bool owned)
+{
+  team_.run(
+    pools_.size(),
+    [&](std::size_t k) {
+      const auto owner = static_cast<std::uint8_t>(owned ? k + 1 : 0);
+      for (const TetId t : pools_[k]->freeSlots())
+        owners_.get()[t].store(owner, std::memory_order_relaxed);
+    },
+    team_.newRecord("owners"));
 }
 
 // Each thread takes a stretch of the curve, which keeps the threads far apart and their
@@ -397,9 +412,7 @@ IdArray Triangulator::runLockingPass(
   passDone_ = 0;
   // Between passes every slot is free again: live ones were let go after each insertion, and the
   // pools' free ones are marked for the next locking pass when it starts.
-  for (const auto& pool : pools_)
-    for (const TetId t : pool->freeSlots())
-      owners_.get()[t].store(0, std::memory_order_relaxed);
+  markFreeSlots(false);
   // Each thread's stretch is in curve order: what they put off is, one after another.
   IdArray left;
   for (const auto& list : putOff)

@@ -3,7 +3,10 @@
 #ifndef fd3_Stretches_h
 #define fd3_Stretches_h
 
+#include "fd3/BulkAllocator.h"
+
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 
 namespace fd3
@@ -21,6 +24,20 @@ inline void forStretches(const Stretches& stretches, std::size_t count,
     stretches(count, f);
   else
     f(0, count);
+}
+
+/// Gives the whole pages of [begin, begin + bytes) back to the system (detail::releasePages), a
+/// stretch of pages at a time by `stretches`: free() would do the kernel's work per page on one
+/// thread.
+inline void releasePages(const Stretches& stretches, void* begin, std::size_t bytes)
+{
+  const std::uintptr_t page = detail::pageSize();
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(begin) + bytes) / page * page;
+  if (first < end)
+    forStretches(stretches, (end - first) / page, [&](std::size_t from, std::size_t to) {
+      detail::releasePages(reinterpret_cast<void*>(first + from * page), (to - from) * page);
+    });
 }
 
 } // namespace fd3

@@ -175,6 +175,7 @@ public:
         grown.begin() + 8 * static_cast<std::ptrdiff_t>(begin));
     });
     records_.swap(grown);
+    releasePages(copy, grown.data(), grown.capacity() * sizeof(std::uint32_t));
   }
   std::size_t capacity() const { return records_.size() / 8; }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <exception>
 #include <system_error>
 
@@ -156,23 +155,7 @@ void ThreadTeam::forRanges(std::size_t count, const char* phase,
 
 void ThreadTeam::releasePages(void* begin, std::size_t bytes, const char* phase)
 {
-  // Stretches of whole pages: a page cut between two would be given back by neither.
-  const std::size_t page = detail::pageSize();
-  const auto first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
-  const auto end = (reinterpret_cast<std::uintptr_t>(begin) + bytes) / page * page;
-  if (first >= end)
-    return;
-  const std::size_t pages = (end - first) / page;
-  const std::size_t parts =
-    std::max<std::size_t>(1, std::min<std::size_t>(size_, (end - first) / kMinBytesPerPart));
-  run(
-    parts,
-    [&](std::size_t k) {
-      const std::uintptr_t from = first + pages * k / parts * page,
-                           to = first + pages * (k + 1) / parts * page;
-      detail::releasePages(reinterpret_cast<void*>(from), to - from);
-    },
-    newRecord(phase));
+  fd3::releasePages(stretches(phase), begin, bytes);
 }
 
 Stretches ThreadTeam::stretches(const char* phase)

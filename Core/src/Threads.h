@@ -72,11 +72,9 @@ public:
   void accumulate(Vector& v, const char* phase);
   /// forRanges() as Stretches, recorded as `phase` (the team must outlive it).
   Stretches stretches(const char* phase);
-  /// Gives the whole pages of [begin, begin + bytes) back to the system (detail::releasePages),
-  /// each thread a stretch of kMinBytesPerPart or more, recorded as `phase`. The kernel's work per
-  /// page is what a large array's free() costs, and free() does it on one thread.
+  /// Gives the whole pages of [begin, begin + bytes) back to the system on the team's threads
+  /// (fd3::releasePages in Stretches.h), recorded as `phase`.
   void releasePages(void* begin, std::size_t bytes, const char* phase);
-  static constexpr std::size_t kMinBytesPerPart = std::size_t(4) << 20;
   /// Gives back the memory of `v` beyond its size (fd3::releaseSpareCapacity) on the team's threads.
   template <typename T>
   void releaseSpareCapacity(std::vector<T, BulkAllocator<T>>& v, const char* phase)

@@ -12,7 +12,6 @@
 
 #include <atomic>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -119,6 +118,8 @@ private:
     const std::function<bool(double)>& progress);
   /// The owner table for every slot the mesh has room for, each pool's free slots marked its own.
   void prepareOwners();
+  /// Each pool's free slots marked its own in the owner table, or free, each pool on its thread.
+  void markFreeSlots(bool owned);
   /// What the calling thread does while the others insert: report progress.
   std::function<void()> progressPoll(const std::function<bool(double)>& progress);
   /// Slots enough for vertices up to `end`, from the slots per vertex now and after an earlier
@@ -155,9 +156,10 @@ private:
   // entry is 0 between passes.
   struct Free
   {
-    void operator()(OwnerTable* p) const { std::free(p); }
+    std::size_t slots;
+    void operator()(OwnerTable* p) const { detail::freeBulk(p, slots * sizeof(OwnerTable)); }
   };
-  std::unique_ptr<OwnerTable, Free> owners_;
+  std::unique_ptr<OwnerTable, Free> owners_{nullptr, Free{0}};
   std::size_t ownerSlots_ = 0;
 };
 
