@@ -286,11 +286,12 @@ IdArray Triangulator::runRegionPass(
   team_.run(share.size(), work, record, progressPoll(progress));
   done_ += passDone_;
   passDone_ = 0;
-  record.left = 0;
+  std::size_t left = 0;
   for (const auto& list : putOff)
-    record.left += list.size();
+    left += list.size();
+  record.left = left;
   // Each share is in curve order, and so is what it put off.
-  return mergeAscending(vertices, putOff, record.left, team_.newRecord("regions"));
+  return mergeAscending(vertices, putOff, left, team_.newRecord("regions"));
 }
 
 IdArray Triangulator::mergeAscending(const IdArray& vertices,

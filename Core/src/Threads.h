@@ -12,6 +12,7 @@
 
 #include <condition_variable>
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -46,10 +47,10 @@ public:
   void run(std::size_t parts, const std::function<void(std::size_t)>& part, ThreadedWork& record,
     const std::function<void()>& poll = nullptr);
 
-  /// A new record of threaded work, for run().
+  /// A new record of threaded work, for run(). It stays where it is while more are made.
   ThreadedWork& newRecord(const char* phase);
   /// Every record so far, in the order made.
-  const std::vector<ThreadedWork>& records() const { return records_; }
+  std::vector<ThreadedWork> records() const { return {records_.begin(), records_.end()}; }
 
   /// The parts that `count` items make: one per thread, each of kMinItemsPerPart items or more.
   std::size_t partsFor(std::size_t count) const;
@@ -108,7 +109,7 @@ private:
   const std::function<void(std::size_t)>* part_ = nullptr;
   ThreadedWork* record_ = nullptr;
   std::vector<std::exception_ptr> failures_;
-  std::vector<ThreadedWork> records_;
+  std::deque<ThreadedWork> records_; // a deque: a new record moves none of the others
 };
 
 template <typename Count, typename Write>

@@ -1387,7 +1387,8 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   team.release(stars.others, "voronoi release");
   team.release(curve.xyz, "voronoi release");
   cells.threadedWork = std::move(mesh.threadedWork);
-  cells.threadedWork.insert(cells.threadedWork.end(), team.records().begin(), team.records().end());
+  const std::vector<ThreadedWork> records = team.records();
+  cells.threadedWork.insert(cells.threadedWork.end(), records.begin(), records.end());
   return cells;
 }
 
