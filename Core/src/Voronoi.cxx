@@ -1098,51 +1098,42 @@ IdArray numberCentres(ThreadTeam& team, const Flags& inBox)
   return pointOf;
 }
 
+/// The i in [0, count) where keep(i) holds, ascending, each thread counting then writing its
+/// stretch's.
+template <typename Keep>
+IdArray indicesWhere(ThreadTeam& team, ThreadedWork& record, std::size_t count, Keep keep)
+{
+  IdArray kept(count);
+  std::size_t written = 0;
+  team.countThenWrite(
+    record, 0, count, written,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t n = 0;
+      for (std::size_t i = begin; i < end; ++i)
+        n += keep(i);
+      return n;
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (keep(i))
+          kept[next++] = static_cast<std::uint32_t>(i);
+      return next;
+    });
+  kept.resize(written);
+  return kept;
+}
+
 /// The generators as the mesh numbers them (the points of the first `generators` ids that are
 /// vertices, not merged into another), ascending, and the indices among them of the clipped
 /// cells.
 void listGenerators(ThreadTeam& team, const Triangulation& mesh, const IdArray& inputId,
   std::size_t generators, const Stars& stars, IdArray& vertices, IdArray& clipped)
 {
-  const std::size_t count = inputId.size();
-  const auto isGenerator = [&](std::size_t v) {
-    return mesh.representative[v] == v && inputId[v] < generators;
-  };
   ThreadedWork& record = team.newRecord("voronoi generators");
-  vertices.resize(count);
-  std::size_t cells = 0;
-  team.countThenWrite(
-    record, 0, count, cells,
-    [&](std::size_t begin, std::size_t end) {
-      std::size_t n = 0;
-      for (std::size_t v = begin; v < end; ++v)
-        n += isGenerator(v);
-      return n;
-    },
-    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
-      for (std::size_t v = begin; v < end; ++v)
-        if (isGenerator(v))
-          vertices[next++] = static_cast<std::uint32_t>(v);
-      return next;
-    });
-  vertices.resize(cells);
-  clipped.resize(cells);
-  std::size_t clippedCells = 0;
-  team.countThenWrite(
-    record, 0, cells, clippedCells,
-    [&](std::size_t begin, std::size_t end) {
-      std::size_t n = 0;
-      for (std::size_t c = begin; c < end; ++c)
-        n += stars.clipped[vertices[c]];
-      return n;
-    },
-    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
-      for (std::size_t c = begin; c < end; ++c)
-        if (stars.clipped[vertices[c]])
-          clipped[next++] = static_cast<std::uint32_t>(c);
-      return next;
-    });
-  clipped.resize(clippedCells);
+  vertices = indicesWhere(team, record, inputId.size(),
+    [&](std::size_t v) { return mesh.representative[v] == v && inputId[v] < generators; });
+  clipped = indicesWhere(
+    team, record, vertices.size(), [&](std::size_t c) { return stars.clipped[vertices[c]] != 0; });
 }
 
 /// Where each cell's parts go in the output: its first face vertex and crossing (its first face
