@@ -291,15 +291,14 @@ IdArray Triangulator::runRegionPass(
     left += list.size();
   record.left = left;
   // Each share is in curve order, and so is what it put off.
-  return mergeAscending(vertices, putOff, left, team_.newRecord("regions"));
+  return mergeAscending(vertices, putOff, team_.newRecord("regions"));
 }
 
-IdArray Triangulator::mergeAscending(const IdArray& vertices,
-  const std::vector<std::vector<VertId>>& putOff, std::size_t count, ThreadedWork& record)
+IdArray Triangulator::mergeAscending(
+  const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff, ThreadedWork& record)
 {
-  IdArray merged(count);
-  if (count == 0)
-    return merged;
+  if (std::all_of(putOff.begin(), putOff.end(), [](const auto& list) { return list.empty(); }))
+    return {};
   const VertId first = vertices.front();
   const std::size_t span = std::size_t(vertices.back() - first) + 1;
   std::vector<std::uint8_t, BulkAllocator<std::uint8_t>> marked(span);
@@ -318,20 +317,8 @@ IdArray Triangulator::mergeAscending(const IdArray& vertices,
         marked[v - first] = 1;
     },
     record);
-  std::size_t written = 0;
-  team_.countThenWrite(
-    record, 0, span, written,
-    [&](std::size_t begin, std::size_t end) {
-      return std::size_t(std::count(
-        marked.begin() + std::ptrdiff_t(begin), marked.begin() + std::ptrdiff_t(end), 1));
-    },
-    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
-      for (std::size_t i = begin; i < end; ++i)
-        if (marked[i])
-          merged[next++] = static_cast<VertId>(first + i);
-      return next;
-    });
-  return merged;
+  return team_.indicesWhere(
+    record, first, first + span, [&](std::size_t v) { return marked[v - first] != 0; });
 }
 
 void Triangulator::prepareOwners()

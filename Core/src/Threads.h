@@ -67,6 +67,10 @@ public:
   template <typename Count, typename Write>
   void countThenWrite(ThreadedWork& record, std::size_t first, std::size_t last,
     std::size_t& written, Count count, Write write);
+  /// The i in [first, last) where keep(i) holds, ascending: each stretch counts its own, then
+  /// writes them after the stretches before it (countThenWrite). Recorded in `record`.
+  template <typename Keep>
+  IdArray indicesWhere(ThreadedWork& record, std::size_t first, std::size_t last, Keep keep);
   /// Running sums: v[i] becomes v[0] + ... + v[i], each stretch of v summed on its own thread,
   /// then added to the sum of the stretches before it. Recorded as `phase`.
   template <typename Vector>
@@ -133,6 +137,30 @@ void ThreadTeam::countThenWrite(ThreadedWork& record, std::size_t first, std::si
   run(
     parts, [&](std::size_t k) { write(k, begin(k), begin(k + 1), offset[k]); }, record);
   written = offset[parts];
+}
+
+template <typename Keep>
+IdArray ThreadTeam::indicesWhere(
+  ThreadedWork& record, std::size_t first, std::size_t last, Keep keep)
+{
+  IdArray kept(last - first);
+  std::size_t written = 0;
+  countThenWrite(
+    record, first, last, written,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t n = 0;
+      for (std::size_t i = begin; i < end; ++i)
+        n += keep(i);
+      return n;
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t i = begin; i < end; ++i)
+        if (keep(i))
+          kept[next++] = static_cast<std::uint32_t>(i);
+      return next;
+    });
+  kept.resize(written);
+  return kept;
 }
 
 template <typename Vector>

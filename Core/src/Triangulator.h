@@ -109,8 +109,8 @@ private:
   /// The lists of `putOff`, each ascending, merged into one, ascending, on every thread: each
   /// marks its list's vertices in a flag per rank of `vertices` (ascending), then each stretch of
   /// the flags writes its own.
-  IdArray mergeAscending(const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff,
-    std::size_t count, ThreadedWork& record);
+  IdArray mergeAscending(
+    const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff, ThreadedWork& record);
   /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads, each holding
   /// the tetrahedra it reads and writes in the owner table; returns those put off because another
   /// thread held a tetrahedron they needed. ParallelInsertion.cxx.

@@ -1098,31 +1098,6 @@ IdArray numberCentres(ThreadTeam& team, const Flags& inBox)
   return pointOf;
 }
 
-/// The i in [0, count) where keep(i) holds, ascending, each thread counting then writing its
-/// stretch's.
-template <typename Keep>
-IdArray indicesWhere(ThreadTeam& team, ThreadedWork& record, std::size_t count, Keep keep)
-{
-  IdArray kept(count);
-  std::size_t written = 0;
-  team.countThenWrite(
-    record, 0, count, written,
-    [&](std::size_t begin, std::size_t end) {
-      std::size_t n = 0;
-      for (std::size_t i = begin; i < end; ++i)
-        n += keep(i);
-      return n;
-    },
-    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
-      for (std::size_t i = begin; i < end; ++i)
-        if (keep(i))
-          kept[next++] = static_cast<std::uint32_t>(i);
-      return next;
-    });
-  kept.resize(written);
-  return kept;
-}
-
 /// The generators as the mesh numbers them (the points of the first `generators` ids that are
 /// vertices, not merged into another), ascending, and the indices among them of the clipped
 /// cells.
@@ -1130,10 +1105,10 @@ void listGenerators(ThreadTeam& team, const Triangulation& mesh, const IdArray& 
   std::size_t generators, const Stars& stars, IdArray& vertices, IdArray& clipped)
 {
   ThreadedWork& record = team.newRecord("voronoi generators");
-  vertices = indicesWhere(team, record, inputId.size(),
+  vertices = team.indicesWhere(record, 0, inputId.size(),
     [&](std::size_t v) { return mesh.representative[v] == v && inputId[v] < generators; });
-  clipped = indicesWhere(
-    team, record, vertices.size(), [&](std::size_t c) { return stars.clipped[vertices[c]] != 0; });
+  clipped = team.indicesWhere(
+    record, 0, vertices.size(), [&](std::size_t c) { return stars.clipped[vertices[c]] != 0; });
 }
 
 /// Where each cell's parts go in the output: its first face vertex and crossing (its first face
