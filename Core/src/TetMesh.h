@@ -275,8 +275,10 @@ public:
 
   const std::vector<TetId>& freeSlots() const { return free_; }
 
-private:
+  /// Never-used slots claimed at a time.
   static constexpr std::size_t kBlock = 1024;
+
+private:
   std::vector<TetId> free_;
   TetId next_ = 0, end_ = 0;
 };

@@ -63,7 +63,6 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
   // the final count, and memory for all is reserved (only what is written becomes resident).
   const std::size_t reserveAt = std::max<std::size_t>(end / 32, 4096);
   bool reserved = !reserveEarly;
-  std::size_t lastDone = 0, lastSlots = 0;
   for (std::size_t r = 0; r < roundStarts.size(); ++r)
   {
     const std::size_t first = std::max(roundStarts[r], begin);
@@ -91,47 +90,52 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
       return false;
     if (!reserved && done_ >= reserveAt)
     {
-      mesh_.tets.reserve(predictedSlots(lastDone, lastSlots, end), team_.stretches("records"));
+      mesh_.tets.reserve(predictedSlots(end, kReserveMargin), team_.stretches("records"));
       reserved = true;
     }
-    lastDone = done_;
-    lastSlots = mesh_.tets.slots();
+    earlierDone_ = done_;
+    earlierSlots_ = mesh_.tets.slots();
   }
   for (auto& pool : pools_)
     pool->retire(mesh_.tets);
   return true;
 }
 
-std::size_t Triangulator::predictedSlots(
-  std::size_t earlierDone, std::size_t earlierSlots, std::size_t end) const
+std::size_t Triangulator::predictedSlots(std::size_t vertices, double margin) const
 {
-  const double perVertex = double(mesh_.tets.slots()) / double(done_);
+  const double perVertex = double(mesh_.tets.slots()) / double(std::max<std::size_t>(done_, 1));
   // Smooth surface samples gain tetrahedra per vertex at a steady rate per doubling of the points:
   // a reserve at the ratio of the moment runs out in the last round, and growing the records then
   // holds two copies at once. Volume data gains none, or fewer ghosts per vertex, which only the
   // margin takes.
   double growth = 0.0;
-  if (earlierDone > 0 && done_ > earlierDone)
+  if (earlierDone_ > 0 && done_ > earlierDone_)
     growth = std::max(0.0,
-      (perVertex - double(earlierSlots) / double(earlierDone)) /
-        std::log2(double(done_) / double(earlierDone)));
-  const double expected =
-    std::min(perVertex + growth * std::log2(double(end) / double(done_)), 2.0 * perVertex);
-  return static_cast<std::size_t>(1.15 * expected * double(end)) + 64;
+      (perVertex - double(earlierSlots_) / double(earlierDone_)) /
+        std::log2(double(done_) / double(earlierDone_)));
+  const double expected = std::min(
+    perVertex + growth * std::log2(double(vertices) / double(std::max<std::size_t>(done_, 1))),
+    2.0 * perVertex);
+  return static_cast<std::size_t>(margin * expected * double(vertices)) + 64;
 }
 
 void Triangulator::makeRoomFor(std::size_t count)
 {
-  // New slots per insertion: about the tetrahedra per vertex (the rest reuses freed slots), with a
-  // margin, and a block's worth for every pool.
-  std::size_t free = 0;
-  for (const auto& pool : pools_)
-    free += pool->freeSlots().size();
-  const double perVertex =
-    std::max(7.0, double(mesh_.tets.slots() - free) / double(std::max<std::size_t>(done_, 1)));
+  // The slots the vertices so far and `count` more are expected to take (their high-water mark),
+  // and a block's worth for every pool. The margin is below the reserve's: the ratio is measured
+  // later, over more vertices, and a last pass that demanded more than the reserve would copy the
+  // records for the room it does not use.
+  const std::size_t expected = predictedSlots(done_ + count, kPassMargin);
+  const std::size_t slots = mesh_.tets.slots();
   mesh_.tets.makeRoom(
-    static_cast<std::size_t>(1.25 * perVertex * double(count)) + 2048 * pools_.size() + 1024,
+    (expected > slots ? expected - slots : 0) + 2 * SlotPool::kBlock * pools_.size() + 1024,
     team_.stretches("records"));
+}
+
+void Triangulator::growRecords()
+{
+  // A cavity larger than the room left: at least a quarter more, whatever the prediction says.
+  mesh_.tets.makeRoom(mesh_.tets.capacity() - mesh_.tets.slots() + 1, team_.stretches("records"));
 }
 
 bool Triangulator::reportProgress(const std::function<bool(double)>& progress)

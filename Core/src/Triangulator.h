@@ -122,12 +122,13 @@ private:
   void markFreeSlots(bool owned);
   /// What the calling thread does while the others insert: report progress.
   std::function<void()> progressPoll(const std::function<bool(double)>& progress);
-  /// Slots enough for vertices up to `end`, from the slots per vertex now and after an earlier
-  /// round (`earlierDone` vertices, `earlierSlots` slots; 0 when none), with a margin.
-  std::size_t predictedSlots(
-    std::size_t earlierDone, std::size_t earlierSlots, std::size_t end) const;
+  /// Slots enough for `vertices` vertices in all, from the slots per vertex now and after the
+  /// round before (earlierDone_, earlierSlots_), times `margin`.
+  std::size_t predictedSlots(std::size_t vertices, double margin) const;
   /// Room in the mesh for `count` more insertions, from the tetrahedra per vertex so far.
   void makeRoomFor(std::size_t count);
+  /// More room than there is, for an insertion that found too little.
+  void growRecords();
   bool reportProgress(const std::function<bool(double)>& progress);
 
   static constexpr int kLockingPasses = 4;
@@ -137,13 +138,18 @@ private:
   // parallel, with two threads): its stretch of the curve, far from the others' where they are
   // long, meets them at its ends.
   static constexpr std::size_t kMinPointsPerThread = 256;
+  // Over the slots predicted: the reserve's, made from the first rounds, and each pass's, made
+  // before it. Unwritten slots cost address space only.
+  static constexpr double kReserveMargin = 1.15;
+  static constexpr double kPassMargin = 1.1;
 
   Mesh mesh_;
   ThreadTeam& team_;
   Predicates tuning_; // adapted to every vertex so far; the inserters take copies
   std::vector<std::unique_ptr<SlotPool>> pools_;
   std::vector<std::unique_ptr<Inserter>> inserters_;
-  std::size_t done_ = 0; // vertices handled, for progress
+  std::size_t done_ = 0;                           // vertices handled, for progress
+  std::size_t earlierDone_ = 0, earlierSlots_ = 0; // done_ and slots after the round before
   std::atomic<std::size_t> passDone_{0};
   std::atomic<bool> stop_{false};
   // Share of its points that the last pass of each kind put in: on some inputs (convex surface
@@ -175,7 +181,7 @@ bool Triangulator::insertSerially(
       return false;
     // Unrestricted, an insertion is put off only when the mesh is full (and a duplicate is done).
     while (inserter.insert(vertexAt(i)) == Inserter::Outcome::Deferred)
-      makeRoomFor(count - i);
+      growRecords();
     ++done_;
   }
   return true;
