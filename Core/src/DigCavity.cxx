@@ -82,7 +82,7 @@ bool Inserter::digCavity(TetId base, VertId v)
   tets[0] = base;
   entry[0] = kNoEntryFace;
   for (int f = 0; f < 4; ++f)
-    tets_.prefetch(tetOf(tets_.neighbor(base, f)));
+    prefetchTet(tetOf(tets_.neighbor(base, f)));
   bool owned = true;
   for (std::size_t i = 0; i < inCavity; ++i)
   {
@@ -127,7 +127,7 @@ bool Inserter::digCavity(TetId base, VertId v)
         // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
         // outcome would wait for the determinant.
         for (int g = 0; g < 4; ++g)
-          tets_.prefetch(tetOf(tets_.neighbor(n, g)));
+          prefetchTet(tetOf(tets_.neighbor(n, g)));
         if (restricted_)
           owned &= !inside || allVerticesInRegion(n);
       }

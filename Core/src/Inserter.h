@@ -146,6 +146,13 @@ private:
     if (u != kInfinite)
       relaxedStore(mesh_.vertices[u].tet, t);
   }
+  /// Starts loading t's record and, in a locking pass, its owner, which acquire() reads first.
+  void prefetchTet(TetId t) const
+  {
+    tets_.prefetch(t);
+    if (owners_)
+      prefetch(owners_ + t);
+  }
   /// In a locking pass: whether this inserter holds t now, taking it if no one does.
   bool acquire(TetId t);
   /// Whether the walk may go on into t: in a region, when t is the inserter's; in a locking pass,
