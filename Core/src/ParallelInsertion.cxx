@@ -6,9 +6,11 @@
 //   tetrahedron). An insertion that would reach outside its box is put off. The cut axes follow
 //   the mesh's tetrahedra: on a surface sample they are thin across the surface's long directions,
 //   and a cut across the axes along which they are thin crosses few of them; volume data, whose
-//   tetrahedra are as wide every way, is cut across its longest axes in turn. Design read from
+//   tetrahedra are as wide every way, is cut across its longest axes in turn. A region whose first
+//   eighth puts nearly every point off sends the rest to the locking passes. Design read from
 //   HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code ours.
-// * Locking passes: each thread takes a stretch of the curve and holds every tetrahedron it reads
+// * Locking passes: each thread takes a stretch of the curve (and, once done, the far half of what
+//   is left of the longest other, SharedStretches) and holds every tetrahedron it reads
 //   or writes in an owner table (one byte per slot, compare-and-swap), hand over hand along its
 //   walk; an insertion that meets a tetrahedron another thread holds lets go of all and is put
 //   off. It needs no boxes, so it takes what reaches across any box: the points near the region
@@ -30,6 +32,8 @@
 #include <cmath>
 #include <limits>
 #include <new>
+#include <numeric>
+#include <stdexcept>
 
 namespace fd3
 {
@@ -46,6 +50,19 @@ constexpr std::size_t kSamplePerRegion = 512;
 constexpr std::size_t kShapeSample = 512;
 // Points whose box the cut axes are chosen in.
 constexpr std::size_t kBoxSample = 1024;
+
+/// Whether the first insertions of a region's share (`tried` of `share`, of which `putOff` were put
+/// off) say that the rest had better go to the locking passes at once: on a convex surface sample,
+/// whose hull faces and inner tetrahedra reach across the whole set, nearly all would be put off,
+/// each after a walk and part of a cavity. The trial is long: where a cut runs through a block of
+/// the curve, a region's share may begin with a sliver along the cut, all of it put off.
+bool hopelessRegion(std::size_t tried, std::size_t share, std::size_t putOff)
+{
+  constexpr std::size_t kLeastTrial = 1024;
+  constexpr double kHopelessYield = 0.25;
+  return tried >= std::max(kLeastTrial, share / 8) &&
+    double(putOff) > (1.0 - kHopelessYield) * double(tried);
+}
 
 /// The least share of its points that a locking pass on `threads` threads must put in to be faster
 /// than inserting them all serially, if a put-off insertion costs half of one that goes in (it
@@ -110,6 +127,72 @@ int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, c
   return index;
 }
 
+SharedStretches::SharedStretches(std::size_t count, std::size_t parts) : stretches_(parts)
+{
+  if (count > 0xFFFFFFFFu)
+    throw std::length_error("fd3: a pass of more than 2^32 points");
+  for (std::size_t k = 0; k < parts; ++k)
+    stretches_[k].range.store(pack(count * k / parts, count * (k + 1) / parts));
+}
+
+bool SharedStretches::next(std::size_t k, std::size_t& rank)
+{
+  std::atomic<std::uint64_t>& mine = stretches_[k].range;
+  stretches_[k].started.store(true, std::memory_order_relaxed);
+  for (;;)
+  {
+    std::uint64_t range = mine.load(std::memory_order_relaxed);
+    while (beginOf(range) < endOf(range))
+      if (mine.compare_exchange_weak(
+            range, pack(beginOf(range) + 1, endOf(range)), std::memory_order_relaxed))
+      {
+        rank = beginOf(range);
+        return true;
+      }
+    if (!split(k))
+      return false;
+  }
+}
+
+bool SharedStretches::split(std::size_t k)
+{
+  for (;;)
+  {
+    std::size_t longest = k, most = 0;
+    for (std::size_t j = 0; j < stretches_.size(); ++j)
+    {
+      if (!stretches_[j].started.load(std::memory_order_relaxed))
+        continue;
+      const std::uint64_t range = stretches_[j].range.load(std::memory_order_relaxed);
+      const std::size_t left = endOf(range) - std::min(beginOf(range), endOf(range));
+      if (left > most)
+      {
+        most = left;
+        longest = j;
+      }
+    }
+    if (most < kLeastToSplit)
+      return false;
+    std::uint64_t range = stretches_[longest].range.load(std::memory_order_relaxed);
+    const std::size_t begin = beginOf(range), end = endOf(range);
+    if (begin + kLeastToSplit > end)
+      continue;
+    const std::size_t middle = begin + (end - begin) / 2;
+    if (stretches_[longest].range.compare_exchange_strong(
+          range, pack(begin, middle), std::memory_order_relaxed))
+    {
+      stretches_[k].range.store(pack(middle, end), std::memory_order_relaxed);
+      return true;
+    }
+  }
+}
+
+std::pair<std::size_t, std::size_t> SharedStretches::takeRest(std::size_t k)
+{
+  const std::uint64_t range = stretches_[k].range.exchange(0, std::memory_order_relaxed);
+  return {std::min(beginOf(range), endOf(range)), endOf(range)};
+}
+
 std::vector<int> Triangulator::cutAxes(const IdArray& vertices) const
 {
   Box box = Box::around(point(vertices[0]));
@@ -171,11 +254,9 @@ bool Triangulator::insertInParallel(IdArray vertices, const std::function<bool(d
       regionYield_ *= 1.1;
     else
     {
-      const std::size_t count = vertices.size();
       const std::vector<int> axes = cutAxes(vertices);
       vertices = runRegionPass(
         vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes), progress);
-      regionYield_ = 1.0 - double(vertices.size()) / double(count);
     }
   }
   // Each locking pass takes half the threads of the one before: what a pass put off lies where
@@ -254,16 +335,20 @@ IdArray Triangulator::runRegionPass(
   makeRoomFor(vertices.size());
   std::vector<std::vector<VertId>> share, putOff;
   shareOut(vertices, partition, share, putOff);
+  std::vector<std::size_t> tried(share.size(), 0);
   passDone_ = 0;
   auto work = [&](std::size_t k) {
     try
     {
       Inserter& inserter = *inserters_[k];
       const std::vector<VertId>& mine = share[k];
-      for (std::size_t i = 0; i < mine.size(); ++i)
+      const std::size_t putOffAtStart = putOff[k].size();
+      std::size_t i = 0;
+      for (; i < mine.size(); ++i)
       {
         if (i % 256 == 0 &&
-          (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress))))
+          (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress)) ||
+            hopelessRegion(i, mine.size(), putOff[k].size() - putOffAtStart)))
         {
           putOff[k].insert(
             putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
@@ -274,6 +359,7 @@ IdArray Triangulator::runRegionPass(
         else
           passDone_.fetch_add(1, std::memory_order_relaxed);
       }
+      tried[k] = putOffAtStart + i;
     }
     catch (...)
     {
@@ -284,21 +370,25 @@ IdArray Triangulator::runRegionPass(
   ThreadedWork& record = team_.newRecord("insertion region pass");
   record.points = vertices.size();
   team_.run(share.size(), work, record, progressPoll(progress));
+  // The yield of the insertions tried: the points of a hopeless region that were not are no guide
+  // to the others'.
+  const std::size_t triedInAll = std::accumulate(tried.begin(), tried.end(), std::size_t(0));
+  regionYield_ = triedInAll > 0 ? double(passDone_) / double(triedInAll) : 0.0;
   done_ += passDone_;
   passDone_ = 0;
   std::size_t left = 0;
   for (const auto& list : putOff)
     left += list.size();
   record.left = left;
-  // Each share is in curve order, and so is what it put off.
-  return mergeAscending(vertices, putOff, team_.newRecord("regions"));
+  return mergeAscending(vertices, putOff);
 }
 
 IdArray Triangulator::mergeAscending(
-  const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff, ThreadedWork& record)
+  const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff)
 {
   if (std::all_of(putOff.begin(), putOff.end(), [](const auto& list) { return list.empty(); }))
     return {};
+  ThreadedWork& record = team_.newRecord("regions");
   const VertId first = vertices.front();
   const std::size_t span = std::size_t(vertices.back() - first) + 1;
   std::vector<std::uint8_t, BulkAllocator<std::uint8_t>> marked(span);
@@ -355,12 +445,13 @@ void Triangulator::markFreeSlots(bool owned)
 }
 
 // Each thread takes a stretch of the curve, which keeps the threads far apart and their
-// insertions' cavities apart but where two meet.
+// insertions' cavities apart but where two meet; one done with its own splits another's.
 IdArray Triangulator::runLockingPass(
   const IdArray& vertices, std::size_t parts, int pass, const std::function<bool(double)>& progress)
 {
   makeRoomFor(vertices.size());
   prepareOwners();
+  SharedStretches stretches(vertices.size(), parts);
   std::vector<std::vector<VertId>> putOff(parts);
   passDone_ = 0;
   auto work = [&](std::size_t k) {
@@ -368,14 +459,15 @@ IdArray Triangulator::runLockingPass(
     inserter.lockIn(owners_.get(), ownerSlots_, static_cast<std::uint8_t>(k + 1));
     try
     {
-      const std::size_t begin = vertices.size() * k / parts,
-                        end = vertices.size() * (k + 1) / parts;
-      for (std::size_t i = begin; i < end; ++i)
+      std::size_t i = 0;
+      for (std::size_t tried = 0; stretches.next(k, i); ++tried)
       {
-        if ((i - begin) % 256 == 0 &&
-          (stop_ || (k == 0 && (i - begin) % kProgressInterval == 0 && !reportProgress(progress))))
+        if (tried % 256 == 0 &&
+          (stop_ || (k == 0 && tried % kProgressInterval == 0 && !reportProgress(progress))))
         {
-          putOff[k].insert(putOff[k].end(), vertices.begin() + static_cast<std::ptrdiff_t>(i),
+          const auto [begin, end] = stretches.takeRest(k);
+          putOff[k].push_back(vertices[i]);
+          putOff[k].insert(putOff[k].end(), vertices.begin() + static_cast<std::ptrdiff_t>(begin),
             vertices.begin() + static_cast<std::ptrdiff_t>(end));
           break;
         }
@@ -401,12 +493,11 @@ IdArray Triangulator::runLockingPass(
   // Between passes every slot is free again: live ones were let go after each insertion, and the
   // pools' free ones are marked for the next locking pass when it starts.
   markFreeSlots(false);
-  // Each thread's stretch is in curve order: what they put off is, one after another.
-  IdArray left;
+  std::size_t left = 0;
   for (const auto& list : putOff)
-    left.insert(left.end(), list.begin(), list.end());
-  record.left = left.size();
-  return left;
+    left += list.size();
+  record.left = left;
+  return mergeAscending(vertices, putOff);
 }
 
 std::function<void()> Triangulator::progressPoll(const std::function<bool(double)>& progress)

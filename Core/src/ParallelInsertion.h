@@ -4,7 +4,10 @@
 
 #include "Inserter.h"
 
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace fd3
@@ -36,6 +39,44 @@ private:
   std::vector<VertId> sample_;
   std::vector<Node> nodes_; // nodes_[0]: the root
   std::vector<Region> regions_;
+};
+
+/// A pass's points, as stretches of ranks [0, count), one per thread: each thread takes its own
+/// stretch's points one by one from its start, and a thread whose stretch is spent takes the far
+/// half of what is left of the longest one. Insertions cost more in some stretches of the curve
+/// than in others (the inner side of a torus), and equal stretches would leave threads idle. Any
+/// thread may call next() for its own stretch while others do for theirs. A stretch whose thread
+/// has not started is not split: where threads outnumber cores, the first to run would take
+/// every stretch, and their CPU times would no longer model a core per thread.
+class SharedStretches
+{
+public:
+  SharedStretches(std::size_t count, std::size_t parts);
+  /// The next rank for thread k, or false when no stretch has enough left to split.
+  bool next(std::size_t k, std::size_t& rank);
+  /// Empties thread k's stretch and returns what was left of it, [begin, end).
+  std::pair<std::size_t, std::size_t> takeRest(std::size_t k);
+
+private:
+  // A stretch [begin, end) in one word, begin in the low half: its thread advances begin and a
+  // thread that splits it lowers end, each by compare-and-swap.
+  struct alignas(64) Stretch
+  {
+    std::atomic<std::uint64_t> range{0};
+    std::atomic<bool> started{false};
+  };
+  static std::uint64_t pack(std::size_t begin, std::size_t end)
+  {
+    return std::uint64_t(begin) | (std::uint64_t(end) << 32);
+  }
+  static std::size_t beginOf(std::uint64_t range) { return std::size_t(range & 0xFFFFFFFFu); }
+  static std::size_t endOf(std::uint64_t range) { return std::size_t(range >> 32); }
+  /// Moves the far half of the longest stretch to thread k's; false when none has enough left.
+  bool split(std::size_t k);
+
+  // Fewer points than this are left to their thread: a split costs an insertion's walk there.
+  static constexpr std::size_t kLeastToSplit = 64;
+  std::vector<Stretch> stretches_;
 };
 
 } // namespace fd3

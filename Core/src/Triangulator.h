@@ -106,14 +106,14 @@ private:
   /// put off.
   IdArray runRegionPass(const IdArray& vertices, const Partition& partition,
     const std::function<bool(double)>& progress);
-  /// The lists of `putOff`, each ascending, merged into one, ascending, on every thread: each
-  /// marks its list's vertices in a flag per rank of `vertices` (ascending), then each stretch of
-  /// the flags writes its own.
-  IdArray mergeAscending(
-    const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff, ThreadedWork& record);
-  /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads, each holding
-  /// the tetrahedra it reads and writes in the owner table; returns those put off because another
-  /// thread held a tetrahedron they needed. ParallelInsertion.cxx.
+  /// The vertices of the lists of `putOff`, in any order, merged into one, ascending, on every
+  /// thread: each marks its list's vertices in a flag per rank of `vertices` (ascending), then
+  /// each stretch of the flags writes its own.
+  IdArray mergeAscending(const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff);
+  /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads at first
+  /// (SharedStretches), each holding the tetrahedra it reads and writes in the owner table;
+  /// returns those put off because another thread held a tetrahedron they needed.
+  /// ParallelInsertion.cxx.
   IdArray runLockingPass(const IdArray& vertices, std::size_t parts, int pass,
     const std::function<bool(double)>& progress);
   /// The owner table for every slot the mesh has room for, each pool's free slots marked its own.

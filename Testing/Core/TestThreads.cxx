@@ -4,6 +4,7 @@
 // thread and leave nothing behind. The thread sanitizer build runs these too.
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
+#include "ParallelInsertion.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
 
@@ -11,8 +12,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 namespace
 {
@@ -119,6 +122,48 @@ TEST(Threads, ThreadedWorkIsRecorded)
     EXPECT_TRUE(std::any_of(r.threadedWork.begin(), r.threadedWork.end(),
       [&](const fd3::ThreadedWork& w) { return std::string(w.phase).rfind(phase, 0) == 0; }))
       << phase;
+}
+
+// A locking pass's stretches: every rank is handed out once, however the threads race to split
+// each other's; a thread slowed down (a costly stretch of the curve) has the far part of its
+// stretch taken by the others; a stretch whose thread has not started is left to it.
+TEST(Threads, SharedStretchesHandOutEveryRankOnceAndSplitTheSlowest)
+{
+  for (const std::size_t threads : {2, 16, 64})
+  {
+    SCOPED_TRACE(threads);
+    const std::size_t count = 20000;
+    fd3::SharedStretches stretches(count, threads);
+    std::vector<std::atomic<int>> taken(count);
+    std::vector<std::size_t> mine(threads, 0);
+    std::vector<std::thread> team;
+    for (std::size_t k = 0; k < threads; ++k)
+      team.emplace_back([&, k] {
+        std::size_t rank = 0;
+        while (stretches.next(k, rank))
+        {
+          ++taken[rank];
+          mine[k] += rank >= count * k / threads && rank < count * (k + 1) / threads;
+          if (k == 0)
+            std::this_thread::sleep_for(std::chrono::microseconds(50));
+        }
+      });
+    for (std::thread& t : team)
+      t.join();
+    EXPECT_TRUE(std::all_of(taken.begin(), taken.end(), [](const auto& n) { return n == 1; }));
+    EXPECT_LT(mine[0], count / threads / 2) << "the slow thread's stretch was not split";
+  }
+  fd3::SharedStretches waiting(1000, 2);
+  std::size_t rank = 0, handedOut = 0;
+  while (waiting.next(1, rank))
+  {
+    EXPECT_GE(rank, 500u) << "a stretch whose thread had not started was split";
+    ++handedOut;
+  }
+  EXPECT_EQ(handedOut, 500u);
+  const auto rest = waiting.takeRest(0);
+  EXPECT_EQ(rest.first, 0u);
+  EXPECT_EQ(rest.second, 500u);
 }
 
 TEST(Threads, ProgressComesFromTheCallingThreadOnly)
