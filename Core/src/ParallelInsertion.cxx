@@ -74,14 +74,22 @@ double worthwhileYield(std::size_t threads)
 }
 } // namespace
 
-Partition::Partition(
-  const Mesh& mesh, const IdArray& vertices, int parts, const std::vector<int>& axes)
-  : mesh_(mesh), axes_(axes)
+Partition::Partition(const Mesh& mesh, const IdArray& vertices, int parts,
+  const std::vector<int>& axes, ThreadTeam& team)
+  : axes_(axes)
 {
   const std::size_t wanted = kSamplePerRegion * std::size_t(parts);
   const std::size_t stride = std::max<std::size_t>(1, vertices.size() / wanted);
-  for (std::size_t i = 0; i < vertices.size(); i += stride)
-    sample_.push_back(vertices[i]);
+  // The coordinates themselves, a cache miss each, gathered on every thread: the selections
+  // below read each several times, in no order.
+  sample_.resize((vertices.size() + stride - 1) / stride);
+  team.forRanges(sample_.size(), "regions", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const double* p = mesh.point(vertices[i * stride]);
+      sample_[i] = {p[0], p[1], p[2]};
+    }
+  });
   split(0, sample_.size(), parts, 0, Region());
 }
 
@@ -105,19 +113,20 @@ int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, c
   }
   const int axis = axes_[std::min<std::size_t>(depth, axes_.size() - 1)];
   const int left = parts / 2;
-  const auto coordinate = [&](VertId v) { return mesh_.point(v)[axis]; };
+  const auto coordinate = [axis](const Point& p) { return p[std::size_t(axis)]; };
   const auto first = sample_.begin() + static_cast<std::ptrdiff_t>(begin);
   const auto last = sample_.begin() + static_cast<std::ptrdiff_t>(end);
   const auto cut = first + static_cast<std::ptrdiff_t>((end - begin) * left / parts);
   double at = region.hi[axis]; // no sample point: all below
   if (cut < last)
   {
-    std::nth_element(
-      first, cut, last, [&](VertId a, VertId b) { return coordinate(a) < coordinate(b); });
+    std::nth_element(first, cut, last,
+      [&](const Point& a, const Point& b) { return coordinate(a) < coordinate(b); });
     at = coordinate(*cut);
   }
   const std::size_t middle = static_cast<std::size_t>(
-    std::partition(first, last, [&](VertId v) { return coordinate(v) < at; }) - sample_.begin());
+    std::partition(first, last, [&](const Point& p) { return coordinate(p) < at; }) -
+    sample_.begin());
   Region below = region, above = region;
   below.hi[axis] = at;
   above.lo[axis] = at;
@@ -255,8 +264,10 @@ bool Triangulator::insertInParallel(IdArray vertices, const std::function<bool(d
     else
     {
       const std::vector<int> axes = cutAxes(vertices);
-      vertices = runRegionPass(
-        vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes), progress);
+      IdArray left = runRegionPass(
+        vertices, Partition(mesh_, vertices, static_cast<int>(regions), axes, team_), progress);
+      team_.release(vertices, "regions");
+      vertices = std::move(left);
     }
   }
   // Each locking pass takes half the threads of the one before: what a pass put off lies where
@@ -273,9 +284,10 @@ bool Triangulator::insertInParallel(IdArray vertices, const std::function<bool(d
       lockingYield_[pass] *= 2;
       break;
     }
-    const std::size_t count = vertices.size();
-    vertices = runLockingPass(vertices, parts, pass, progress);
-    lockingYield_[pass] = 1.0 - double(vertices.size()) / double(count);
+    IdArray left = runLockingPass(vertices, parts, pass, progress);
+    lockingYield_[pass] = 1.0 - double(left.size()) / double(vertices.size());
+    team_.release(vertices, "regions");
+    vertices = std::move(left);
   }
   return !stop_ &&
     insertSerially(
@@ -360,6 +372,7 @@ IdArray Triangulator::runRegionPass(
           passDone_.fetch_add(1, std::memory_order_relaxed);
       }
       tried[k] = putOffAtStart + i;
+      std::vector<VertId>().swap(share[k]); // its pages given back on this thread
     }
     catch (...)
     {

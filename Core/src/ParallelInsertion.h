@@ -3,7 +3,9 @@
 #define fd3_ParallelInsertion_h
 
 #include "Inserter.h"
+#include "Threads.h"
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -18,7 +20,8 @@ namespace fd3
 class Partition
 {
 public:
-  Partition(const Mesh& mesh, const IdArray& vertices, int parts, const std::vector<int>& axes);
+  Partition(const Mesh& mesh, const IdArray& vertices, int parts, const std::vector<int>& axes,
+    ThreadTeam& team);
   int parts() const { return static_cast<int>(regions_.size()); }
   const Region& region(int k) const { return regions_[static_cast<std::size_t>(k)]; }
   /// The region that holds p (as Region::contains() decides).
@@ -34,9 +37,9 @@ private:
   };
   int split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region);
 
-  const Mesh& mesh_;
+  using Point = std::array<double, 3>;
   const std::vector<int>& axes_;
-  std::vector<VertId> sample_;
+  std::vector<Point> sample_;
   std::vector<Node> nodes_; // nodes_[0]: the root
   std::vector<Region> regions_;
 };
