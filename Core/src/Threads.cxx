@@ -22,11 +22,15 @@ ThreadTeam::ThreadTeam(int size) : size_(std::max(size, 1)) {}
 
 ThreadTeam::~ThreadTeam()
 {
+  for (std::size_t k = 0; k < helpers_.size(); ++k)
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    quit_ = true;
+    Seat& seat = seats_[k];
+    {
+      std::lock_guard<std::mutex> lock(seat.mutex);
+      seat.quit = true;
+    }
+    seat.wake.notify_one();
   }
-  wake_.notify_all();
   for (std::thread& helper : helpers_)
     helper.join();
 }
@@ -34,6 +38,7 @@ ThreadTeam::~ThreadTeam()
 void ThreadTeam::startHelpers()
 {
   started_ = true;
+  seats_ = std::make_unique<Seat[]>(std::size_t(size_ - 1));
   for (int k = 1; k < size_; ++k)
   {
     try
@@ -44,6 +49,21 @@ void ThreadTeam::startHelpers()
     {
       return; // the calling thread runs the parts of the threads that could not start
     }
+  }
+}
+
+void ThreadTeam::wakeChildren(std::size_t k)
+{
+  for (std::size_t child = std::max<std::size_t>(2 * k, 1); child <= 2 * k + 1; ++child)
+  {
+    if (child > onHelpers_)
+      return;
+    Seat& seat = seats_[child - 1];
+    {
+      std::lock_guard<std::mutex> lock(seat.mutex);
+      ++seat.generation;
+    }
+    seat.wake.notify_one();
   }
 }
 
@@ -64,18 +84,18 @@ void ThreadTeam::runPart(std::size_t k)
 
 void ThreadTeam::serve(std::size_t k)
 {
+  Seat& seat = seats_[k - 1];
   std::size_t seen = 0;
   for (;;)
   {
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return quit_ || generation_ != seen; });
-      if (quit_)
+      std::unique_lock<std::mutex> lock(seat.mutex);
+      seat.wake.wait(lock, [&] { return seat.quit || seat.generation != seen; });
+      if (seat.quit)
         return;
-      seen = generation_;
-      if (k >= parts_)
-        continue;
+      seen = seat.generation;
     }
+    wakeChildren(k);
     runPart(k);
     std::lock_guard<std::mutex> lock(mutex_);
     if (++finished_ == parts_)
@@ -97,11 +117,10 @@ void ThreadTeam::run(std::size_t parts, const std::function<void(std::size_t)>& 
     record_ = &record;
     failures_.assign(parts + 1, nullptr);
     parts_ = onHelpers + 1; // the parts the helpers run, and the calling thread's own
+    onHelpers_ = onHelpers;
     finished_ = 1;
-    ++generation_;
   }
-  if (onHelpers > 0)
-    wake_.notify_all();
+  wakeChildren(0);
   const double start = threadCpuSeconds();
   runPart(0);
   for (std::size_t k = onHelpers + 1; k < parts; ++k)

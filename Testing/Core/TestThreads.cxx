@@ -6,6 +6,7 @@
 #include "ExactValidator.h"
 #include "ParallelInsertion.h"
 #include "PointSets.h"
+#include "Threads.h"
 #include "fd3/Delaunay.h"
 
 #include <gtest/gtest.h>
@@ -122,6 +123,31 @@ TEST(Threads, ThreadedWorkIsRecorded)
     EXPECT_TRUE(std::any_of(r.threadedWork.begin(), r.threadedWork.end(),
       [&](const fd3::ThreadedWork& w) { return std::string(w.phase).rfind(phase, 0) == 0; }))
       << phase;
+}
+
+// A run wakes only the helpers it needs, each woken by its parent in a tree: every part runs once,
+// on its own thread, for every number of parts, in any order of runs.
+TEST(Threads, EveryPartRunsOnceOnItsOwnThreadForEveryCount)
+{
+  fd3::ThreadTeam team(64);
+  for (const std::size_t parts : {64, 1, 2, 3, 7, 64, 33, 5, 64, 16, 2})
+  {
+    SCOPED_TRACE(parts);
+    std::vector<std::atomic<int>> runs(parts);
+    std::vector<std::thread::id> ids(parts);
+    fd3::ThreadedWork& record = team.newRecord("test");
+    team.run(
+      parts,
+      [&](std::size_t k) {
+        ++runs[k];
+        ids[k] = std::this_thread::get_id();
+      },
+      record);
+    EXPECT_TRUE(std::all_of(runs.begin(), runs.end(), [](const auto& n) { return n == 1; }));
+    std::sort(ids.begin(), ids.end());
+    EXPECT_EQ(std::unique(ids.begin(), ids.end()), ids.end()) << "two parts shared a thread";
+    EXPECT_EQ(record.threadSeconds.size(), parts);
+  }
 }
 
 // A locking pass's stretches: every rank is handed out once, however the threads race to split
