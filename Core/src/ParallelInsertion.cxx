@@ -76,7 +76,6 @@ double worthwhileYield(std::size_t threads)
 
 Partition::Partition(const Mesh& mesh, const IdArray& vertices, int parts,
   const std::vector<int>& axes, ThreadTeam& team)
-  : axes_(axes)
 {
   const std::size_t wanted = kSamplePerRegion * std::size_t(parts);
   const std::size_t stride = std::max<std::size_t>(1, vertices.size() / wanted);
@@ -90,7 +89,50 @@ Partition::Partition(const Mesh& mesh, const IdArray& vertices, int parts,
       sample_[i] = {p[0], p[1], p[2]};
     }
   });
-  split(0, sample_.size(), parts, 0, Region());
+  // Level by level, the nodes of a level each on its own thread (their samples are disjoint).
+  struct Pending
+  {
+    std::size_t begin, end;
+    int parts, node;
+    Region region;
+  };
+  std::vector<Pending> level{{0, sample_.size(), parts, 0, Region()}};
+  nodes_.emplace_back();
+  for (std::size_t depth = 0; !level.empty(); ++depth)
+  {
+    const int axis = axes[std::min(depth, axes.size() - 1)];
+    std::vector<std::pair<double, std::size_t>> cuts(level.size());
+    team.run(
+      level.size(),
+      [&](std::size_t k) {
+        const Pending& node = level[k];
+        if (node.parts > 1)
+          cuts[k] = cut(node.begin, node.end, node.parts / 2, node.parts, axis, node.region);
+      },
+      team.newRecord("regions"));
+    std::vector<Pending> next;
+    for (std::size_t k = 0; k < level.size(); ++k)
+    {
+      const Pending& node = level[k];
+      if (node.parts == 1)
+      {
+        nodes_[node.node] = Node{-1, 0.0, static_cast<int>(regions_.size()), -1};
+        regions_.push_back(node.region);
+        continue;
+      }
+      const auto [at, middle] = cuts[k];
+      const int lower = static_cast<int>(nodes_.size()), upper = lower + 1;
+      nodes_.resize(nodes_.size() + 2);
+      nodes_[node.node] = Node{axis, at, lower, upper};
+      Region below = node.region, above = node.region;
+      below.hi[axis] = at;
+      above.lo[axis] = at;
+      const int left = node.parts / 2;
+      next.push_back({node.begin, middle, left, lower, below});
+      next.push_back({middle, node.end, node.parts - left, upper, above});
+    }
+    level = std::move(next);
+  }
 }
 
 int Partition::regionOf(const double* p) const
@@ -101,39 +143,24 @@ int Partition::regionOf(const double* p) const
   return nodes_[node].below;
 }
 
-int Partition::split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region)
+std::pair<double, std::size_t> Partition::cut(
+  std::size_t begin, std::size_t end, int left, int parts, int axis, const Region& region)
 {
-  const int index = static_cast<int>(nodes_.size());
-  nodes_.emplace_back();
-  if (parts == 1)
-  {
-    nodes_[index] = Node{-1, 0.0, static_cast<int>(regions_.size()), -1};
-    regions_.push_back(region);
-    return index;
-  }
-  const int axis = axes_[std::min<std::size_t>(depth, axes_.size() - 1)];
-  const int left = parts / 2;
   const auto coordinate = [axis](const Point& p) { return p[std::size_t(axis)]; };
   const auto first = sample_.begin() + static_cast<std::ptrdiff_t>(begin);
   const auto last = sample_.begin() + static_cast<std::ptrdiff_t>(end);
-  const auto cut = first + static_cast<std::ptrdiff_t>((end - begin) * left / parts);
+  const auto quantile = first + static_cast<std::ptrdiff_t>((end - begin) * left / parts);
   double at = region.hi[axis]; // no sample point: all below
-  if (cut < last)
+  if (quantile < last)
   {
-    std::nth_element(first, cut, last,
+    std::nth_element(first, quantile, last,
       [&](const Point& a, const Point& b) { return coordinate(a) < coordinate(b); });
-    at = coordinate(*cut);
+    at = coordinate(*quantile);
   }
   const std::size_t middle = static_cast<std::size_t>(
     std::partition(first, last, [&](const Point& p) { return coordinate(p) < at; }) -
     sample_.begin());
-  Region below = region, above = region;
-  below.hi[axis] = at;
-  above.lo[axis] = at;
-  const int lower = split(begin, middle, left, depth + 1, below);
-  const int upper = split(middle, end, parts - left, depth + 1, above);
-  nodes_[index] = Node{axis, at, lower, upper};
-  return index;
+  return {at, middle};
 }
 
 SharedStretches::SharedStretches(std::size_t count, std::size_t parts) : stretches_(parts)

@@ -35,10 +35,12 @@ private:
     int below; ///< a leaf's region
     int above;
   };
-  int split(std::size_t begin, std::size_t end, int parts, int depth, const Region& region);
+  /// Cuts samples [begin, end) of `region` across `axis` at their quantile left/parts, and moves
+  /// those below the cut to the front: the cut and where those above begin.
+  std::pair<double, std::size_t> cut(
+    std::size_t begin, std::size_t end, int left, int parts, int axis, const Region& region);
 
   using Point = std::array<double, 3>;
-  const std::vector<int>& axes_;
   std::vector<Point> sample_;
   std::vector<Node> nodes_; // nodes_[0]: the root
   std::vector<Region> regions_;
