@@ -173,8 +173,14 @@ SharedStretches::SharedStretches(std::size_t count, std::size_t parts) : stretch
 
 bool SharedStretches::next(std::size_t k, std::size_t& rank)
 {
-  std::atomic<std::uint64_t>& mine = stretches_[k].range;
-  stretches_[k].started.store(true, std::memory_order_relaxed);
+  Stretch& stretch = stretches_[k];
+  std::atomic<std::uint64_t>& mine = stretch.range;
+  if (!stretch.started.load(std::memory_order_relaxed))
+  {
+    stretch.clock = ThreadCpuClock::ofThisThread();
+    stretch.startCpu = stretch.clock.seconds();
+    stretch.started.store(true, std::memory_order_release);
+  }
   for (;;)
   {
     std::uint64_t range = mine.load(std::memory_order_relaxed);
@@ -190,18 +196,26 @@ bool SharedStretches::next(std::size_t k, std::size_t& rank)
   }
 }
 
+double SharedStretches::cpuSeconds(const Stretch& stretch)
+{
+  if (!stretch.started.load(std::memory_order_acquire))
+    return -1.0;
+  return stretch.clock.seconds() - stretch.startCpu;
+}
+
 bool SharedStretches::split(std::size_t k)
 {
+  const double mine = cpuSeconds(stretches_[k]);
+  // Stretches found waiting for a core in this call: the next longest is tried instead.
+  std::vector<char> waiting(stretches_.size(), 0);
   for (;;)
   {
     std::size_t longest = k, most = 0;
     for (std::size_t j = 0; j < stretches_.size(); ++j)
     {
-      if (!stretches_[j].started.load(std::memory_order_relaxed))
-        continue;
       const std::uint64_t range = stretches_[j].range.load(std::memory_order_relaxed);
       const std::size_t left = endOf(range) - std::min(beginOf(range), endOf(range));
-      if (left > most)
+      if (!waiting[j] && left > most)
       {
         most = left;
         longest = j;
@@ -209,6 +223,11 @@ bool SharedStretches::split(std::size_t k)
     }
     if (most < kLeastToSplit)
       return false;
+    if (cpuSeconds(stretches_[longest]) < kBusyShare * mine)
+    {
+      waiting[longest] = 1;
+      continue;
+    }
     std::uint64_t range = stretches_[longest].range.load(std::memory_order_relaxed);
     const std::size_t begin = beginOf(range), end = endOf(range);
     if (begin + kLeastToSplit > end)

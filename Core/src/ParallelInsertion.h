@@ -3,6 +3,7 @@
 #define fd3_ParallelInsertion_h
 
 #include "Inserter.h"
+#include "Platform.h"
 #include "Threads.h"
 
 #include <array>
@@ -50,9 +51,11 @@ private:
 /// stretch's points one by one from its start, and a thread whose stretch is spent takes the far
 /// half of what is left of the longest one. Insertions cost more in some stretches of the curve
 /// than in others (the inner side of a torus), and equal stretches would leave threads idle. Any
-/// thread may call next() for its own stretch while others do for theirs. A stretch whose thread
-/// has not started is not split: where threads outnumber cores, the first to run would take
-/// every stretch, and their CPU times would no longer model a core per thread.
+/// thread may call next() for its own stretch while others do for theirs. Only the stretch of a
+/// thread that has had about as much CPU time in the pass as the one splitting it is split: one
+/// that is long because its points cost more, not because its thread waited for a core. With a
+/// core per thread that is every thread; where threads outnumber cores, the first to run would
+/// otherwise take every stretch, and their CPU times would no longer model a core per thread.
 class SharedStretches
 {
 public:
@@ -68,6 +71,9 @@ private:
   struct alignas(64) Stretch
   {
     std::atomic<std::uint64_t> range{0};
+    // Set by its thread on its first next(), before `started`.
+    ThreadCpuClock clock;
+    double startCpu = 0;
     std::atomic<bool> started{false};
   };
   static std::uint64_t pack(std::size_t begin, std::size_t end)
@@ -78,9 +84,16 @@ private:
   static std::size_t endOf(std::uint64_t range) { return std::size_t(range >> 32); }
   /// Moves the far half of the longest stretch to thread k's; false when none has enough left.
   bool split(std::size_t k);
+  /// Its thread's CPU seconds in the pass so far; < 0 before it starts.
+  static double cpuSeconds(const Stretch& stretch);
 
   // Fewer points than this are left to their thread: a split costs an insertion's walk there.
   static constexpr std::size_t kLeastToSplit = 64;
+  // A stretch is split when its thread's CPU time in the pass is this share of the splitter's or
+  // more. Threads that each have a core differ by their start only; threads that share cores by
+  // the scheduler's turns, by a quarter and more over a short pass, and a looser share let
+  // threads that had their turn first take what others would have done.
+  static constexpr double kBusyShare = 0.95;
   std::vector<Stretch> stretches_;
 };
 

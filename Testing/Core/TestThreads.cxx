@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -151,8 +150,8 @@ TEST(Threads, EveryPartRunsOnceOnItsOwnThreadForEveryCount)
 }
 
 // A locking pass's stretches: every rank is handed out once, however the threads race to split
-// each other's; a thread slowed down (a costly stretch of the curve) has the far part of its
-// stretch taken by the others; a stretch whose thread has not started is left to it.
+// each other's; a thread slowed down by costly points (a costly stretch of the curve) has the far
+// part of its stretch taken by the others; a stretch whose thread has not started is left to it.
 TEST(Threads, SharedStretchesHandOutEveryRankOnceAndSplitTheSlowest)
 {
   for (const std::size_t threads : {2, 16, 64})
@@ -170,8 +169,10 @@ TEST(Threads, SharedStretchesHandOutEveryRankOnceAndSplitTheSlowest)
         {
           ++taken[rank];
           mine[k] += rank >= count * k / threads && rank < count * (k + 1) / threads;
-          if (k == 0)
-            std::this_thread::sleep_for(std::chrono::microseconds(50));
+          if (k == 0) // points that cost more: CPU time, not a wait for a core
+            for (const double start = fd3::threadCpuSeconds();
+                 fd3::threadCpuSeconds() < start + 50e-6;)
+              ;
         }
       });
     for (std::thread& t : team)
