@@ -51,17 +51,24 @@ constexpr std::size_t kShapeSample = 512;
 // Points whose box the cut axes are chosen in.
 constexpr std::size_t kBoxSample = 1024;
 
-/// Whether the first insertions of a region's share (`tried` of `share`, of which `putOff` were put
-/// off) say that the rest had better go to the locking passes at once: on a convex surface sample,
-/// whose hull faces and inner tetrahedra reach across the whole set, nearly all would be put off,
-/// each after a walk and part of a cavity. The trial is long: where a cut runs through a block of
-/// the curve, a region's share may begin with a sliver along the cut, all of it put off.
-bool hopelessRegion(std::size_t tried, std::size_t share, std::size_t putOff)
+/// Whether the first insertions of a region's share (`tried` of `share`, `putOff` of them put
+/// off) and of the whole pass (`passTried`, `passPutOff`, over `parts` regions) say that the rest
+/// of the share had better go to the locking passes at once: on a convex surface sample, whose
+/// hull faces and inner tetrahedra reach across the whole set, nearly all would be put off, each
+/// after a walk and part of a cavity. The trial is long: where a cut runs through a block of the
+/// curve, a region's share may begin with a sliver along the cut, all of it put off. And the pass
+/// must fare as badly: a region of clustered points may put off every point of its first cluster
+/// and few of the next.
+bool hopelessRegion(std::size_t tried, std::size_t share, std::size_t putOff, std::size_t passTried,
+  std::size_t passPutOff, std::size_t parts)
 {
   constexpr std::size_t kLeastTrial = 1024;
   constexpr double kHopelessYield = 0.25;
-  return tried >= std::max(kLeastTrial, share / 8) &&
-    double(putOff) > (1.0 - kHopelessYield) * double(tried);
+  const auto hopeless = [](std::size_t n, std::size_t off) {
+    return double(off) > (1.0 - kHopelessYield) * double(n);
+  };
+  return tried >= std::max(kLeastTrial, share / 8) && hopeless(tried, putOff) &&
+    passTried >= parts * kLeastTrial / 2 && hopeless(passTried, passPutOff);
 }
 
 /// The least share of its points that a locking pass on `threads` threads must put in to be faster
@@ -394,6 +401,7 @@ IdArray Triangulator::runRegionPass(
   std::vector<std::vector<VertId>> share, putOff;
   shareOut(vertices, partition, share, putOff);
   std::vector<std::size_t> tried(share.size(), 0);
+  std::atomic<std::size_t> passTried{0}, passPutOff{0}; // every thread's, every 256 tries
   passDone_ = 0;
   auto work = [&](std::size_t k) {
     try
@@ -401,12 +409,21 @@ IdArray Triangulator::runRegionPass(
       Inserter& inserter = *inserters_[k];
       const std::vector<VertId>& mine = share[k];
       const std::size_t putOffAtStart = putOff[k].size();
-      std::size_t i = 0;
+      std::size_t i = 0, reported = 0;
       for (; i < mine.size(); ++i)
       {
+        if (i % 256 == 0 && i > 0)
+        {
+          passTried.fetch_add(256, std::memory_order_relaxed);
+          passPutOff.fetch_add(
+            putOff[k].size() - putOffAtStart - reported, std::memory_order_relaxed);
+          reported = putOff[k].size() - putOffAtStart;
+        }
         if (i % 256 == 0 &&
           (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress)) ||
-            hopelessRegion(i, mine.size(), putOff[k].size() - putOffAtStart)))
+            hopelessRegion(i, mine.size(), putOff[k].size() - putOffAtStart,
+              passTried.load(std::memory_order_relaxed), passPutOff.load(std::memory_order_relaxed),
+              share.size())))
         {
           putOff[k].insert(
             putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
