@@ -122,13 +122,14 @@ std::size_t Triangulator::predictedSlots(std::size_t vertices, double margin) co
 void Triangulator::makeRoomFor(std::size_t count)
 {
   // The slots the vertices so far and `count` more are expected to take (their high-water mark),
-  // and a block's worth for every pool. The margin is below the reserve's: the ratio is measured
-  // later, over more vertices, and a last pass that demanded more than the reserve would copy the
-  // records for the room it does not use.
-  const std::size_t expected = predictedSlots(done_ + count, kPassMargin);
+  // with a margin on what they add, and a block's worth for every pool. A margin on the whole
+  // would outgrow the reserve in the late passes, whose ratio is measured over more vertices, and
+  // copy the records for room no pass uses.
+  const std::size_t expected = predictedSlots(done_ + count, 1.0);
   const std::size_t slots = mesh_.tets.slots();
+  const double added = expected > slots ? double(expected - slots) : 0.0;
   mesh_.tets.makeRoom(
-    (expected > slots ? expected - slots : 0) + 2 * SlotPool::kBlock * pools_.size() + 1024,
+    static_cast<std::size_t>(kPassMargin * added) + 2 * SlotPool::kBlock * pools_.size() + 1024,
     team_.stretches("records"));
 }
 

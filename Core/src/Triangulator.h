@@ -138,8 +138,8 @@ private:
   // parallel, with two threads): its stretch of the curve, far from the others' where they are
   // long, meets them at its ends.
   static constexpr std::size_t kMinPointsPerThread = 256;
-  // Over the slots predicted: the reserve's, made from the first rounds, and each pass's, made
-  // before it. Unwritten slots cost address space only.
+  // Over the slots predicted: the reserve's, made from the first rounds, on all of them; each
+  // pass's, made before it, on those it adds. Unwritten slots cost address space only.
   static constexpr double kReserveMargin = 1.15;
   static constexpr double kPassMargin = 1.1;
 
