@@ -412,22 +412,23 @@ IdArray Triangulator::runRegionPass(
       std::size_t i = 0, reported = 0;
       for (; i < mine.size(); ++i)
       {
-        if (i % 256 == 0 && i > 0)
+        if (i % 256 == 0)
         {
-          passTried.fetch_add(256, std::memory_order_relaxed);
-          passPutOff.fetch_add(
-            putOff[k].size() - putOffAtStart - reported, std::memory_order_relaxed);
-          reported = putOff[k].size() - putOffAtStart;
-        }
-        if (i % 256 == 0 &&
-          (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress)) ||
-            hopelessRegion(i, mine.size(), putOff[k].size() - putOffAtStart,
-              passTried.load(std::memory_order_relaxed), passPutOff.load(std::memory_order_relaxed),
-              share.size())))
-        {
-          putOff[k].insert(
-            putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
-          break;
+          const std::size_t putOffSoFar = putOff[k].size() - putOffAtStart;
+          if (i > 0)
+          {
+            passTried.fetch_add(256, std::memory_order_relaxed);
+            passPutOff.fetch_add(putOffSoFar - reported, std::memory_order_relaxed);
+            reported = putOffSoFar;
+          }
+          if (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress)) ||
+            hopelessRegion(i, mine.size(), putOffSoFar, passTried.load(std::memory_order_relaxed),
+              passPutOff.load(std::memory_order_relaxed), share.size()))
+          {
+            putOff[k].insert(
+              putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
+            break;
+          }
         }
         if (inserter.insert(mine[i]) == Inserter::Outcome::Deferred)
           putOff[k].push_back(mine[i]);
@@ -452,17 +453,16 @@ IdArray Triangulator::runRegionPass(
   regionYield_ = triedInAll > 0 ? double(passDone_) / double(triedInAll) : 0.0;
   done_ += passDone_;
   passDone_ = 0;
-  std::size_t left = 0;
-  for (const auto& list : putOff)
-    left += list.size();
-  record.left = left;
-  return mergeAscending(vertices, putOff);
+  return mergeAscending(vertices, putOff, record);
 }
 
 IdArray Triangulator::mergeAscending(
-  const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff)
+  const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff, ThreadedWork& pass)
 {
-  if (std::all_of(putOff.begin(), putOff.end(), [](const auto& list) { return list.empty(); }))
+  pass.left = 0;
+  for (const auto& list : putOff)
+    pass.left += list.size();
+  if (pass.left == 0)
     return {};
   ThreadedWork& record = team_.newRecord("regions");
   const VertId first = vertices.front();
@@ -569,11 +569,7 @@ IdArray Triangulator::runLockingPass(
   // Between passes every slot is free again: live ones were let go after each insertion, and the
   // pools' free ones are marked for the next locking pass when it starts.
   markFreeSlots(false);
-  std::size_t left = 0;
-  for (const auto& list : putOff)
-    left += list.size();
-  record.left = left;
-  return mergeAscending(vertices, putOff);
+  return mergeAscending(vertices, putOff, record);
 }
 
 std::function<void()> Triangulator::progressPoll(const std::function<bool(double)>& progress)

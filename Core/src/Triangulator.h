@@ -108,8 +108,9 @@ private:
     const std::function<bool(double)>& progress);
   /// The vertices of the lists of `putOff`, in any order, merged into one, ascending, on every
   /// thread: each marks its list's vertices in a flag per rank of `vertices` (ascending), then
-  /// each stretch of the flags writes its own.
-  IdArray mergeAscending(const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff);
+  /// each stretch of the flags writes its own. Their count goes to `pass`'s record of points left.
+  IdArray mergeAscending(
+    const IdArray& vertices, const std::vector<std::vector<VertId>>& putOff, ThreadedWork& pass);
   /// Inserts `vertices` (in curve order), a stretch of them on each of `parts` threads at first
   /// (SharedStretches), each holding the tetrahedra it reads and writes in the owner table;
   /// returns those put off because another thread held a tetrahedron they needed.
