@@ -128,8 +128,9 @@ bool Inserter::digCavity(TetId base, VertId v)
         // outcome would wait for the determinant.
         for (int g = 0; g < 4; ++g)
           prefetchTet(tetOf(tets_.neighbor(n, g)));
+        // n shares with t, whose four vertices are in the region, all but the one opposite.
         if (restricted_)
-          owned &= !inside || allVerticesInRegion(n);
+          owned &= !inside || inRegion(tets_.vertex(n, faceOf(across)));
       }
       // Field by field: a whole BoundaryFacet spilled t and f to the stack as two 4-byte stores
       // and reloaded them as one 8-byte value, which stalls store forwarding.

@@ -109,10 +109,12 @@ bool Inserter::acquire(TetId t)
   return true;
 }
 
-bool Inserter::mayEnter(TetId t)
+bool Inserter::mayEnter(TetId t, int entryFace)
 {
+  // t shares with the one the walk leaves, the inserter's, all vertices but the one opposite.
   if (!owners_)
-    return isOwned(t);
+    return !restricted_ ||
+      (entryFace < 0 ? allVerticesInRegion(t) : inRegion(tets_.vertex(t, entryFace)));
   const std::size_t before = held_.size();
   if (!acquire(t))
     return false;

@@ -155,9 +155,10 @@ private:
   }
   /// In a locking pass: whether this inserter holds t now, taking it if no one does.
   bool acquire(TetId t);
-  /// Whether the walk may go on into t: in a region, when t is the inserter's; in a locking pass,
-  /// when it could take t and t is live; the walk then lets go of the one it leaves.
-  bool mayEnter(TetId t);
+  /// Whether the walk may go on into t, entered through its face `entryFace` (-1 for the start):
+  /// in a region, when t is the inserter's; in a locking pass, when it could take t and t is live;
+  /// the walk then lets go of the one it leaves.
+  bool mayEnter(TetId t, int entryFace);
   /// Counts a put-off insertion, after whatever it did was undone.
   Outcome deferred();
   /// Lets go of the tetrahedra taken for the insertion that ended, except the slots it freed,

@@ -74,7 +74,7 @@ TetId Inserter::regionStart(VertId v) const
   for (int k = 1; k < 4; ++k)
     if (!inRegion(tets_.vertex(t, k)))
       return regionStart_;
-  return isOwned(t) ? t : regionStart_;
+  return inRegion(tets_.vertex(t, 0)) ? t : regionStart_;
 }
 
 // The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold or
@@ -97,7 +97,7 @@ TetId Inserter::walk(TetId t, VertId v)
       t = restricted_ || owners_ ? kNoTet : scanForBase(v, toFirstConflict);
       break;
     }
-    if (!mayEnter(t))
+    if (!mayEnter(t, entryFace))
     {
       t = kNoTet;
       break;

@@ -34,6 +34,7 @@
 #include <new>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 namespace fd3
 {
@@ -409,21 +410,27 @@ IdArray Triangulator::runRegionPass(
       Inserter& inserter = *inserters_[k];
       const std::vector<VertId>& mine = share[k];
       const std::size_t putOffAtStart = putOff[k].size();
-      std::size_t i = 0, reported = 0;
+      std::size_t i = 0, triedReported = 0, putOffReported = 0;
+      // The shared counts take each thread's every 256 tries: an atomic add on every insertion
+      // moved their cache line from core to core.
+      const auto report = [&] {
+        const std::size_t putOffSoFar = putOff[k].size() - putOffAtStart;
+        const std::size_t tries = i - triedReported, putOffNow = putOffSoFar - putOffReported;
+        passTried.fetch_add(tries, std::memory_order_relaxed);
+        passPutOff.fetch_add(putOffNow, std::memory_order_relaxed);
+        passDone_.fetch_add(tries - putOffNow, std::memory_order_relaxed);
+        triedReported = i;
+        putOffReported = putOffSoFar;
+      };
       for (; i < mine.size(); ++i)
       {
         if (i % 256 == 0)
         {
-          const std::size_t putOffSoFar = putOff[k].size() - putOffAtStart;
-          if (i > 0)
-          {
-            passTried.fetch_add(256, std::memory_order_relaxed);
-            passPutOff.fetch_add(putOffSoFar - reported, std::memory_order_relaxed);
-            reported = putOffSoFar;
-          }
+          report();
           if (stop_ || (k == 0 && i % kProgressInterval == 0 && !reportProgress(progress)) ||
-            hopelessRegion(i, mine.size(), putOffSoFar, passTried.load(std::memory_order_relaxed),
-              passPutOff.load(std::memory_order_relaxed), share.size()))
+            hopelessRegion(i, mine.size(), putOffReported,
+              passTried.load(std::memory_order_relaxed), passPutOff.load(std::memory_order_relaxed),
+              share.size()))
           {
             putOff[k].insert(
               putOff[k].end(), mine.begin() + static_cast<std::ptrdiff_t>(i), mine.end());
@@ -432,9 +439,9 @@ IdArray Triangulator::runRegionPass(
         }
         if (inserter.insert(mine[i]) == Inserter::Outcome::Deferred)
           putOff[k].push_back(mine[i]);
-        else
-          passDone_.fetch_add(1, std::memory_order_relaxed);
       }
+      if (i == mine.size()) // else the rest, put off untried, was after the last report
+        report();
       tried[k] = putOffAtStart + i;
       std::vector<VertId>().swap(share[k]); // its pages given back on this thread
     }
@@ -535,23 +542,27 @@ IdArray Triangulator::runLockingPass(
     inserter.lockIn(owners_.get(), ownerSlots_, static_cast<std::uint8_t>(k + 1));
     try
     {
-      std::size_t i = 0;
+      std::size_t i = 0, inserted = 0; // inserted since the last report
       for (std::size_t tried = 0; stretches.next(k, i); ++tried)
       {
-        if (tried % 256 == 0 &&
-          (stop_ || (k == 0 && tried % kProgressInterval == 0 && !reportProgress(progress))))
+        if (tried % 256 == 0) // as in the region pass, the shared count every 256 tries
         {
-          const auto [begin, end] = stretches.takeRest(k);
-          putOff[k].push_back(vertices[i]);
-          putOff[k].insert(putOff[k].end(), vertices.begin() + static_cast<std::ptrdiff_t>(begin),
-            vertices.begin() + static_cast<std::ptrdiff_t>(end));
-          break;
+          passDone_.fetch_add(std::exchange(inserted, 0), std::memory_order_relaxed);
+          if (stop_ || (k == 0 && tried % kProgressInterval == 0 && !reportProgress(progress)))
+          {
+            const auto [begin, end] = stretches.takeRest(k);
+            putOff[k].push_back(vertices[i]);
+            putOff[k].insert(putOff[k].end(), vertices.begin() + static_cast<std::ptrdiff_t>(begin),
+              vertices.begin() + static_cast<std::ptrdiff_t>(end));
+            break;
+          }
         }
         if (inserter.insert(vertices[i]) == Inserter::Outcome::Deferred)
           putOff[k].push_back(vertices[i]);
         else
-          passDone_.fetch_add(1, std::memory_order_relaxed);
+          ++inserted;
       }
+      passDone_.fetch_add(inserted, std::memory_order_relaxed);
     }
     catch (...)
     {
