@@ -113,8 +113,7 @@ bool Inserter::mayEnter(TetId t, int entryFace)
 {
   // t shares with the one the walk leaves, the inserter's, all vertices but the one opposite.
   if (!owners_)
-    return !restricted_ ||
-      (entryFace < 0 ? allVerticesInRegion(t) : inRegion(tets_.vertex(t, entryFace)));
+    return entryFace < 0 ? isOwned(t) : inRegion(tets_.vertex(t, entryFace));
   const std::size_t before = held_.size();
   if (!acquire(t))
     return false;
