@@ -24,7 +24,7 @@ fd3::Triangulation run(const fd3test::Points& p, int threads)
 {
   fd3::Options options;
   options.threads = threads;
-  options.pointsPerThread = 256; // parallel rounds already at test sizes
+  options.pointsPerThread = 32; // region passes on 64 threads already at test sizes
   return fd3::triangulate(p.data(), p.size() / 3, options);
 }
 
@@ -98,6 +98,42 @@ TEST(Threads, RegionPassesWhereTheyPayLockingPassesElsewhere)
   const fd3::Triangulation cube = run(fd3test::uniformCube(kPoints, 4), 2);
   EXPECT_GT(insertedBy(cube, "insertion region"), kPoints / 2);
   EXPECT_GT(insertedBy(cube, "insertion locking"), 0u);
+}
+
+// A region pass gives each thread a region of pointsPerThread points at least; a smaller round goes
+// to the locking passes whole, on every thread. Before, such a round was cut into fewer regions
+// than threads, and at 64 threads the rounds of 15k to 125k points of 4M took 7 to 10 ms each,
+// the longest region's share, against about 1 ms in the locking pass.
+TEST(Threads, RegionPassesGiveEveryThreadARegionOfPointsPerThread)
+{
+  fd3::Options options;
+  options.threads = 4;
+  options.pointsPerThread = 512;
+  const fd3test::Points p = fd3test::uniformCube(kPoints, 6);
+  const fd3::Triangulation r = fd3::triangulate(p.data(), p.size() / 3, options);
+  ASSERT_EQ(r.status, fd3::Status::Ok);
+  const std::size_t least = 4 * options.pointsPerThread;
+  std::size_t regionPasses = 0, roundsLocked = 0;
+  bool afterRegionPass = false;
+  for (const fd3::ThreadedWork& w : r.threadedWork)
+  {
+    const std::string phase = w.phase;
+    if (phase.rfind("insertion region", 0) == 0)
+    {
+      ++regionPasses;
+      EXPECT_GE(w.points, least);
+      EXPECT_EQ(w.threadSeconds.size(), 4u);
+    }
+    else if (phase == "insertion locking pass 1" && !afterRegionPass)
+    {
+      ++roundsLocked; // a whole round
+      EXPECT_LT(w.points, least);
+    }
+    if (phase.rfind("insertion", 0) == 0)
+      afterRegionPass = phase.rfind("insertion region", 0) == 0;
+  }
+  EXPECT_GT(regionPasses, 0u);
+  EXPECT_GT(roundsLocked, 0u);
 }
 
 // Every stretch of threaded work names its phase and each of its threads' CPU time, and the

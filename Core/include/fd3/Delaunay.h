@@ -79,8 +79,9 @@ struct Options
   /// hardware thread, or kMinThreadLimit where that is more, are started; larger values run as
   /// that many.
   int threads = 1;
-  /// A BRIO round goes in parallel when it has at least this many points per thread (smaller
-  /// ones do not repay the threads' start and the regions' borders).
+  /// A BRIO round is split into one region per thread when it has at least this many points per
+  /// thread: smaller regions put off too many insertions at their borders. Smaller rounds go to
+  /// the locking passes, which need no regions.
   std::size_t pointsPerThread = 4096;
 };
 
