@@ -5,6 +5,7 @@
 #include "Inserter.h"
 #include "Platform.h"
 #include "Threads.h"
+#include "fd3/BulkAllocator.h"
 
 #include <array>
 #include <atomic>
@@ -42,8 +43,8 @@ private:
     std::size_t begin, std::size_t end, int left, int parts, int axis, const Region& region);
 
   using Point = std::array<double, 3>;
-  std::vector<Point> sample_;
-  std::vector<Node> nodes_; // nodes_[0]: the root
+  std::vector<Point, BulkAllocator<Point>> sample_; // not zeroed first, on the calling thread
+  std::vector<Node> nodes_;                         // nodes_[0]: the root
   std::vector<Region> regions_;
 };
 
