@@ -123,6 +123,7 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
   };
   // count[k * kBuckets + b]: part k's words with digit b; then where the next of them goes.
   std::vector<std::uint32_t> count(parts * kBuckets); // fewer than 2^32 points
+  std::vector<std::uint32_t> total(kBuckets);         // each digit's words, then where they start
   Words buffer(n);
   for (int shift = 32; shift < 32 + bits; shift += kDigit)
   {
@@ -133,10 +134,29 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
       for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
         ++mine[digit(words[i])];
     });
-    std::uint32_t offset = 0; // by digit, then by part: stable
-    for (std::size_t b = 0; b < kBuckets; ++b)
-      for (std::size_t k = 0; k < parts; ++k)
-        offset += std::exchange(count[k * kBuckets + b], offset);
+    // Where each part's words of each digit go: by digit, then by part (stable). Each thread sums
+    // a stretch of digits over the parts, then turns them into offsets: one thread walking every
+    // digit across every part's row missed the cache on each step.
+    forParts([&](std::size_t k) {
+      for (std::size_t b = kBuckets * k / parts; b < kBuckets * (k + 1) / parts; ++b)
+      {
+        std::uint32_t sum = 0;
+        for (std::size_t j = 0; j < parts; ++j)
+          sum += count[j * kBuckets + b];
+        total[b] = sum;
+      }
+    });
+    std::uint32_t start = 0;
+    for (std::uint32_t& words : total)
+      start += std::exchange(words, start);
+    forParts([&](std::size_t k) {
+      for (std::size_t b = kBuckets * k / parts; b < kBuckets * (k + 1) / parts; ++b)
+      {
+        std::uint32_t offset = total[b];
+        for (std::size_t j = 0; j < parts; ++j)
+          offset += std::exchange(count[j * kBuckets + b], offset);
+      }
+    });
     forParts([&](std::size_t k) {
       std::uint32_t* next = &count[k * kBuckets];
       for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
