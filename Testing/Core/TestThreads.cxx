@@ -200,12 +200,16 @@ TEST(Threads, SharedStretchesHandOutEveryRankOnceAndSplitTheSlowest)
     std::vector<std::size_t> mine(threads, 0);
     // Thread 0's points cost CPU time (not a wait for a core). The others start once it has had
     // more CPU time than they will need for their own stretches, whatever the machine's load, so
-    // that its stretch is theirs to split; they wait asleep, which costs them none.
+    // that its stretch is theirs to split; they wait asleep, which costs them none. Its points
+    // go on costing until another thread has taken one of its stretch: on a loaded machine (the
+    // thread sanitizer's 64 threads on 2 cores) it once finished its stretch before the others had
+    // run at all.
     const auto burn = [](double seconds) {
       for (const double start = fd3::threadCpuSeconds(); fd3::threadCpuSeconds() < start + seconds;)
         ;
     };
-    std::atomic<bool> go{false};
+    std::atomic<bool> go{false}, split{false};
+    double giveUp = 0; // thread 0's
     std::vector<std::thread> team;
     for (std::size_t k = 0; k < threads; ++k)
       team.emplace_back([&, k] {
@@ -216,14 +220,19 @@ TEST(Threads, SharedStretchesHandOutEveryRankOnceAndSplitTheSlowest)
         {
           ++taken[rank];
           mine[k] += rank >= count * k / threads && rank < count * (k + 1) / threads;
+          if (k > 0 && rank < count / threads)
+            split = true;
           if (k == 0)
           {
             if (!go)
             {
               burn(0.2);
               go = true;
+              giveUp = fd3::threadCpuSeconds() + 5.0;
             }
-            burn(50e-6);
+            do
+              burn(50e-6);
+            while (!split && fd3::threadCpuSeconds() < giveUp);
           }
         }
       });
