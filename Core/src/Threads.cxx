@@ -174,17 +174,7 @@ void ThreadTeam::forRanges(std::size_t count, const char* phase,
 
 void ThreadTeam::releasePages(void* begin, std::size_t bytes, const char* phase)
 {
-  // The kernel's work for a page is that of hundreds of items of other work: parts of
-  // kMinPagesPerPart pages, where kMinItemsPerPart left a 16 MB block to one thread.
-  fd3::releasePages(
-    [this, phase](std::size_t pages, const std::function<void(std::size_t, std::size_t)>& f) {
-      const std::size_t parts =
-        std::clamp<std::size_t>(pages / kMinPagesPerPart, 1, std::size_t(size_));
-      run(
-        parts, [&](std::size_t k) { f(pages * k / parts, pages * (k + 1) / parts); },
-        newRecord(phase));
-    },
-    begin, bytes);
+  fd3::releasePages(stretches(phase), begin, bytes);
 }
 
 Stretches ThreadTeam::stretches(const char* phase)

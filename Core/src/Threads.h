@@ -60,8 +60,6 @@ public:
   void forRanges(std::size_t count, const char* phase,
     const std::function<void(std::size_t, std::size_t, std::size_t)>& f);
   static constexpr std::size_t kMinItemsPerPart = 4096;
-  /// releasePages() gives each thread this many pages or more.
-  static constexpr std::size_t kMinPagesPerPart = 256;
   /// Runs write(k, begin, end, at) on stretch k of partsFor(last - first) consecutive stretches of
   /// [first, last), after each has counted with count(begin, end) what it will write: `at` is
   /// where stretch k's output starts, `written` where the first one's does (on return, where the
