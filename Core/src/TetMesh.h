@@ -175,7 +175,9 @@ public:
         grown.begin() + 8 * static_cast<std::ptrdiff_t>(begin));
     });
     records_.swap(grown);
-    releasePages(copy, grown.data(), grown.capacity() * sizeof(std::uint32_t));
+    // The slots handed out so far, the only ones written: released in even stretches (of the whole
+    // block, the first thread's held them all; free() gives back the rest).
+    releasePages(copy, grown.data(), 8 * slots() * sizeof(std::uint32_t));
   }
   std::size_t capacity() const { return records_.size() / 8; }
 
