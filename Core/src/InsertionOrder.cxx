@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <mutex>
 #include <random>
 #include <unordered_map>
 #include <utility>
@@ -16,6 +17,8 @@ namespace
 // The smallest run of equal curve keys worth sorting again inside its own box (smaller runs are
 // ordered by their coordinates).
 constexpr std::size_t kRunWorthRefining = 8;
+// Runs refined after the others, shared out by length.
+constexpr std::size_t kLongRun = 4096;
 
 // The kHilbertBits (10) low bits of x moved to every third bit (bit b to bit 3b).
 std::uint32_t spreadBits(std::uint32_t x)
@@ -262,6 +265,37 @@ void forRanges(
     f(0, count);
 }
 
+/// Calls refine(begin, end) on every run, each run on one of the team's threads: the longest
+/// first, each to the thread with the fewest points so far.
+void refineLongRuns(std::vector<std::pair<std::size_t, std::size_t>>& runs,
+  const std::function<void(std::size_t, std::size_t)>& refine, ThreadTeam& team)
+{
+  if (runs.empty())
+    return;
+  const auto length = [](const std::pair<std::size_t, std::size_t>& run) {
+    return run.second - run.first;
+  };
+  std::sort(runs.begin(), runs.end(), [&](const auto& a, const auto& b) {
+    return length(a) != length(b) ? length(a) > length(b) : a.first < b.first;
+  });
+  const std::size_t parts = std::min<std::size_t>(runs.size(), std::size_t(team.size()));
+  std::vector<std::vector<std::size_t>> mine(parts);
+  std::vector<std::size_t> load(parts, 0);
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    const std::size_t k = std::size_t(std::min_element(load.begin(), load.end()) - load.begin());
+    mine[k].push_back(r);
+    load[k] += length(runs[r]);
+  }
+  team.run(
+    parts,
+    [&](std::size_t k) {
+      for (const std::size_t r : mine[k])
+        refine(runs[r].first, runs[r].second);
+    },
+    team.newRecord("sort"));
+}
+
 /// With a team at the top level: the keys, the radix sort and the runs, each thread a stretch.
 void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box,
   int depth, ThreadTeam* team)
@@ -287,7 +321,15 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
   });
   radixSortByHighHalf(entries, 3 * kHilbertBits, team);
   const auto cell = [&](std::size_t i) { return entries[i] >> 32; };
-  // Each stretch takes the runs that start in it.
+  const auto refine = [&](std::size_t begin, std::size_t end) {
+    hilbertSort(
+      xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin), depth + 1, nullptr);
+  };
+  // Each stretch takes the runs that start in it, but for the long ones (a dense cluster's cells),
+  // which are refined once all stretches are done, the longest first to the thread with the least:
+  // a stretch through dense clusters had several times the work of one through sparse points.
+  std::vector<std::pair<std::size_t, std::size_t>> longRuns;
+  std::mutex longRunsMutex;
   forRanges(team, count, [&](std::size_t first, std::size_t last) {
     std::size_t begin = first;
     while (begin > 0 && begin < last && cell(begin) == cell(begin - 1))
@@ -303,16 +345,23 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
       // unless halving subnormal coordinates made distinct ones equal: such a run is sorted as
       // it is.
       const bool refines = end - begin < count && depth < kMaxRefinements;
-      if (end - begin >= kRunWorthRefining && refines)
-        hilbertSort(xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin),
-          depth + 1, nullptr);
+      if (team && end - begin >= kLongRun && refines)
+      {
+        std::lock_guard<std::mutex> lock(longRunsMutex);
+        longRuns.emplace_back(begin, end);
+      }
+      else if (end - begin >= kRunWorthRefining && refines)
+        refine(begin, end);
       else if (end - begin > 1)
         sortRunAndMarkDuplicates(xyz, ids + begin, end - begin);
       begin = end;
     }
   });
   if (team)
+  {
     team->release(entries, "sort");
+    refineLongRuns(longRuns, refine, *team);
+  }
 }
 
 /// Keeps the first of every run of equal points in `sorted` (the unmarked one) and lists the
