@@ -137,8 +137,8 @@ private:
     "insertion locking pass 2", "insertion locking pass 3", "insertion locking pass 4"};
   // The fewest points a thread takes in a locking pass (and so the smallest round that goes in
   // parallel, with two threads): its stretch of the curve, far from the others' where they are
-  // long, meets them at its ends. 64 insertions cost far more than waking a thread; with 256, the
-  // small first rounds and what a pass left went in serially, 8 ms of the 4M cube at 64 threads.
+  // long, meets them at its ends. 64 insertions cost far more than waking a thread; a larger
+  // bound left the small first rounds and what a pass put off to the serial pass.
   static constexpr std::size_t kMinPointsPerThread = 64;
   // Over the slots predicted: the reserve's, made from the first rounds, on all of them; each
   // pass's, made before it, on those it adds. Unwritten slots cost address space only.

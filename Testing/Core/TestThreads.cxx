@@ -102,8 +102,8 @@ TEST(Threads, RegionPassesWhereTheyPayLockingPassesElsewhere)
 
 // A region pass gives each thread a region of pointsPerThread points at least; a smaller round goes
 // to the locking passes whole, on every thread. Before, such a round was cut into fewer regions
-// than threads, and at 64 threads the rounds of 15k to 125k points of 4M took 7 to 10 ms each,
-// the longest region's share, against about 1 ms in the locking pass.
+// than threads, and each took a region's share of the round, several times what the locking pass
+// on every thread takes.
 TEST(Threads, RegionPassesGiveEveryThreadARegionOfPointsPerThread)
 {
   fd3::Options options;
@@ -201,9 +201,8 @@ TEST(Threads, SharedStretchesHandOutEveryRankOnceAndSplitTheSlowest)
     // Thread 0's points cost CPU time (not a wait for a core). The others start once it has had
     // more CPU time than they will need for their own stretches, whatever the machine's load, so
     // that its stretch is theirs to split; they wait asleep, which costs them none. Its points
-    // go on costing until another thread has taken one of its stretch: on a loaded machine (the
-    // thread sanitizer's 64 threads on 2 cores) it once finished its stretch before the others had
-    // run at all.
+    // go on costing until another thread has taken part of its stretch: where threads far
+    // outnumber the cores, it could finish its stretch before the others had run at all.
     const auto burn = [](double seconds) {
       for (const double start = fd3::threadCpuSeconds(); fd3::threadCpuSeconds() < start + seconds;)
         ;
