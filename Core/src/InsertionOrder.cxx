@@ -150,8 +150,8 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
       }
     });
     std::uint32_t start = 0;
-    for (std::uint32_t& words : total)
-      start += std::exchange(words, start);
+    for (std::uint32_t& digitWords : total)
+      start += std::exchange(digitWords, start);
     forParts([&](std::size_t k) {
       for (std::size_t b = kBuckets * k / parts; b < kBuckets * (k + 1) / parts; ++b)
       {

@@ -5,12 +5,12 @@
 //   (a kd split), and each thread inserts the points of its box, in curve order, changing only
 //   tetrahedra whose four vertices are in its box (Region, in Inserter.h: no locks, no two
 //   threads ever touch one tetrahedron). An insertion that would reach outside its box is put
-//   off. The cut axes follow
-//   the mesh's tetrahedra: on a surface sample they are thin across the surface's long directions,
-//   and a cut across the axes along which they are thin crosses few of them; volume data, whose
-//   tetrahedra are as wide every way, is cut across its longest axes in turn. A region whose first
-//   eighth puts nearly every point off sends the rest to the locking passes. Design read from
-//   HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code ours.
+//   off. The cut axes follow the mesh's tetrahedra: on a surface sample they are thin across the
+//   surface's long directions, and a cut across the axes along which they are thin crosses few of
+//   them; volume data, whose tetrahedra are as wide every way, is cut across its longest axes in
+//   turn. A region whose first eighth puts nearly every point off sends the rest to the locking
+//   passes. Design read from HXT's partitioned insertion (Marot, Pellerin, Remacle 2019); code
+//   ours.
 // * Locking passes: each thread takes a stretch of the curve (and, once done, the far half of what
 //   is left of the longest other, SharedStretches) and holds every tetrahedron it reads
 //   or writes in an owner table (one byte per slot, compare-and-swap), hand over hand along its
