@@ -739,29 +739,19 @@ struct CurvePoints
 CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
   std::size_t generators, const std::array<double, 6>& points, const std::array<double, 6>& box)
 {
-  double both[6], centre[3], scale[3];
   const double cells = double(1u << kHilbertBits);
+  double scale[3];
   for (int a = 0; a < 3; ++a)
   {
-    both[2 * a] = std::min(points[2 * a], box[2 * a]);
-    both[2 * a + 1] = std::max(points[2 * a + 1], box[2 * a + 1]);
-    centre[a] = both[2 * a] / 2 + both[2 * a + 1] / 2;
     const double extent = points[2 * a + 1] - points[2 * a];
     scale[a] = extent > 0 && std::isfinite(extent) ? cells / extent : 0;
   }
-  double reach = 2 * diagonal(both);
-  if (reach == 0)
-    reach = 1; // one point and a box of no volume: any cube will do
+  const std::vector<double> far = voronoiFarPoints(points, box);
+  if (far.empty())
+    return {};
   CurvePoints curve;
   curve.xyz.resize(3 * (count + kFarPoints));
-  for (int k = 0; k < kFarPoints; ++k)
-    for (int a = 0; a < 3; ++a)
-    {
-      const double x = centre[a] + ((k >> a) & 1 ? reach : -reach);
-      if (!std::isfinite(x))
-        return {};
-      curve.xyz[3 * (count + k) + a] = x;
-    }
+  std::copy(far.begin(), far.end(), curve.xyz.begin() + std::ptrdiff_t(3 * count));
   Words keys(count); // position along the curve << 32 | id
   team.forRanges(count, "voronoi curve", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
@@ -1233,38 +1223,43 @@ void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces
     },
     team.newRecord("voronoi clipped"));
 }
-} // namespace
-
-std::size_t VoronoiCells::numberOfNeighbors(std::size_t cell) const
+/// The tetrahedra's vertices and the representatives of a mesh of points in their input order
+/// (the far points last), in the curve's ids instead (inputId: the input id at each place).
+void renumberAlongCurve(ThreadTeam& team, const IdArray& inputId, Triangulation& mesh)
 {
-  return static_cast<std::size_t>(std::count_if(faceNeighbors.begin() + cellFaces[cell],
-    faceNeighbors.begin() + cellFaces[cell + 1], [](std::uint32_t q) { return q < kBoxFace; }));
+  const std::size_t count = inputId.size();
+  IdArray place(count + kFarPoints);
+  team.forRanges(count, "voronoi curve", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+      place[inputId[k]] = static_cast<std::uint32_t>(k);
+  });
+  for (std::size_t k = count; k < count + kFarPoints; ++k)
+    place[k] = static_cast<std::uint32_t>(k);
+  std::uint32_t* t4 = mesh.tetrahedra.data();
+  team.forRanges(
+    mesh.tetrahedra.size(), "voronoi curve", [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        t4[i] = place[t4[i]];
+    });
+  IdArray representative(mesh.representative.size());
+  team.forRanges(
+    count + kFarPoints, "voronoi curve", [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        const std::uint32_t id = k < count ? inputId[k] : static_cast<std::uint32_t>(k);
+        const std::uint32_t r = mesh.representative[id];
+        representative[k] = r == kNoPoint ? kNoPoint : place[r];
+      }
+    });
+  mesh.representative.swap(representative);
 }
 
-VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOptions& options)
+/// The cells from the tetrahedralization of the points along the curve and the far points (in
+/// the curve's ids), with each point's density in the curve's order where asked for.
+VoronoiCells cellsOf(ThreadTeam& team, CurvePoints curve, std::size_t count,
+  const VoronoiOptions& options, Triangulation mesh, const std::vector<double>& density,
+  VoronoiCells cells)
 {
-  VoronoiCells cells;
-  cells.cellFaces.assign(1, 0);
-  cells.faceStart.assign(1, 0);
-  cells.stats.inputPoints = count;
-  ThreadTeam team(boundedThreads(options.threads));
-  std::array<double, 6> bounds;
-  if (!finiteBounds(team, xyz, count, bounds))
-  {
-    cells.status = Status::Empty;
-    cells.stats.nonFinitePoints = count;
-    return cells;
-  }
-  cells.box = isBox(options.box) ? options.box : bounds;
-  CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
-  if (curve.xyz.empty())
-  {
-    cells.status = Status::OutOfRange;
-    return cells;
-  }
-
-  std::vector<double> density;
-  Triangulation mesh = meshOf(curve, count, options, density);
   cells.stats = mesh.stats;
   cells.stats.inputPoints -= kFarPoints;
   cells.stats.insertedPoints -= kFarPoints;
@@ -1356,6 +1351,110 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   const std::vector<ThreadedWork> records = team.records();
   cells.threadedWork.insert(cells.threadedWork.end(), records.begin(), records.end());
   return cells;
+}
+
+} // namespace
+
+std::size_t VoronoiCells::numberOfNeighbors(std::size_t cell) const
+{
+  return static_cast<std::size_t>(std::count_if(faceNeighbors.begin() + cellFaces[cell],
+    faceNeighbors.begin() + cellFaces[cell + 1], [](std::uint32_t q) { return q < kBoxFace; }));
+}
+
+VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOptions& options)
+{
+  VoronoiCells cells;
+  cells.cellFaces.assign(1, 0);
+  cells.faceStart.assign(1, 0);
+  cells.stats.inputPoints = count;
+  ThreadTeam team(boundedThreads(options.threads));
+  std::array<double, 6> bounds;
+  if (!finiteBounds(team, xyz, count, bounds))
+  {
+    cells.status = Status::Empty;
+    cells.stats.nonFinitePoints = count;
+    return cells;
+  }
+  cells.box = isBox(options.box) ? options.box : bounds;
+  CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
+  if (curve.xyz.empty())
+  {
+    cells.status = Status::OutOfRange;
+    return cells;
+  }
+
+  std::vector<double> density;
+  Triangulation mesh = meshOf(curve, count, options, density);
+  return cellsOf(
+    team, std::move(curve), count, options, std::move(mesh), density, std::move(cells));
+}
+
+VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>& pointBounds,
+  const VoronoiOptions& options, Coordinates& xyz)
+{
+  if (!isBox(options.box))
+    throw std::invalid_argument("fd3::voronoiCells: the clipping box of a mesh's cells is empty");
+  VoronoiCells cells;
+  cells.cellFaces.assign(1, 0);
+  cells.faceStart.assign(1, 0);
+  cells.box = options.box;
+  ThreadTeam team(boundedThreads(options.threads));
+  const std::vector<double> far = voronoiFarPoints(pointBounds, cells.box);
+  const Status before = mesh.status();
+  if (far.empty() || before == Status::Empty || before == Status::Aborted)
+  {
+    cells.stats = mesh.release(xyz).stats;
+    cells.status = far.empty() ? Status::OutOfRange : before;
+    return cells;
+  }
+  // The densities come from the points' own tetrahedra, before the far points change those at
+  // the hull.
+  Triangulation own;
+  if (options.density)
+    own = mesh.snapshot();
+  mesh.add(far.data(), kFarPoints);
+  Triangulation tetrahedra = mesh.release(xyz);
+  const std::size_t count = xyz.size() / 3 - kFarPoints;
+  CurvePoints curve =
+    alongCurve(team, xyz.data(), count, options.generators, pointBounds, cells.box);
+  std::vector<double> density;
+  if (options.density)
+  {
+    const std::vector<double> byPoint = densities(xyz.data(), count, own);
+    own = Triangulation();
+    density.resize(count);
+    for (std::size_t k = 0; k < count; ++k)
+      density[k] = byPoint[curve.inputId[k]];
+  }
+  xyz.resize(3 * count);
+  renumberAlongCurve(team, curve.inputId, tetrahedra);
+  return cellsOf(
+    team, std::move(curve), count, options, std::move(tetrahedra), density, std::move(cells));
+}
+
+std::vector<double> voronoiFarPoints(
+  const std::array<double, 6>& pointBounds, const std::array<double, 6>& box)
+{
+  double both[6], centre[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    both[2 * a] = std::min(pointBounds[2 * a], box[2 * a]);
+    both[2 * a + 1] = std::max(pointBounds[2 * a + 1], box[2 * a + 1]);
+    centre[a] = both[2 * a] / 2 + both[2 * a + 1] / 2;
+  }
+  double reach = 2 * diagonal(both);
+  if (reach == 0)
+    reach = 1; // one point and a box of no volume: any cube will do
+  std::vector<double> far(3 * kFarPoints);
+  for (int k = 0; k < kFarPoints; ++k)
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = centre[a] + ((k >> a) & 1 ? reach : -reach);
+      if (!std::isfinite(x))
+        return {};
+      far[3 * std::size_t(k) + a] = x;
+    }
+  return far;
 }
 
 } // namespace fd3

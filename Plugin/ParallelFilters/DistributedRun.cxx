@@ -513,7 +513,8 @@ bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
   });
 }
 
-bool DistributedRun::ChooseFrame()
+bool DistributedRun::ChooseFrame(
+  const std::function<std::vector<double>(const fd3::Bounds&)>& later)
 {
   fd3::Bounds box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
@@ -545,8 +546,15 @@ bool DistributedRun::ChooseFrame()
   }
   this->GlobalBounds = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
   this->Diagonal = fd3::diagonal(this->GlobalBounds.data());
+  const std::vector<double> more = later ? later(this->GlobalBounds) : std::vector<double>();
+  for (std::size_t i = 0; i < more.size(); ++i)
+  {
+    lo[i % 3] = std::min(lo[i % 3], more[i]);
+    hi[i % 3] = std::max(hi[i % 3], more[i]);
+  }
   bool exact[3] = { true, true, true };
   fd3::checkShifts(xyz.data(), this->Own.Count, lo, hi, exact);
+  fd3::checkShifts(more.data(), more.size() / 3, lo, hi, exact);
   int local[3] = { exact[0], exact[1], exact[2] }, global[3];
   this->Ranks.Controller->AllReduce(local, global, 3, vtkCommunicator::MIN_OP);
   for (int a = 0; a < 3; ++a)
@@ -554,7 +562,9 @@ bool DistributedRun::ChooseFrame()
     exact[a] = global[a] != 0;
   }
   const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
-  int fits = fd3::fitsFrame(frame, xyz.data(), this->Own.Count), allFit = 0;
+  int fits = fd3::fitsFrame(frame, xyz.data(), this->Own.Count) &&
+    fd3::fitsFrame(frame, more.data(), more.size() / 3),
+      allFit = 0;
   this->Ranks.Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
   this->Frame = allFit ? frame : fd3::identityFrame(lo, hi);
   return true;
@@ -598,6 +608,22 @@ bool DistributedRun::ExchangeHalo()
 bool DistributedRun::AddGhosts()
 {
   const auto start = std::chrono::steady_clock::now();
+  return this->AddGhosts([&](fd3::IncrementalDelaunay& mesh, Coordinates& xyz) {
+    this->Result = mesh.release(xyz);
+    if (this->Result.status == fd3::Status::CheckFailed)
+    {
+      throw std::runtime_error(std::string("the kernel's mesh check failed (a bug; please report "
+                                           "it with the input): ") +
+        this->Result.checkReport);
+    }
+    this->Result.stats.secondsTotal = this->MeshSeconds + SecondsSince(start);
+    return this->Result.status != fd3::Status::Aborted;
+  });
+}
+
+bool DistributedRun::AddGhosts(
+  const std::function<bool(fd3::IncrementalDelaunay&, Coordinates&)>& finish)
+{
   return this->Ranks.Local([&] {
     Coordinates ghostXyz;
     for (const auto& part : this->Ghosts.Parts)
@@ -606,15 +632,8 @@ bool DistributedRun::AddGhosts()
     }
     this->Mesh->add(ghostXyz.data(), ghostXyz.size() / 3);
     Coordinates().swap(ghostXyz); // the mesh holds them
-    this->Result = this->Mesh->release(this->Xyz);
+    const bool finished = finish(*this->Mesh, this->Xyz);
     this->Mesh.reset();
-    if (this->Result.status == fd3::Status::CheckFailed)
-    {
-      throw std::runtime_error(std::string("the kernel's mesh check failed (a bug; please report "
-                                           "it with the input): ") +
-        this->Result.checkReport);
-    }
-    this->Result.stats.secondsTotal = this->MeshSeconds + SecondsSince(start);
     // Made after the release, which gives back most of the mesh.
     this->Owner.assign(this->Own.Count, this->Ranks.Rank);
     for (std::size_t k = 0; k < this->Ghosts.Parts.size(); ++k)
@@ -623,7 +642,7 @@ bool DistributedRun::AddGhosts()
         static_cast<std::size_t>(this->Ghosts.Parts[k]->GetNumberOfPoints()),
         this->Ghosts.Senders[k]);
     }
-    return this->Result.status != fd3::Status::Aborted;
+    return finished;
   });
 }
 

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -136,8 +137,10 @@ public:
   bool Redistribute(vtkDataSet* input, vtkPoints* points);
 
   /// Step 2: one exact frame for every rank, from the global bounds (computed here once, for the
-  /// diagonal too) and the shifts that are exact on every rank.
-  bool ChooseFrame();
+  /// diagonal too) and the shifts that are exact on every rank. `later`, where given, makes from
+  /// the global bounds the points (x, y, z each, the same on every rank) that every rank adds to
+  /// its mesh after the ghosts: the frame holds them too.
+  bool ChooseFrame(const std::function<std::vector<double>(const fd3::Bounds&)>& later = nullptr);
 
   /// Step 3: this rank's points tetrahedralized. The mesh takes them, and frees them where its
   /// records give them back, so that they are not in the rank's peak.
@@ -149,6 +152,10 @@ public:
   /// Step 5: the received points added to this rank's mesh, the output taken from it with every
   /// point's coordinates, and the owner of every point.
   bool AddGhosts();
+  /// Step 5 for a caller that ends the mesh itself: the received points added, then `finish`
+  /// given the mesh and Xyz, where it must release the mesh's coordinates (it returns false when
+  /// aborted); Result stays empty.
+  bool AddGhosts(const std::function<bool(fd3::IncrementalDelaunay&, Coordinates&)>& finish);
 
   /// Step 6: the figures and status of all ranks together.
   fd3::Statistics GlobalFigures(fd3::Status& status);

@@ -96,30 +96,33 @@ int vtkPFastVoronoi3D::RequestData(
     }
     return 1;
   }
+  // The cells come from each rank's mesh of its points and the halo, once the far points that
+  // close every cell are added: the frame holds those too.
+  fd3::VoronoiOptions options = this->KernelOptions();
+  const bool boxGiven = IsBox(options.box);
+  const auto farPoints = [&](const fd3::Bounds& global) {
+    return fd3::voronoiFarPoints(global, boxGiven ? options.box : global);
+  };
   fd3::Options meshOptions;
-  meshOptions.threads =
-    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  meshOptions.threads = options.threads;
+  meshOptions.computeNeighbors = false; // the cells list the stars instead
   meshOptions.progress = [this](double fraction) {
     this->UpdateProgress(0.3 * fraction);
     return !this->CheckAbort();
   };
-  if (!redistributed || !run.ChooseFrame() || !run.Triangulate(meshOptions) ||
-    !run.ExchangeHalo() || !run.AddGhosts())
+  if (!redistributed || !run.ChooseFrame(farPoints) || !run.Triangulate(meshOptions) ||
+    !run.ExchangeHalo())
   {
     return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
   }
-  run.Result = fd3::Triangulation(); // the cells need the points alone
-
-  // The cells of this rank's own points, among its points and the halo.
-  fd3::VoronoiOptions options = this->KernelOptions();
-  if (!IsBox(options.box))
+  if (!boxGiven)
   {
     options.box = run.GlobalBounds;
   }
   options.generators = run.OwnCount();
   fd3::VoronoiCells cells;
-  if (!run.Ranks.Local([&] {
-        cells = fd3::voronoiCells(run.Xyz.data(), run.Xyz.size() / 3, options);
+  if (!run.AddGhosts([&](fd3::IncrementalDelaunay& mesh, fd3::Coordinates& xyz) {
+        cells = fd3::voronoiCells(mesh, run.GlobalBounds, options, xyz);
         return cells.status != fd3::Status::Aborted;
       }))
   {

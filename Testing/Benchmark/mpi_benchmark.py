@@ -1,11 +1,12 @@
 """The distributed filter's benchmark: time, peak memory of rank 0 and points exchanged.
 (Names in this script avoid those that the programmable source defines in __main__: output, source.)
 
-usage: mpiexec -np N pvbatch --mpi mpi_benchmark.py <plugin .so> <points> [kind]
+usage: mpiexec -np N pvbatch --mpi mpi_benchmark.py <plugin .so> <points> [kind] [filter]
 
 Every rank generates its share of uniform points (kind "cube") or of a torus surface ("torus")
-over the whole domain, so that no file reading is timed; the time is FastDelaunay3D's update,
-redistribution and exchange included.
+over the whole domain, so that no file reading is timed; the time is the filter's update,
+redistribution and exchange included: FastDelaunay3D's, or with filter "voronoi" FastVoronoi3D's
+(its cells' polyhedra, in the points' bounds).
 """
 import resource
 import sys
@@ -15,6 +16,7 @@ from paraview.simple import *
 
 plugin, count = sys.argv[1], int(sys.argv[2])
 kind = sys.argv[3] if len(sys.argv) > 3 else "cube"
+voronoi = len(sys.argv) > 4 and sys.argv[4] == "voronoi"
 LoadPlugin(plugin, remote=False, ns=globals())
 script = """
 import numpy as np
@@ -36,6 +38,17 @@ self.GetOutput().SetPoints(points)
 """ % (count, count, kind)
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 cloud.UpdatePipeline()
+if voronoi:
+    cells = FastVoronoi3D(Input=cloud)
+    start = time.perf_counter()
+    cells.UpdatePipeline()
+    seconds = time.perf_counter() - start
+    info = cells.GetDataInformation()
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    print("mpi_benchmark: voronoi %s %d points, %d ranks: %.2f s, %d cells, rank 0 peak %.0f MB"
+          % (kind, count, servermanager.ActiveConnection.GetNumberOfDataPartitions(), seconds,
+             info.GetNumberOfCells(), peak))
+    sys.exit(0)
 delaunay = FastDelaunay3D(Input=cloud, ComputeStatistics=1)
 start = time.perf_counter()
 delaunay.UpdatePipeline()

@@ -6,6 +6,7 @@
 // installed, the volumes of Voro++'s cells to 1e-9.
 #include "CoreTestUtilities.h"
 #include "PointSets.h"
+#include "fd3/Distributed.h"
 #include "fd3/Measures.h"
 #include "fd3/Voronoi.h"
 
@@ -313,6 +314,86 @@ TEST(Voronoi, CellsOfAPieceFromItsPointsAndTheirNeighbours)
     for (int k = 0; k < 3; ++k) // the output's vertices, not only the volumes, are the cell's
       EXPECT_NEAR(partCentroids.at(part.generators[c])[k], wholeCentroids.at(p)[k], 1e-12);
   }
+}
+
+/// The bounds of the finite points among `xyz`.
+std::array<double, 6> finiteBounds(const std::vector<double>& xyz)
+{
+  std::array<double, 6> b = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < xyz.size(); i += 3)
+    if (std::isfinite(xyz[i]) && std::isfinite(xyz[i + 1]) && std::isfinite(xyz[i + 2]))
+      for (int a = 0; a < 3; ++a)
+      {
+        b[2 * a] = std::min(b[2 * a], xyz[i + a]);
+        b[2 * a + 1] = std::max(b[2 * a + 1], xyz[i + a]);
+      }
+  return b;
+}
+
+// A distributed piece's mesh, its own points first and the received ones added, gives the cells
+// that its points give from scratch, bit for bit where both meshes share the frame (the
+// perturbation's order of ties follows the frame; the densities to rounding), and gives its
+// coordinates back. The pieces
+// here have every kind of point: a duplicate, a received copy of an own point, a non-finite one;
+// and fewer than 4 points, which the far points complete, or no finite one.
+TEST(Voronoi, CellsOfAMeshAreThoseOfItsPoints)
+{
+  fd3test::Points clusters = fd3test::generate("clusters", 4000, 12);
+  clusters.insert(clusters.begin() + 3 * 2000, {clusters[3], clusters[4], clusters[5], NAN, 0, 1});
+  clusters.insert(clusters.end(), {clusters[6], clusters[7], clusters[8]});
+  const std::vector<std::pair<std::vector<double>, std::size_t>> pieces = {
+    {clusters, 2002}, {{0, 0, 0, 1, 0, 0, 0, 1, 0}, 2}, {{NAN, 0, 0, 0, INFINITY, 0}, 1}};
+  for (const auto& [xyz, own] : pieces)
+    for (const bool density : {false, true})
+      for (const int threads : {1, 3})
+      {
+        const std::size_t n = xyz.size() / 3;
+        fd3::VoronoiOptions options;
+        options.generators = own;
+        options.threads = threads;
+        options.density = density;
+        const fd3::VoronoiCells scratch = fd3::voronoiCells(xyz.data(), n, options);
+        const std::array<double, 6> bounds = finiteBounds(xyz);
+        options.box = own > 2 ? std::array<double, 6>{0.1, 0.9, 0.1, 0.9, 0.1, 0.9} : scratch.box;
+        const fd3::VoronoiCells clipped = fd3::voronoiCells(xyz.data(), n, options);
+        std::vector<double> withFar = xyz;
+        const std::vector<double> far = fd3::voronoiFarPoints(bounds, options.box);
+        withFar.insert(withFar.end(), far.begin(), far.end());
+        fd3::Options meshOptions;
+        meshOptions.threads = threads;
+        meshOptions.computeNeighbors = false;
+        fd3::IncrementalDelaunay mesh(fd3::Coordinates(xyz.begin(), xyz.begin() + 3 * own),
+          meshOptions, fd3test::frameOf(withFar), n - own);
+        mesh.add(xyz.data() + 3 * own, n - own);
+        fd3::Coordinates back;
+        const fd3::VoronoiCells fromMesh = fd3::voronoiCells(mesh, bounds, options, back);
+        SCOPED_TRACE(
+          ::testing::Message() << n << " points, " << threads << " threads, density " << density);
+        EXPECT_EQ(fromMesh.status, clipped.status);
+        EXPECT_EQ(fromMesh.box, clipped.box);
+        EXPECT_EQ(fromMesh.points, clipped.points);
+        EXPECT_EQ(fromMesh.generators, clipped.generators);
+        EXPECT_EQ(fromMesh.cellFaces, clipped.cellFaces);
+        EXPECT_EQ(fromMesh.faceStart, clipped.faceStart);
+        EXPECT_EQ(fromMesh.faceVertices, clipped.faceVertices);
+        EXPECT_EQ(fromMesh.faceNeighbors, clipped.faceNeighbors);
+        EXPECT_EQ(fromMesh.volumes, clipped.volumes);
+        EXPECT_EQ(fromMesh.areas, clipped.areas);
+        EXPECT_EQ(fromMesh.densities.size(), clipped.densities.size());
+        // The stars' volumes are summed in the order of each mesh's tetrahedra.
+        for (std::size_t c = 0; c < std::min(fromMesh.densities.size(), clipped.densities.size());
+             ++c)
+          EXPECT_TRUE(std::abs(fromMesh.densities[c] - clipped.densities[c]) <=
+              1e-12 * clipped.densities[c] ||
+            (std::isnan(fromMesh.densities[c]) && std::isnan(clipped.densities[c])))
+            << "cell " << c << ": " << fromMesh.densities[c] << " against " << clipped.densities[c];
+        EXPECT_EQ(fromMesh.stats.inputPoints, n);
+        EXPECT_EQ(fromMesh.stats.duplicatesMerged, clipped.stats.duplicatesMerged);
+        EXPECT_EQ(fromMesh.stats.nonFinitePoints, clipped.stats.nonFinitePoints);
+        ASSERT_EQ(back.size(), xyz.size());
+        for (std::size_t i = 0; i < xyz.size(); ++i)
+          ASSERT_TRUE(back[i] == xyz[i] || (std::isnan(back[i]) && std::isnan(xyz[i]))) << i;
+      }
 }
 
 // Each cell's density is its generator's in the points' own tetrahedralization (not the one with

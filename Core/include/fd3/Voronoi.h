@@ -9,6 +9,7 @@
 #define fd3_Voronoi_h
 
 #include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 
 #include <array>
 #include <cstddef>
@@ -95,6 +96,22 @@ struct VoronoiCells
 /// The Voronoi cells of `count` points (x,y,z triples), clipped to options.box. Throws as
 /// triangulate() does.
 VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOptions& options = {});
+
+/// The cells of a piece of a distributed point set from its mesh, without tetrahedralizing its
+/// points again: the mesh took its points (the piece's own first, options.generators of them,
+/// then those other pieces sent), all within `pointBounds` (the whole set's bounds, so that every
+/// piece adds the same far points), in a frame that also holds voronoiFarPoints(pointBounds,
+/// options.box); options.box must be a box. The cells are those voronoiCells() gives the same
+/// points. Adds the far points and ends the mesh, which gives back its points' coordinates in
+/// `xyz` (as IncrementalDelaunay::release does). Throws as triangulate() does.
+VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>& pointBounds,
+  const VoronoiOptions& options, Coordinates& xyz);
+
+/// The eight far points (x, y, z each) that the cells of points within `pointBounds`, clipped to
+/// `box`, add to the points' tetrahedralization (the corners of a cube about both); empty where
+/// they are beyond the doubles.
+std::vector<double> voronoiFarPoints(
+  const std::array<double, 6>& pointBounds, const std::array<double, 6>& box);
 
 } // namespace fd3
 
