@@ -3,8 +3,9 @@
 usage: mpiexec -np N pvbatch --mpi TestMPI.py <plugin .so> <output .pvtu> <kind> <distribution> [port [alpha | voronoi]]
 port: connect as the client of a pvserver under MPI on this machine ("-" for none); alpha: the
 filter's Alpha (default 0); voronoi: FastVoronoi3D in place of FastDelaunay3D, with every point's
-coordinates as a "Position" array too (CheckDistributedVoronoi then compares the cells), and again
-without polyhedra (the same volumes, on vertex cells).
+coordinates as a "Position" array too (CheckDistributedVoronoi then compares the cells), again
+without polyhedra (the same volumes, on vertex cells), and in a box inside the points and one
+around them (the volumes fill each).
 
 kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points),
 outlier (the cube and one point at 1e100), speck (the cube centred on 0 and a cluster 1e-150
@@ -96,15 +97,37 @@ if voronoi:
         total += area.GetValue(f)
     print("TestMPI: faces %d area %.17g" % (faces.GetNumberOfCells(), total))
     # Without polyhedra, each rank's cells are vertices at its own points with the same volumes.
+    # Fetch() gathers an unstructured grid from rank 0 alone under pvbatch here (ParaView's own
+    # Delaunay 3D too): each rank's piece is fetched in turn.
+    def pieces(proxy):
+        return [servermanager.Fetch(proxy, r) for r in range(ranks)]
     def volumes(proxy):
-        cells = servermanager.Fetch(proxy)
-        array = cells.GetCellData().GetArray("Volume")
-        return cells.GetNumberOfCells(), sorted(array.GetValue(c) for c in range(array.GetNumberOfTuples()))
+        values = []
+        for cells in pieces(proxy):
+            array = cells.GetCellData().GetArray("Volume")
+            values += [array.GetValue(c) for c in range(array.GetNumberOfTuples())] if array else []
+        return len(values), sorted(values)
     vertices = FastVoronoi3D(Input=cloud, GeneratePolyhedra=0)
     assert volumes(vertices) == volumes(result), "GeneratePolyhedra=0 changed the volumes"
-    fetched = servermanager.Fetch(vertices)
-    types = set(fetched.GetCellType(c) for c in range(fetched.GetNumberOfCells()))
+    cells_made = result.GetDataInformation().GetNumberOfCells()
+    assert volumes(result)[0] == cells_made, (volumes(result)[0], cells_made)
+    types = set(piece.GetCellType(c) for piece in pieces(vertices) for c in range(piece.GetNumberOfCells()))
     assert types <= {1}, types  # VTK_VERTEX
+    # A given box, inside the points and around them: every rank makes the far points that close
+    # the cells from the box and the global bounds, and its mesh's frame holds them.
+    lo_hi = servermanager.Fetch(cloud).GetBounds()
+    for inner, outer in ((0.2, 0.7), (-0.5, 2.0)):
+        box = []
+        for a in range(3):
+            extent = lo_hi[2 * a + 1] - lo_hi[2 * a]
+            box += [lo_hi[2 * a] + inner * extent, lo_hi[2 * a] + outer * extent]
+        clipped = FastVoronoi3D(Input=cloud, Bounds=box, GeneratePolyhedra=0)
+        box_volume = (box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4])
+        total = 0.0
+        for v in volumes(clipped)[1]:
+            total += v
+        assert abs(total - box_volume) <= 1e-9 * box_volume, (box, total, box_volume)
+        print("TestMPI: the cells in the box %s fill it" % box)
 else:
     volume = IntegrateVariables(Input=result)
     volume.UpdatePipeline()
