@@ -174,6 +174,19 @@ fd3::VoronoiCells cellsOf(const std::vector<double>& xyz, int threads = 1,
   return fd3::voronoiCells(xyz.data(), xyz.size() / 3, options);
 }
 
+/// The same cells, bit for bit.
+void expectSameCells(const fd3::VoronoiCells& a, const fd3::VoronoiCells& b)
+{
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.generators, b.generators);
+  EXPECT_EQ(a.cellFaces, b.cellFaces);
+  EXPECT_EQ(a.faceStart, b.faceStart);
+  EXPECT_EQ(a.faceVertices, b.faceVertices);
+  EXPECT_EQ(a.faceNeighbors, b.faceNeighbors);
+  EXPECT_EQ(a.volumes, b.volumes);
+  EXPECT_EQ(a.areas, b.areas);
+}
+
 class VoronoiSets : public ::testing::TestWithParam<const char*>
 {};
 
@@ -195,14 +208,8 @@ TEST(Voronoi, SameCellsForAnyThreadCount)
   const fd3::VoronoiCells one = cellsOf(xyz, 1);
   for (const int threads : {2, 5, 64})
   {
-    const fd3::VoronoiCells many = cellsOf(xyz, threads);
-    EXPECT_EQ(many.points, one.points) << threads << " threads";
-    EXPECT_EQ(many.generators, one.generators);
-    EXPECT_EQ(many.cellFaces, one.cellFaces);
-    EXPECT_EQ(many.faceStart, one.faceStart);
-    EXPECT_EQ(many.faceVertices, one.faceVertices);
-    EXPECT_EQ(many.faceNeighbors, one.faceNeighbors);
-    EXPECT_EQ(many.volumes, one.volumes);
+    SCOPED_TRACE(::testing::Message() << threads << " threads");
+    expectSameCells(cellsOf(xyz, threads), one);
   }
 }
 
@@ -371,14 +378,7 @@ TEST(Voronoi, CellsOfAMeshAreThoseOfItsPoints)
           ::testing::Message() << n << " points, " << threads << " threads, density " << density);
         EXPECT_EQ(fromMesh.status, clipped.status);
         EXPECT_EQ(fromMesh.box, clipped.box);
-        EXPECT_EQ(fromMesh.points, clipped.points);
-        EXPECT_EQ(fromMesh.generators, clipped.generators);
-        EXPECT_EQ(fromMesh.cellFaces, clipped.cellFaces);
-        EXPECT_EQ(fromMesh.faceStart, clipped.faceStart);
-        EXPECT_EQ(fromMesh.faceVertices, clipped.faceVertices);
-        EXPECT_EQ(fromMesh.faceNeighbors, clipped.faceNeighbors);
-        EXPECT_EQ(fromMesh.volumes, clipped.volumes);
-        EXPECT_EQ(fromMesh.areas, clipped.areas);
+        expectSameCells(fromMesh, clipped);
         EXPECT_EQ(fromMesh.densities.size(), clipped.densities.size());
         // The stars' volumes are summed in the order of each mesh's tetrahedra.
         for (std::size_t c = 0; c < std::min(fromMesh.densities.size(), clipped.densities.size());
