@@ -1396,19 +1396,25 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
 VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>& pointBounds,
   const VoronoiOptions& options, Coordinates& xyz)
 {
-  if (!isBox(options.box))
-    throw std::invalid_argument("fd3::voronoiCells: the clipping box of a mesh's cells is empty");
   VoronoiCells cells;
   cells.cellFaces.assign(1, 0);
   cells.faceStart.assign(1, 0);
+  const Status before = mesh.status();
+  if (before == Status::Empty || before == Status::Aborted) // no finite point, whatever the box
+  {
+    cells.stats = mesh.release(xyz).stats;
+    cells.status = before;
+    return cells;
+  }
+  if (!isBox(options.box))
+    throw std::invalid_argument("fd3::voronoiCells: the clipping box of a mesh's cells is empty");
   cells.box = options.box;
   ThreadTeam team(boundedThreads(options.threads));
   const std::vector<double> far = voronoiFarPoints(pointBounds, cells.box);
-  const Status before = mesh.status();
-  if (far.empty() || before == Status::Empty || before == Status::Aborted)
+  if (far.empty())
   {
     cells.stats = mesh.release(xyz).stats;
-    cells.status = far.empty() ? Status::OutOfRange : before;
+    cells.status = Status::OutOfRange;
     return cells;
   }
   // The densities come from the points' own tetrahedra, before the far points change those at

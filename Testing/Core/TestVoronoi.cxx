@@ -394,6 +394,17 @@ TEST(Voronoi, CellsOfAMeshAreThoseOfItsPoints)
         for (std::size_t i = 0; i < xyz.size(); ++i)
           ASSERT_TRUE(back[i] == xyz[i] || (std::isnan(back[i]) && std::isnan(xyz[i]))) << i;
       }
+  // Without a finite point anywhere there is no box to clip to: no cells, as from scratch.
+  const std::vector<double> nothing = {NAN, 0, 0, 0, INFINITY, 0};
+  fd3::IncrementalDelaunay mesh(fd3::Coordinates(nothing.begin(), nothing.end()), fd3::Options(),
+    fd3test::frameOf(fd3::voronoiFarPoints({0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0})));
+  fd3::Coordinates back;
+  const fd3::VoronoiCells none = fd3::voronoiCells(mesh,
+    {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY}, fd3::VoronoiOptions(), back);
+  EXPECT_EQ(none.status, fd3::Status::Empty);
+  EXPECT_EQ(none.numberOfCells(), 0u);
+  EXPECT_EQ(none.stats.nonFinitePoints, 2u);
+  EXPECT_EQ(back.size(), nothing.size());
 }
 
 // Each cell's density is its generator's in the points' own tetrahedralization (not the one with

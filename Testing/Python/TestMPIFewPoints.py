@@ -1,6 +1,7 @@
 """pvbatch under MPI: 3 points in all, on the first ranks; the filter must warn once that there are
 fewer than 4 distinct points, count nothing as left out, and keep every rank's points with no cells.
-Their Voronoi cells in a box, which has no tetrahedron to find a halo with, must fill it.
+Their Voronoi cells in a box, which has no tetrahedron to find a halo with, must fill it. Points
+none of which is finite give no Voronoi cells, with a warning that says so.
 
 usage: mpiexec -np N pvbatch --mpi TestMPIFewPoints.py <plugin .so>
 """
@@ -32,3 +33,16 @@ total = sum(volumes.GetValue(c) for c in range(cells.GetNumberOfCells())) if vol
 if cells.GetNumberOfCells() != 3 or abs(total - 8) > 1e-12:
     sys.exit("TestMPIFewPoints: %d Voronoi cells of volume %g in a box of 8" % (cells.GetNumberOfCells(), total))
 print("TestMPIFewPoints: 3 Voronoi cells fill the box")
+
+nothing = ProgrammableSource(OutputDataSetType="vtkPolyData", Script="""
+from vtkmodules.vtkCommonCore import vtkPoints
+points = vtkPoints()
+points.InsertNextPoint(float("nan"), 0, 0)
+points.InsertNextPoint(0, float("inf"), 0)
+self.GetOutput().SetPoints(points)
+""")
+none = FastVoronoi3D(Input=nothing)
+none.UpdatePipeline()
+if none.GetDataInformation().GetNumberOfCells() != 0:
+    sys.exit("TestMPIFewPoints: Voronoi cells of points none of which is finite")
+print("TestMPIFewPoints: no finite point, no Voronoi cells")
