@@ -118,6 +118,14 @@ public:
     mpz_addmul(out.get(), row_[i][2].get(), row_[i][2].get());
   }
 
+  /// Component c of row j x row k.
+  void cross(int j, int k, int c, Integer& out)
+  {
+    const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+    mpz_mul(out.get(), row_[j][c1].get(), row_[k][c2].get());
+    mpz_submul(out.get(), row_[j][c2].get(), row_[k][c1].get());
+  }
+
   /// Whether row i and row j are parallel (or one is zero).
   bool parallel(int i, int j)
   {
@@ -163,6 +171,38 @@ void exactSixVolume(const double* a, const double* b, const double* c, const dou
   long e = 0;
   mantissa = mpz_get_d_2exp(&e, det.get());
   exponent = static_cast<int>(e) + 3 * rows.scale();
+}
+
+bool exactCircumcentreOffset(
+  const double* a, const double* b, const double* c, const double* d, double offset[3])
+{
+  // With rows u, v, w = (b, c, d) - a: offset = (|u|^2 v x w + |v|^2 w x u + |w|^2 u x v) /
+  // (2 u . v x w), each integer row counting 2^scale: the numerator counts 2^(4 scale) and the
+  // denominator 2^(3 scale).
+  const double* const x[3] = {b, c, d};
+  IntegerRows<3> rows(x, a);
+  Integer det, lift[3], term, numerator;
+  rows.minor3(0, 1, 2, det);
+  if (mpz_sgn(det.get()) == 0)
+    return false;
+  for (int i = 0; i < 3; ++i)
+    rows.lift(i, lift[i]);
+  long denominatorExponent = 0;
+  const double denominator = mpz_get_d_2exp(&denominatorExponent, det.get());
+  for (int k = 0; k < 3; ++k)
+  {
+    mpz_set_ui(numerator.get(), 0);
+    for (int i = 0; i < 3; ++i)
+    {
+      rows.cross((i + 1) % 3, (i + 2) % 3, k, term);
+      mpz_addmul(numerator.get(), lift[i].get(), term.get());
+    }
+    long numeratorExponent = 0;
+    const double n = mpz_get_d_2exp(&numeratorExponent, numerator.get());
+    offset[k] = std::ldexp(n / denominator,
+      static_cast<int>(numeratorExponent - denominatorExponent - 1 + rows.scale()));
+  }
+  return true;
 }
 
 std::uint16_t perturbationKey(const double* p, std::uint64_t seed)

@@ -33,6 +33,12 @@ namespace fd3
 void exactSixVolume(const double* a, const double* b, const double* c, const double* d,
   double& mantissa, int& exponent);
 
+/// The circumcentre of tetrahedron abcd less a, computed exactly from any finite coordinates and
+/// rounded once per coordinate to within a few units in the last place; false, with `offset`
+/// unchanged, where the four points are coplanar.
+bool exactCircumcentreOffset(
+  const double* a, const double* b, const double* c, const double* d, double offset[3]);
+
 /// A point's key in the symbolic perturbation's order, from its (normalized) coordinates alone and
 /// the seed: every run computes the same key for the same point, whatever the other points, the
 /// insertion order, the threads or the MPI ranks (which share one frame). Its top 4 bits are 15

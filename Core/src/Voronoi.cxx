@@ -36,6 +36,7 @@
 #include "Geometry.h"
 #include "InsertionOrder.h"
 #include "Platform.h"
+#include "Predicates.h"
 #include "Threads.h"
 #include "fd3/Distributed.h"
 #include "fd3/Measures.h"
@@ -820,8 +821,18 @@ void circumcentreInDoubleDouble(
   crossDD(e[0], e[1], uv);
   const DoubleDouble uu = dotDD(e[0], e[0]), vv = dotDD(e[1], e[1]), ww = dotDD(e[2], e[2]);
   const double twiceVolume = 2 * dotDD(e[0], vw).value();
-  if (twiceVolume == 0)
+  // The volume's rounding in double-double is a few 2^-106 of the edges' product; below
+  // kTrustedFlatness of that product the offset would keep fewer than about 12 digits (three
+  // points of a speck far smaller than its distance to the fourth): computed exactly instead.
+  constexpr double kTrustedFlatness = 1e-18;
+  const double edgeProduct = std::sqrt(uu.value() * vv.value() * ww.value());
+  if (!(std::fabs(twiceVolume) > 2 * kTrustedFlatness * edgeProduct))
+  {
+    const double* p[4] = {&xyz[3 * std::size_t(ids[0])], &xyz[3 * std::size_t(ids[1])],
+      &xyz[3 * std::size_t(ids[2])], &xyz[3 * std::size_t(ids[3])]};
+    exactCircumcentreOffset(p[0], p[1], p[2], p[3], offset);
     return;
+  }
   for (int k = 0; k < 3; ++k)
     offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]).value() / twiceVolume * up;
 }

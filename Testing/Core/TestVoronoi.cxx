@@ -547,6 +547,48 @@ TEST(Voronoi, AnyMagnitude)
   EXPECT_EQ(cellsOf(huge).status, fd3::Status::OutOfRange);
 }
 
+// A speck of points far smaller than the spacing of the points around it: a tetrahedron with
+// three of its points and one outside is flatter than double-double resolves, and its centre is
+// computed exactly. The speck's cells together are the cell of one point in its place, and the
+// cells around it are unchanged.
+TEST(Voronoi, SpeckFarSmallerThanTheSpacing)
+{
+  fd3test::Points cube = fd3test::generate("cube", 2000, 11);
+  for (double& x : cube)
+    x -= 0.5; // about the origin, where the speck's coordinates can be that small
+  fd3test::Points single = cube;
+  single.insert(single.end(), {0, 0, 0});
+  const fd3::VoronoiCells one = cellsOf(single);
+  const std::size_t centre = cube.size() / 3;
+  std::map<std::uint32_t, double> volumeOf;
+  for (std::size_t c = 0; c < one.numberOfCells(); ++c)
+    volumeOf[one.generators[c]] = one.volumes[c];
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const double width : {1e-20, 1e-50, 1e-150})
+    for (const int count : {3, 300})
+    {
+      fd3test::Points xyz = cube;
+      for (int i = 0; i < 3 * count; ++i)
+        xyz.push_back(width * unit(rng));
+      const fd3::VoronoiCells v = cellsOf(xyz, 1, one.box);
+      ASSERT_EQ(v.status, fd3::Status::Ok);
+      double speck = 0, total = 0;
+      for (std::size_t c = 0; c < v.numberOfCells(); ++c)
+      {
+        EXPECT_GE(v.volumes[c], 0) << "cell of point " << v.generators[c];
+        total += v.volumes[c];
+        if (v.generators[c] >= centre)
+          speck += v.volumes[c];
+        else
+          EXPECT_NEAR(v.volumes[c], volumeOf.at(v.generators[c]), 1e-12)
+            << "point " << v.generators[c] << ", speck " << width << " wide";
+      }
+      EXPECT_NEAR(speck, volumeOf.at(std::uint32_t(centre)), 1e-12) << width << ", " << count;
+      EXPECT_NEAR(total / boxVolume(v.box), 1, 1e-12) << width << ", " << count;
+    }
+}
+
 /// A cell's volume by its definition, in long double: the box cut by the bisector of the
 /// generator and every other point, each cut closing the polyhedron with the convex polygon of
 /// its crossings.
