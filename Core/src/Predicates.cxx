@@ -103,9 +103,7 @@ public:
     mpz_set_ui(out.get(), 0);
     for (int c = 0; c < 3; ++c)
     {
-      const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-      mpz_mul(t_.get(), row_[j][c1].get(), row_[k][c2].get());
-      mpz_submul(t_.get(), row_[j][c2].get(), row_[k][c1].get());
+      cross(j, k, c, t_);
       mpz_addmul(out.get(), row_[i][c].get(), t_.get());
     }
   }
