@@ -38,9 +38,9 @@
 #ifndef fd3_TetMesh_h
 #define fd3_TetMesh_h
 
-#include "Platform.h"
-#include "Stretches.h"
 #include "fd3/Delaunay.h"
+#include "system/Platform.h"
+#include "system/Stretches.h"
 
 #include <algorithm>
 #include <atomic>

@@ -7,7 +7,7 @@
 // grid), and nodes of a latitude-longitude grid (cospherical but for the rounding of cos and sin).
 //
 //   PredicateCost [calls per case, default 4000000]
-#include "Predicates.h"
+#include "exact/Predicates.h"
 
 #include <array>
 #include <chrono>

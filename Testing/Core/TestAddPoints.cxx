@@ -3,8 +3,8 @@
 // points at once, exactly valid; a mesh that cannot start yet keeps its points.
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
-#include "Frame.h"
 #include "PointSets.h"
+#include "exact/Frame.h"
 #include "fd3/Distributed.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The insertion order's curve: the properties that make consecutive points close.
-#include "InsertionOrder.h"
 #include "PointSets.h"
-#include "Threads.h"
+#include "insertion/InsertionOrder.h"
+#include "system/Threads.h"
 
 #include <gtest/gtest.h>
 

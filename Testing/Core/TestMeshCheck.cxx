@@ -1,7 +1,7 @@
 // The kernel's own check (Options::checkMesh, on in debug builds) finds what is broken: a mesh is
 // built and checked clean, then broken one invariant at a time, each time in a fresh mesh.
 #include "PointSets.h"
-#include "Triangulator.h"
+#include "insertion/Triangulator.h"
 
 #include <gtest/gtest.h>
 

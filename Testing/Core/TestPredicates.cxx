@@ -1,6 +1,6 @@
 // The kernel's predicates against exact rational arithmetic on random and adversarial inputs.
 #include "ExactValidator.h"
-#include "Predicates.h"
+#include "exact/Predicates.h"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

@@ -4,10 +4,10 @@
 // thread and leave nothing behind. The thread sanitizer build runs these too.
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
-#include "ParallelInsertion.h"
 #include "PointSets.h"
-#include "Threads.h"
 #include "fd3/Delaunay.h"
+#include "insertion/ParallelInsertion.h"
+#include "system/Threads.h"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@ out="${2:-$root/build/fuzz}"
 mkdir -p "$out/corpus"
 clang++ -std=c++17 -O1 -g -ffp-contract=off -fsanitize=fuzzer,address,undefined \
   -fno-sanitize-recover=undefined -I"$root/Core/include" -I"$root/Core/src" -I"$here/../Validation" \
-  "$here/FuzzTriangulate.cxx" "$root"/Core/src/*.cxx "$here/../Validation/ExactValidator.cxx" \
+  "$here/FuzzTriangulate.cxx" "$root"/Core/src/*.cxx "$root"/Core/src/*/*.cxx "$here/../Validation/ExactValidator.cxx" \
   -lgmpxx -lgmp -o "$out/FuzzTriangulate"
 cd "$out"
 ./FuzzTriangulate -max_total_time="$seconds" -max_len=2048 -timeout=20 -print_final_stats=1 \

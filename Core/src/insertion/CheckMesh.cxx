@@ -2,7 +2,7 @@
 // TetMesh.h states, the per-vertex entry points, and the local Delaunay property, decided with the
 // kernel's own exact predicates. The tests' independent oracle is Testing/Validation; this check
 // looks inside the mesh, where a broken invariant shows before it corrupts an output.
-#include "Triangulator.h"
+#include "insertion/Triangulator.h"
 
 #include <algorithm>
 #include <map>

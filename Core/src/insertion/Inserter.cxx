@@ -1,4 +1,4 @@
-#include "Inserter.h"
+#include "insertion/Inserter.h"
 
 #include <chrono>
 #include <utility>

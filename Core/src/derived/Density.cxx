@@ -6,7 +6,7 @@
 // volume near 1e-450, which no double holds, and whose density (near 1e450) rounds to infinity
 // rather than to whatever an underflowed volume would give. Each volume comes from its vertices in
 // one order, whatever the mesh's, so that every run (and every MPI rank) computes it alike.
-#include "Predicates.h"
+#include "exact/Predicates.h"
 #include "fd3/Delaunay.h"
 
 #include <algorithm>

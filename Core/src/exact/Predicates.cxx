@@ -1,7 +1,7 @@
-#include "Predicates.h"
+#include "exact/Predicates.h"
 
-#include "DoubleDouble.h"
-#include "Platform.h"
+#include "exact/DoubleDouble.h"
+#include "system/Platform.h"
 
 #include <gmp.h>
 

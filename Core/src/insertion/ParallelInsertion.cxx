@@ -25,10 +25,10 @@
 // The output does not depend on the number of threads or on their timing: with exact predicates
 // and ties broken by an order of the points' coordinates alone (perturbationKey(), Predicates.h),
 // the Delaunay triangulation is unique, and every point is inserted in one pass or another.
-#include "ParallelInsertion.h"
+#include "insertion/ParallelInsertion.h"
 
-#include "Threads.h"
-#include "Triangulator.h"
+#include "insertion/Triangulator.h"
+#include "system/Threads.h"
 
 #include <algorithm>
 #include <cmath>

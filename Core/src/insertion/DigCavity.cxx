@@ -2,7 +2,7 @@
 // tetrahedron whose circumsphere contains the new point (exact insphere, ties broken
 // symbolically). With exact predicates the conflict zone is connected, so growing it from any of
 // its tetrahedra finds all of it.
-#include "Inserter.h"
+#include "insertion/Inserter.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "Expansion.h"
+#include "exact/Expansion.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
-#include "Threads.h"
+#include "system/Threads.h"
 
-#include "Platform.h"
+#include "system/Platform.h"
 
 #include <algorithm>
 #include <chrono>

@@ -9,9 +9,9 @@
 // is covered (by a kept tetrahedron or a listed triangle) is read from the tetrahedra around it,
 // turning about it through the neighbours: no shared set of edges, so no thread waits for another.
 #include "TetMesh.h"
-#include "Threads.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Measures.h"
+#include "system/Threads.h"
 
 #include <atomic>
 #include <cmath>

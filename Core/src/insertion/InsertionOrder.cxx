@@ -1,6 +1,6 @@
-#include "InsertionOrder.h"
+#include "insertion/InsertionOrder.h"
 
-#include "Threads.h"
+#include "system/Threads.h"
 
 #include <algorithm>
 #include <cmath>

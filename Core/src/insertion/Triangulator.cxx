@@ -1,4 +1,4 @@
-#include "Triangulator.h"
+#include "insertion/Triangulator.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "BackgroundGrid.h"
+#include "insertion/BackgroundGrid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -32,14 +32,14 @@
 //    clipped alike, but only their faces' neighbours, volumes and areas are written.
 #include "fd3/Voronoi.h"
 
-#include "DoubleDouble.h"
 #include "Geometry.h"
-#include "InsertionOrder.h"
-#include "Platform.h"
-#include "Predicates.h"
-#include "Threads.h"
+#include "exact/DoubleDouble.h"
+#include "exact/Predicates.h"
 #include "fd3/Distributed.h"
 #include "fd3/Measures.h"
+#include "insertion/InsertionOrder.h"
+#include "system/Platform.h"
+#include "system/Threads.h"
 
 #include <algorithm>
 #include <cmath>

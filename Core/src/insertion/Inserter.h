@@ -9,11 +9,11 @@
 #ifndef fd3_Inserter_h
 #define fd3_Inserter_h
 
-#include "BackgroundGrid.h"
-#include "Cavity.h"
-#include "Predicates.h"
 #include "TetMesh.h"
+#include "exact/Predicates.h"
 #include "fd3/Delaunay.h"
+#include "insertion/BackgroundGrid.h"
+#include "insertion/Cavity.h"
 
 #include <atomic>
 #include <cmath>

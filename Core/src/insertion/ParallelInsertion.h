@@ -2,10 +2,10 @@
 #ifndef fd3_ParallelInsertion_h
 #define fd3_ParallelInsertion_h
 
-#include "Inserter.h"
-#include "Platform.h"
-#include "Threads.h"
 #include "fd3/BulkAllocator.h"
+#include "insertion/Inserter.h"
+#include "system/Platform.h"
+#include "system/Threads.h"
 
 #include <array>
 #include <atomic>

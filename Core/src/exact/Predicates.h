@@ -13,8 +13,8 @@
 #ifndef fd3_Predicates_h
 #define fd3_Predicates_h
 
-#include "Expansion.h"
 #include "Geometry.h"
+#include "exact/Expansion.h"
 
 #include <algorithm>
 #include <cfloat>

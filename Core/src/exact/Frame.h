@@ -4,8 +4,8 @@
 #define fd3_Frame_h
 
 #include "Geometry.h"
-#include "Stretches.h"
 #include "fd3/Distributed.h"
+#include "system/Stretches.h"
 
 namespace fd3
 {

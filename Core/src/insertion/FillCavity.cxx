@@ -6,7 +6,7 @@
 // takes, by rotating about uw through the deleted tetrahedra as the paper does. The table grows
 // with the cavity: surface samples make cavities of hundreds of tetrahedra, and rotating about
 // their long edges cost more than the rest of the insertion.
-#include "Inserter.h"
+#include "insertion/Inserter.h"
 
 #include <cassert>
 

@@ -5,7 +5,7 @@
 // its empty circumsphere makes v-q a Delaunay edge once v is inserted here, so q is a vertex of a
 // tetrahedron (or hull face) of this piece that v conflicts with, and v lies in B: that
 // tetrahedron's circumsphere (or the hull face's outer half-space) meets B.
-#include "Halo.h"
+#include "derived/Halo.h"
 
 #include "fd3/Measures.h"
 

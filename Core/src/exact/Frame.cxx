@@ -1,8 +1,8 @@
 // The frame: which shifts are exact, the scale into [-1, 1], whether a point set fits it, and the
 // identity frame of the points that do not.
-#include "Frame.h"
+#include "exact/Frame.h"
 
-#include "Expansion.h"
+#include "exact/Expansion.h"
 
 #include <algorithm>
 #include <atomic>

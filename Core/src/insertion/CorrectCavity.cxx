@@ -9,7 +9,7 @@
 // zone of exact, symbolically perturbed predicates is star-shaped, and every point is a vertex of
 // the Delaunay triangulation. The correction then has nothing to do and is skipped; checkMesh
 // verifies the outcome in the tests.
-#include "Inserter.h"
+#include "insertion/Inserter.h"
 
 #include "fd3/Measures.h"
 

@@ -14,7 +14,7 @@
 #ifndef fd3_DoubleDouble_h
 #define fd3_DoubleDouble_h
 
-#include "Expansion.h"
+#include "exact/Expansion.h"
 
 namespace fd3
 {

@@ -1,10 +1,10 @@
 // The kernel's entry points: clean and normalize the points, order them, insert them, and hand
 // back the finite tetrahedra with input point ids. triangulate() is an IncrementalDelaunay used once.
-#include "Frame.h"
-#include "Halo.h"
-#include "InsertionOrder.h"
-#include "Triangulator.h"
+#include "derived/Halo.h"
+#include "exact/Frame.h"
 #include "fd3/Distributed.h"
+#include "insertion/InsertionOrder.h"
+#include "insertion/Triangulator.h"
 
 #include <algorithm>
 #include <array>

@@ -6,7 +6,7 @@
 #define fd3_BackgroundGrid_h
 
 #include "Geometry.h"
-#include "Stretches.h"
+#include "system/Stretches.h"
 
 #include <algorithm>
 #include <atomic>

@@ -7,7 +7,7 @@
 // tetrahedra fan out around every vertex, that is most often the start itself, which shortens
 // the walks there several times. A volume threshold leaves the mesh short of Delaunay, so the
 // walk then goes on to the base, which the core correction needs.
-#include "Inserter.h"
+#include "insertion/Inserter.h"
 
 #include "fd3/Measures.h"
 

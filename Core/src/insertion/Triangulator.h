@@ -5,10 +5,10 @@
 #define fd3_Triangulator_h
 
 #include "Geometry.h"
-#include "Inserter.h"
-#include "ParallelInsertion.h"
-#include "Threads.h"
 #include "fd3/Delaunay.h"
+#include "insertion/Inserter.h"
+#include "insertion/ParallelInsertion.h"
+#include "system/Threads.h"
 
 #include <atomic>
 #include <cstdint>

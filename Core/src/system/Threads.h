@@ -7,8 +7,8 @@
 #ifndef fd3_Threads_h
 #define fd3_Threads_h
 
-#include "Stretches.h"
 #include "fd3/Delaunay.h"
+#include "system/Stretches.h"
 
 #include <condition_variable>
 #include <cstddef>
