@@ -7,7 +7,6 @@
 #include "Geometry.h"
 #include "fd3/Delaunay.h"
 #include "insertion/Inserter.h"
-#include "insertion/ParallelInsertion.h"
 #include "system/Threads.h"
 
 #include <atomic>
@@ -18,6 +17,8 @@
 
 namespace fd3
 {
+
+class Partition; // ParallelInsertion.h, which builds on this file
 
 class Triangulator
 {
