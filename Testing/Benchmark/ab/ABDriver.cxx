@@ -1,0 +1,114 @@
+// One timed run of the kernel on a generated point set, for Testing/Benchmark/ab.sh, which builds
+// this program against two versions of Core and runs them in turn. It uses only what every
+// version since the public API settled offers: fd3::triangulate() and, where the version has
+// it (FD3_AB_VORONOI), fd3::voronoiCells().
+//   ABDriver <kind> <points> <threads> [voronoi]
+// prints: <seconds> <output hash> <tetrahedra or cells>
+#include "PointSets.h"
+#include "fd3/Delaunay.h"
+#ifdef FD3_AB_VORONOI
+#include "fd3/Voronoi.h"
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+namespace
+{
+std::uint64_t mix(std::uint64_t z)
+{
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t bitsOf(double x)
+{
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+
+/// A hash of the set of tetrahedra: each one's sorted vertex ids (every tetrahedron is positive,
+/// so they name it), summed, so that the order of the tetrahedra does not count.
+std::uint64_t hashOfTetrahedra(const fd3::Triangulation& t)
+{
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < t.numberOfTetrahedra(); ++i)
+  {
+    std::uint32_t v[4];
+    std::copy_n(t.tetrahedra.data() + 4 * i, 4, v);
+    std::sort(v, v + 4);
+    std::uint64_t h = 0;
+    for (const std::uint32_t id : v)
+      h = mix(h ^ id);
+    sum += h;
+  }
+  return sum;
+}
+
+#ifdef FD3_AB_VORONOI
+/// A hash of the cells: each one's generator, volume and area bit for bit, and its faces'
+/// neighbours in order, summed over the cells.
+std::uint64_t hashOfCells(const fd3::VoronoiCells& cells)
+{
+  std::uint64_t sum = 0;
+  for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
+  {
+    std::uint64_t h = mix(cells.generators[c]);
+    h = mix(h ^ bitsOf(cells.volumes[c]));
+    h = mix(h ^ bitsOf(cells.areas[c]));
+    for (std::size_t f = cells.cellFaces[c]; f < cells.cellFaces[c + 1]; ++f)
+      h = mix(h ^ cells.faceNeighbors[f]);
+    sum += h;
+  }
+  return sum;
+}
+#endif
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 4)
+  {
+    std::fprintf(stderr, "usage: ABDriver <kind> <points> <threads> [voronoi]\n");
+    return 2;
+  }
+  const fd3test::Points p = fd3test::generate(argv[1], std::strtoull(argv[2], nullptr, 10), 1);
+  const int threads = std::atoi(argv[3]);
+  const bool voronoi = argc > 4 && std::string(argv[4]) == "voronoi";
+  const auto start = std::chrono::steady_clock::now();
+  std::uint64_t hash = 0;
+  std::size_t count = 0;
+  if (voronoi)
+  {
+#ifdef FD3_AB_VORONOI
+    fd3::VoronoiOptions options;
+    options.threads = threads;
+    const fd3::VoronoiCells cells = fd3::voronoiCells(p.data(), p.size() / 3, options);
+    hash = hashOfCells(cells);
+    count = cells.numberOfCells();
+#else
+    std::fprintf(stderr, "ABDriver: this version of Core has no Voronoi cells\n");
+    return 2;
+#endif
+  }
+  else
+  {
+    fd3::Options options;
+    options.computeNeighbors = false; // as the VTK filter runs it
+    options.threads = threads;
+    const fd3::Triangulation t = fd3::triangulate(p.data(), p.size() / 3, options);
+    hash = hashOfTetrahedra(t);
+    count = t.numberOfTetrahedra();
+  }
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("%.4f %016" PRIx64 " %zu\n", seconds, hash, count);
+  return 0;
+}
