@@ -1,5 +1,6 @@
 // The kernel's entry points: clean and normalize the points, order them, insert them, and hand
 // back the finite tetrahedra with input point ids. triangulate() is an IncrementalDelaunay used once.
+#include "FiniteBounds.h"
 #include "derived/Halo.h"
 #include "exact/Frame.h"
 #include "fd3/Distributed.h"
@@ -194,7 +195,7 @@ private:
   /// The input coordinates of every vertex and exact duplicate, as the records give them back.
   void writeRecordedPoints(double* xyz) const;
   /// The finite ones of `count` points, as point ids, and their bounding box.
-  IdArray finitePoints(const double* xyz, std::size_t count, Box& box);
+  IdArray finitePoints(const double* xyz, std::size_t count, Bounds& box);
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
   Keys keys(const double* xyz, std::size_t count, const IdArray& ids) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
@@ -203,48 +204,12 @@ private:
     const double* xyz, const IdArray& order, std::size_t firstPoint, std::size_t extra);
 };
 
-// Each thread takes a stretch of the points: it counts the finite ones, then writes their ids after
-// those of the stretches before it, and their box.
-IdArray IncrementalDelaunay::Impl::finitePoints(const double* xyz, std::size_t count, Box& box)
+IdArray IncrementalDelaunay::Impl::finitePoints(const double* xyz, std::size_t count, Bounds& box)
 {
   if (points + count >= kMaxVertices)
     throw std::length_error("fd3::triangulate: more than 2^30 points");
-  IdArray ids(count); // as many as can be finite; cut to those that are
-  std::vector<Box> boxes(team->partsFor(count));
-  std::vector<char> any(boxes.size(), 0); // not vector<bool>: each stretch writes its own
-  const auto finite = [&](std::size_t i) { return isFinite(xyz + 3 * i); };
-  std::size_t written = 0;
-  team->countThenWrite(
-    team->newRecord("sort"), 0, count, written,
-    [&](std::size_t begin, std::size_t end) {
-      std::size_t n = 0;
-      for (std::size_t i = begin; i < end; ++i)
-        n += finite(i);
-      return n;
-    },
-    [&](std::size_t k, std::size_t begin, std::size_t end, std::size_t next) {
-      for (std::size_t i = begin; i < end; ++i)
-        if (finite(i))
-        {
-          if (!any[k])
-            boxes[k] = Box::around(xyz + 3 * i);
-          any[k] = 1;
-          boxes[k].include(xyz + 3 * i);
-          ids[next++] = static_cast<std::uint32_t>(i);
-        }
-      return next;
-    });
-  ids.resize(written);
-  bool first = true;
-  for (std::size_t k = 0; k < boxes.size(); ++k)
-    if (any[k])
-    {
-      if (first)
-        box = boxes[k];
-      box.include(boxes[k].lo);
-      box.include(boxes[k].hi);
-      first = false;
-    }
+  IdArray ids;
+  box = finiteBounds(*team, "sort", xyz, count, &ids);
   stats.inputPoints += count;
   stats.nonFinitePoints += count - ids.size();
   return ids;
@@ -292,7 +257,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   const auto start = Clock::now();
   if (!team)
     team = std::make_unique<ThreadTeam>(threadCount(options));
-  Box box;
+  Bounds box;
   IdArray ids = finitePoints(xyz, count, box);
   points = count;
   if (ids.empty())
@@ -301,7 +266,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     return;
   }
   if (!frameGiven)
-    frame = frameWithin(xyz, count, box.lo, box.hi, team->stretches("sort"));
+    frame = frameWithin(xyz, count, box, team->stretches("sort"));
   Keys key = keys(xyz, count, ids);
   InsertionPlan plan =
     planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
@@ -326,11 +291,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   // mmap threshold has grown; hand it back before the mesh grows so it does not add to the peak.
   malloc_trim(0);
 #endif
-  Box bounds;
-  std::copy(frame.lo, frame.lo + 3, bounds.lo);
-  std::copy(frame.hi, frame.hi + 3, bounds.hi);
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
-    toFrame(frame, bounds), options, *team, frame.identity);
+    toFrame(frame, frame.bounds), options, *team, frame.identity);
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }
@@ -339,7 +301,7 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
 {
   for (std::size_t i = 0; i < count; ++i)
     for (int a = 0; a < 3 && isFinite(xyz + 3 * i); ++a)
-      if (!(frame.lo[a] <= xyz[3 * i + a] && xyz[3 * i + a] <= frame.hi[a]))
+      if (!(frame.bounds.lo[a] <= xyz[3 * i + a] && xyz[3 * i + a] <= frame.bounds.hi[a]))
         throw std::invalid_argument("fd3::IncrementalDelaunay::add: a point outside the frame");
   if (!triangulator)
   {
@@ -355,7 +317,7 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
   if (takesPoints)
     held.insert(held.end(), xyz, xyz + 3 * count);
   const auto start = Clock::now();
-  Box box;
+  Bounds box;
   IdArray ids = finitePoints(xyz, count, box);
   if (!ids.empty())
   {
@@ -618,9 +580,7 @@ std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
   // a point within a box is within the box's image.
   std::vector<Bounds> framed = boxes;
   for (Bounds& box : framed)
-    for (int a = 0; a < 3; ++a)
-      for (int side = 0; side < 2; ++side)
-        box[2 * a + side] = toFrame(impl_->frame, box[2 * a + side], a);
+    box = toFrame(impl_->frame, box);
   HaloBuilder halo(framed);
   if (impl_->status != Status::Ok || !impl_->triangulator)
     return halo.take();

@@ -5,6 +5,8 @@
 #include "vtkFastDelaunay3D.h"
 
 #include "FilterArrays.h"
+#include "FilterCells.h"
+#include "FilterInput.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -28,6 +30,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Measures.h"
 
@@ -48,234 +51,26 @@ vtkStandardNewMacro(vtkFastDelaunay3D);
 namespace
 {
 
-/// The input's points in the requested precision, with room for `extra` more after them: the
-/// input's own array when nothing changes (shared, same ids), else a copy.
-vtkSmartPointer<vtkPoints> PointsInPrecision(vtkDataSet* input, int precision, vtkIdType extra)
+/// vtkDelaunay3D's bounding octahedron (centre +- offset * diagonal along each axis, of the
+/// finite points' box) as the 6 points after the first `count` of `points`.
+void SetOctahedron(vtkPoints* points, vtkIdType count, const fd3::Bounds& bounds, double offset)
 {
-  auto* pointSet = vtkPointSet::SafeDownCast(input);
-  vtkPoints* given = pointSet ? pointSet->GetPoints() : nullptr;
-  int type = given ? given->GetDataType() : VTK_DOUBLE;
-  if (precision == vtkAlgorithm::SINGLE_PRECISION)
+  double centre[3], farthest = 0;
+  for (int a = 0; a < 3; ++a)
   {
-    type = VTK_FLOAT;
+    centre[a] = bounds.lo[a] / 2 + bounds.hi[a] / 2;
+    farthest = std::max(farthest, std::fabs(centre[a]));
   }
-  else if (precision == vtkAlgorithm::DOUBLE_PRECISION)
+  // No further than VTK_DOUBLE_MAX - |centre| (halved against the rounding of the sum).
+  const double diagonal = bounds.diagonal();
+  const double length =
+    std::min(offset * (diagonal > 0 ? diagonal : 1.0), (VTK_DOUBLE_MAX - farthest) / 2);
+  for (int k = 0; k < 6; ++k)
   {
-    type = VTK_DOUBLE;
+    double x[3] = { centre[0], centre[1], centre[2] };
+    x[k / 2] += (k % 2 ? length : -length);
+    points->SetPoint(count + k, x);
   }
-  if (given && type == given->GetDataType() && extra == 0)
-  {
-    return given;
-  }
-  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  points->SetDataType(type);
-  points->SetNumberOfPoints(n + extra);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    double x[3];
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      input->GetPoint(i, x);
-      points->SetPoint(i, x);
-    }
-  });
-  return points;
-}
-
-/// The output's points: the input's own when nothing changes (shared, same ids), else a copy in
-/// the requested precision, followed by the bounding octahedron's 6 points when asked for.
-vtkSmartPointer<vtkPoints> MakeOutputPoints(
-  vtkDataSet* input, const double bounds[6], int precision, bool bounding, double offset)
-{
-  vtkSmartPointer<vtkPoints> points = PointsInPrecision(input, precision, bounding ? 6 : 0);
-  if (bounding) // vtkDelaunay3D's octahedron: centre +- offset * diagonal along each axis
-  {
-    const vtkIdType n = input->GetNumberOfPoints();
-    double centre[3], farthest = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      centre[a] = bounds[2 * a] / 2 + bounds[2 * a + 1] / 2;
-      farthest = std::max(farthest, std::fabs(centre[a]));
-    }
-    // No further than VTK_DOUBLE_MAX - |centre| (halved against the rounding of the sum).
-    const double diagonal = fd3::diagonal(bounds);
-    const double length =
-      std::min(offset * (diagonal > 0 ? diagonal : 1.0), (VTK_DOUBLE_MAX - farthest) / 2);
-    for (int k = 0; k < 6; ++k)
-    {
-      double x[3] = { centre[0], centre[1], centre[2] };
-      x[k / 2] += (k % 2 ? length : -length);
-      points->SetPoint(n + k, x);
-    }
-  }
-  return points;
-}
-
-/// Copies x,y,z tuples of any real array into doubles, without a virtual call per tuple.
-struct CopyToDoubles
-{
-  template <typename ArrayType>
-  void operator()(ArrayType* array, double* out) const
-  {
-    const auto tuples = vtk::DataArrayTupleRange<3>(array);
-    vtkSMPTools::For(0, tuples.size(), [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        for (int k = 0; k < 3; ++k)
-        {
-          out[3 * i + k] = static_cast<double>(tuples[i][k]);
-        }
-      }
-    });
-  }
-};
-
-/// A run of cells of one type: cell c is ids[size * (select ? select[c] : c) + k], k < size.
-struct CellBlock
-{
-  int Type;
-  int Size;
-  const std::uint32_t* Ids;
-  const std::uint32_t* Select;
-  std::size_t Count;
-};
-
-/// The output cells, block after block, written straight into the cell array's offsets and
-/// connectivity (no per-cell calls); 32-bit storage whenever the ids fit, which halves its memory.
-template <typename IdArray>
-void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
-{
-  using Id = typename IdArray::ValueType;
-  vtkIdType cells = 0, size = 0;
-  for (const CellBlock& b : blocks)
-  {
-    cells += static_cast<vtkIdType>(b.Count);
-    size += static_cast<vtkIdType>(b.Count) * b.Size;
-  }
-  vtkNew<IdArray> offsets, connectivity;
-  vtkNew<vtkUnsignedCharArray> types;
-  offsets->SetNumberOfValues(cells + 1);
-  connectivity->SetNumberOfValues(size);
-  types->SetNumberOfValues(cells);
-  vtkIdType firstCell = 0, firstId = 0;
-  for (const CellBlock& b : blocks)
-  {
-    Id* offset = offsets->GetPointer(firstCell);
-    Id* ids = connectivity->GetPointer(firstId);
-    std::fill_n(types->GetPointer(firstCell), b.Count, static_cast<unsigned char>(b.Type));
-    vtkSMPTools::For(0, static_cast<vtkIdType>(b.Count), [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType c = begin; c < end; ++c)
-      {
-        const std::size_t source = b.Size * std::size_t(b.Select ? b.Select[c] : c);
-        offset[c] = static_cast<Id>(firstId + b.Size * c);
-        for (int k = 0; k < b.Size; ++k)
-        {
-          ids[b.Size * c + k] = static_cast<Id>(b.Ids[source + k]);
-        }
-      }
-    });
-    firstCell += static_cast<vtkIdType>(b.Count);
-    firstId += static_cast<vtkIdType>(b.Count) * b.Size;
-  }
-  offsets->SetValue(cells, static_cast<Id>(size));
-  vtkNew<vtkCellArray> cellArray;
-  cellArray->SetData(offsets, connectivity);
-  output->SetCells(types, cellArray);
-}
-
-void SetCells(vtkUnstructuredGrid* output, const std::vector<CellBlock>& blocks)
-{
-  std::size_t size = 0;
-  for (const CellBlock& b : blocks)
-  {
-    size += b.Count * b.Size;
-  }
-  if (size < static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
-  {
-    SetCells<vtkTypeInt32Array>(output, blocks);
-  }
-  else
-  {
-    SetCells<vtkTypeInt64Array>(output, blocks);
-  }
-}
-
-/// Memory of the kernel's allocator becomes an output array without a copy: the kernel's
-/// tetrahedra its 32-bit connectivity (a copy would hold both at once, 16 bytes per tetrahedron,
-/// 108 per point on uniform points), and the offsets and types, written in the kernel's allocator
-/// (which does not zero them first). VTK frees an array's memory through a plain function of its
-/// address, so each vector waits here, by that address, until VTK lets it go.
-class HandedOver
-{
-public:
-  template <typename Array, typename T>
-  static void Into(Array* array, std::vector<T, fd3::BulkAllocator<T>> values)
-  {
-    static_assert(sizeof(T) == sizeof(typename Array::ValueType), "values are taken as they are");
-    auto held = std::make_shared<std::vector<T, fd3::BulkAllocator<T>>>(std::move(values));
-    auto* data = reinterpret_cast<typename Array::ValueType*>(held->data());
-    const auto size = static_cast<vtkIdType>(held->size());
-    {
-      std::lock_guard<std::mutex> lock(Mutex());
-      Held().emplace(data, std::move(held));
-    }
-    array->SetArray(data, size, 0, Array::VTK_DATA_ARRAY_USER_DEFINED);
-    array->SetArrayFreeFunction(&HandedOver::Free);
-  }
-
-private:
-  static void Free(void* data)
-  {
-    std::shared_ptr<void> released; // destroyed outside the lock
-    std::lock_guard<std::mutex> lock(Mutex());
-    const auto it = Held().find(data);
-    if (it != Held().end())
-    {
-      released = std::move(it->second);
-      Held().erase(it);
-    }
-  }
-  // Never destroyed: an output may outlive the statics of this library.
-  static std::mutex& Mutex()
-  {
-    static auto* mutex = new std::mutex;
-    return *mutex;
-  }
-  static std::map<void*, std::shared_ptr<void>>& Held()
-  {
-    static auto* held = new std::map<void*, std::shared_ptr<void>>;
-    return *held;
-  }
-};
-
-/// Tetrahedra only (4 ids each): the connectivity is `tets` itself where its ids fit 32 bits.
-void SetTetrahedra(vtkUnstructuredGrid* output, fd3::IdArray tets)
-{
-  const std::size_t cells = tets.size() / 4;
-  if (cells == 0 ||
-    tets.size() >= static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
-  {
-    SetCells(output, { { VTK_TETRA, 4, tets.data(), nullptr, cells } });
-    return;
-  }
-  std::vector<vtkTypeInt32, fd3::BulkAllocator<vtkTypeInt32>> offset(cells + 1);
-  std::vector<unsigned char, fd3::BulkAllocator<unsigned char>> type(cells);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(cells) + 1, [&offset](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      offset[c] = static_cast<vtkTypeInt32>(4 * c);
-    }
-  });
-  std::fill(type.begin(), type.end(), static_cast<unsigned char>(VTK_TETRA));
-  vtkNew<vtkTypeInt32Array> offsets, connectivity;
-  vtkNew<vtkUnsignedCharArray> types;
-  HandedOver::Into(offsets.Get(), std::move(offset));
-  HandedOver::Into(types.Get(), std::move(type));
-  // Ids below 2^31 (checked above) read the same as signed values.
-  HandedOver::Into(connectivity.Get(), std::move(tets));
-  vtkNew<vtkCellArray> cellArray;
-  cellArray->SetData(offsets, connectivity);
-  output->SetCells(types, cellArray);
 }
 
 /// "Circumradius", "Volume" and "RadiusEdgeRatio" cell arrays, as requested.
@@ -335,22 +130,6 @@ void AddCellMeasures(
   });
 }
 
-/// Removes in place the cells of `size` values each that `keep` refuses, keeping the order.
-template <typename Values, typename Keep>
-void KeepCells(Values& values, int size, Keep keep)
-{
-  std::size_t kept = 0;
-  for (std::size_t c = 0; c + size <= values.size(); c += size)
-  {
-    if (keep(values.data() + c))
-    {
-      std::copy_n(values.begin() + c, size, values.begin() + kept);
-      kept += size;
-    }
-  }
-  values.resize(kept);
-}
-
 /// What the tetrahedralization leaves out, by cause, with what keeps it; empty when nothing is.
 std::string LeftOutPoints(const fd3::Statistics& stats)
 {
@@ -377,6 +156,14 @@ std::string LeftOutPoints(const fd3::Statistics& stats)
 }
 
 using fd3vtk::AddFieldValue;
+using fd3vtk::CellBlock;
+using fd3vtk::CoordinatesAsDoubles;
+using fd3vtk::KeepCells;
+using fd3vtk::PointsInPrecision;
+using fd3vtk::SetCells;
+using fd3vtk::SetPointsWithoutCells;
+using fd3vtk::SetTetrahedra;
+using fd3vtk::ThreadCount;
 } // namespace
 
 vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
@@ -416,18 +203,6 @@ void vtkFastDelaunay3D::SetVolumeThreshold(double threshold)
   this->SetClamped(this->VolumeThreshold, threshold, 0.0, 1.0, 0.0);
 }
 
-void vtkFastDelaunay3D::SetPointsWithoutCells(
-  vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData)
-{
-  output->Initialize();
-  output->SetPoints(points ? points : vtkSmartPointer<vtkPoints>::New().Get());
-  if (pointData)
-  {
-    output->GetPointData()->PassData(pointData);
-  }
-  SetCells(output, {});
-}
-
 int vtkFastDelaunay3D::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
@@ -455,18 +230,23 @@ int vtkFastDelaunay3D::RequestData(
 
   // VTK points in -> Core -> VTK cells out. The kernel triangulates the output's own coordinates,
   // so the result is exact for what is written.
-  double bounds[6];
-  BoundsOfFinitePoints(input, bounds);
-  vtkSmartPointer<vtkPoints> points = MakeOutputPoints(
-    input, bounds, this->OutputPointsPrecision, this->BoundingTriangulation, this->Offset);
+  vtkSmartPointer<vtkPoints> points =
+    PointsInPrecision(input, this->OutputPointsPrecision, this->BoundingTriangulation ? 6 : 0);
   std::vector<double> converted;
   const double* xyz = CoordinatesAsDoubles(points, converted);
+  const fd3::Bounds bounds = fd3::finiteBounds(
+    xyz, static_cast<std::size_t>(numberOfPoints), ThreadCount(this->NumberOfThreads));
+  if (this->BoundingTriangulation)
+  {
+    SetOctahedron(points, numberOfPoints, bounds, this->Offset);
+    xyz = CoordinatesAsDoubles(points, converted); // the octahedron in the output's precision
+  }
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
   fd3::Triangulation result;
   try
   {
-    result = fd3::triangulate(xyz, count, this->KernelOptions(fd3::diagonal(bounds)));
+    result = fd3::triangulate(xyz, count, this->KernelOptions(bounds.diagonal()));
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -536,19 +316,13 @@ fd3::Options vtkFastDelaunay3D::KernelOptions(double diagonal)
       break;
   }
   options.randomSeed = static_cast<std::uint64_t>(this->RandomSeed);
-  options.threads = this->ThreadCount();
+  options.threads = ThreadCount(this->NumberOfThreads);
   options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
   options.progress = [this](double fraction) {
     this->UpdateProgress(fraction);
     return !this->CheckAbort();
   };
   return options;
-}
-
-int vtkFastDelaunay3D::ThreadCount() const
-{
-  return this->NumberOfThreads > 0 ? this->NumberOfThreads
-                                   : vtkSMPTools::GetEstimatedNumberOfThreads();
 }
 
 void vtkFastDelaunay3D::RecordFigures(const fd3::Statistics& stats)
@@ -608,7 +382,8 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
     return;
   }
   const std::uint32_t* tets = result.tetrahedra.data();
-  fd3::AlphaComplex shape = fd3::alphaComplex(xyz, count, result, this->Alpha, this->ThreadCount());
+  fd3::AlphaComplex shape =
+    fd3::alphaComplex(xyz, count, result, this->Alpha, ThreadCount(this->NumberOfThreads));
   if (keep)
   {
     KeepCells(shape.tetrahedra, 1, [&](const std::uint32_t* t) { return keep(tets + 4 * *t, 4); });
@@ -657,47 +432,6 @@ void vtkFastDelaunay3D::AddDensity(vtkUnstructuredGrid* output, const std::vecto
   }
   output->GetPointData()->RemoveArray("Density");
   output->GetPointData()->AddArray(array);
-}
-
-const double* vtkFastDelaunay3D::CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
-{
-  vtkDataArray* data = points->GetData();
-  if (auto* doubles = vtkDoubleArray::FastDownCast(data))
-  {
-    return doubles->GetPointer(0);
-  }
-  copy.resize(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
-  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
-  if (!Reals::Execute(data, CopyToDoubles{}, copy.data()))
-  {
-    CopyToDoubles{}(data, copy.data());
-  }
-  return copy.data();
-}
-
-vtkSmartPointer<vtkPoints> vtkFastDelaunay3D::InputPoints(vtkDataSet* input, int precision)
-{
-  return PointsInPrecision(input, precision, 0);
-}
-
-// NaN or infinite points would spoil VTK's own bounds.
-void vtkFastDelaunay3D::BoundsOfFinitePoints(vtkDataSet* input, double bounds[6])
-{
-  bounds[0] = bounds[2] = bounds[4] = VTK_DOUBLE_MAX;
-  bounds[1] = bounds[3] = bounds[5] = -VTK_DOUBLE_MAX;
-  double x[3];
-  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
-  {
-    input->GetPoint(i, x);
-    if (fd3::isFinite(x))
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        bounds[2 * a] = std::min(bounds[2 * a], x[a]);
-        bounds[2 * a + 1] = std::max(bounds[2 * a + 1], x[a]);
-      }
-    }
-  }
 }
 
 void vtkFastDelaunay3D::AddFigures(vtkFieldData* fields) const

@@ -271,16 +271,6 @@ public:
   vtkGetMacro(OutputSeconds, double);
   ///@}
 
-  ///@{
-  /**
-   * The input handling that vtkFastVoronoi3D shares: the input's points in `precision` (an
-   * OutputPointsPrecision; its own array when that is already the type, else a copy), and
-   * their coordinates as x,y,z doubles (the array itself when it is one, else `copy`).
-   */
-  static vtkSmartPointer<vtkPoints> InputPoints(vtkDataSet* input, int precision);
-  static const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy);
-  ///@}
-
 protected:
   vtkFastDelaunay3D();
   ~vtkFastDelaunay3D() override = default;
@@ -327,8 +317,6 @@ protected:
   using CellFilter = std::function<bool(const std::uint32_t* ids, int size)>;
 
   fd3::Options KernelOptions(double diagonal);
-  /// NumberOfThreads, or VTK's SMP setting for 0.
-  int ThreadCount() const;
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);
@@ -343,13 +331,6 @@ protected:
   /// The figures as field data: all of them with ComputeStatistics, else the counts of left-out
   /// points whenever some are.
   void AddFigures(vtkFieldData* fields) const;
-  /// The bounds of the finite points; xmin > xmax when there are none.
-  static void BoundsOfFinitePoints(vtkDataSet* input, double bounds[6]);
-  /// The points and point data with an empty cell array: the output where no tetrahedron exists
-  /// (fewer than 4 distinct points, all coplanar, a failure), as vtkDelaunay3D's; the cell array
-  /// keeps it a dataset that every writer writes and reads back.
-  static void SetPointsWithoutCells(
-    vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData);
 
 private:
   /// Sets `property` to `value` clamped to [lo, hi], or to `nan` for NaN.

@@ -5,12 +5,13 @@
 #include "vtkFastVoronoi3D.h"
 
 #include "FilterArrays.h"
+#include "FilterCells.h"
+#include "FilterInput.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkDoubleArray.h"
-#include "vtkFastDelaunay3D.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
@@ -40,15 +41,6 @@ vtkStandardNewMacro(vtkFastVoronoi3D);
 
 namespace
 {
-/// The distinct point ids of cell c's faces, sorted, into `ids`.
-void CellPoints(const fd3::VoronoiCells& cells, std::size_t c, std::vector<vtkIdType>& ids)
-{
-  ids.assign(cells.faceVertices.begin() + cells.faceStart[cells.cellFaces[c]],
-    cells.faceVertices.begin() + cells.faceStart[cells.cellFaces[c + 1]]);
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-}
-
 using fd3vtk::AddFieldValue;
 using fd3vtk::NamedArray;
 } // namespace
@@ -104,9 +96,9 @@ int vtkFastVoronoi3D::RequestData(
 
   // VTK points in -> Core -> VTK polyhedra out.
   vtkSmartPointer<vtkPoints> points =
-    vtkFastDelaunay3D::InputPoints(input, vtkAlgorithm::DEFAULT_PRECISION);
+    fd3vtk::PointsInPrecision(input, vtkAlgorithm::DEFAULT_PRECISION);
   std::vector<double> converted;
-  const double* xyz = vtkFastDelaunay3D::CoordinatesAsDoubles(points, converted);
+  const double* xyz = fd3vtk::CoordinatesAsDoubles(points, converted);
   fd3::VoronoiCells cells;
   try
   {
@@ -142,9 +134,8 @@ int vtkFastVoronoi3D::RequestData(
 fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
 {
   fd3::VoronoiOptions options;
-  std::copy(this->Bounds, this->Bounds + 6, options.box.begin());
-  options.threads =
-    this->NumberOfThreads > 0 ? this->NumberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+  options.box = fd3::Bounds::fromMinMax(this->Bounds);
+  options.threads = fd3vtk::ThreadCount(this->NumberOfThreads);
   options.density = this->ComputeDensity;
   options.polyhedra = this->GeneratePolyhedra || this->GenerateFaces;
   options.progress = [this](double fraction) {
@@ -162,7 +153,7 @@ void vtkFastVoronoi3D::RecordFigures(vtkIdType generators, vtkIdType duplicates,
 }
 
 bool vtkFastVoronoi3D::ReportOnInput(
-  fd3::Status status, const std::array<double, 6>& box, vtkIdType numberOfPoints)
+  fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints)
 {
   if (status != fd3::Status::Ok)
   {
@@ -177,7 +168,7 @@ bool vtkFastVoronoi3D::ReportOnInput(
                     << " exact duplicates (the first copy's cell is theirs), "
                     << this->NumberOfInvalidPoints << " with NaN or infinite coordinates");
   }
-  if (!((box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4]) > 0))
+  if (!(box.volume() > 0))
   {
     vtkWarningMacro("The clipping box has no volume: every cell is empty (set Bounds)");
   }
@@ -199,7 +190,8 @@ vtkSmartPointer<vtkPoints> vtkFastVoronoi3D::SetGeometry(
   }
   if (this->GeneratePolyhedra)
   {
-    SetPolyhedra(output, cells, vertices);
+    output->SetPoints(vertices);
+    fd3vtk::SetPolyhedra(output, cells);
   }
   else
   {
@@ -215,91 +207,17 @@ void vtkFastVoronoi3D::SetGenerators(
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(n);
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(n);
   vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType c = begin; c < end; ++c)
     {
       const double* p = xyz + 3 * std::size_t(cells.generators[static_cast<std::size_t>(c)]);
       coordinates->SetTypedTuple(c, p);
-      offsets->SetValue(c, c);
-      connectivity->SetValue(c, c);
     }
   });
-  offsets->SetValue(n, n);
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   output->SetPoints(points);
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(offsets, connectivity);
-  output->SetCells(VTK_VERTEX, vertices);
-}
-
-void vtkFastVoronoi3D::SetPolyhedra(
-  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPoints* vertices)
-{
-  output->SetPoints(vertices);
-
-  // Each cell's distinct points, then its face stream (faces, then each face's size and ids).
-  const auto n = static_cast<vtkIdType>(cells.numberOfCells());
-  std::vector<vtkIdType> pointsAt(n + 1, 0), streamAt(n + 1, 0);
-  vtkSMPThreadLocal<std::vector<vtkIdType>> scratch;
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    std::vector<vtkIdType>& ids = scratch.Local();
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      CellPoints(cells, static_cast<std::size_t>(c), ids);
-      const std::size_t faces = cells.numberOfFaces(static_cast<std::size_t>(c));
-      pointsAt[c + 1] = static_cast<vtkIdType>(ids.size());
-      streamAt[c + 1] = faces == 0
-        ? 0
-        : static_cast<vtkIdType>(1 + faces + cells.faceStart[cells.cellFaces[c + 1]] -
-            cells.faceStart[cells.cellFaces[c]]);
-    }
-  });
-  for (vtkIdType c = 0; c < n; ++c)
-  {
-    pointsAt[c + 1] += pointsAt[c];
-    streamAt[c + 1] += streamAt[c];
-  }
-  vtkNew<vtkIdTypeArray> offsets, connectivity, faceLocations, faces;
-  vtkNew<vtkUnsignedCharArray> types;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(pointsAt[n]);
-  faceLocations->SetNumberOfValues(n);
-  faces->SetNumberOfValues(streamAt[n]);
-  types->SetNumberOfValues(n);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    std::vector<vtkIdType>& ids = scratch.Local();
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      CellPoints(cells, static_cast<std::size_t>(c), ids);
-      offsets->SetValue(c, pointsAt[c]);
-      std::copy(ids.begin(), ids.end(), connectivity->GetPointer(pointsAt[c]));
-      const std::size_t first = cells.cellFaces[c], last = cells.cellFaces[c + 1];
-      types->SetValue(c, first == last ? VTK_EMPTY_CELL : VTK_POLYHEDRON);
-      faceLocations->SetValue(c, first == last ? -1 : streamAt[c]);
-      if (first == last)
-      {
-        continue;
-      }
-      vtkIdType* stream = faces->GetPointer(streamAt[c]);
-      *stream++ = static_cast<vtkIdType>(last - first);
-      for (std::size_t f = first; f < last; ++f)
-      {
-        *stream++ = static_cast<vtkIdType>(cells.faceStart[f + 1] - cells.faceStart[f]);
-        for (std::size_t k = cells.faceStart[f]; k < cells.faceStart[f + 1]; ++k)
-        {
-          *stream++ = cells.faceVertices[k];
-        }
-      }
-    }
-  });
-  offsets->SetValue(n, pointsAt[n]);
-  vtkNew<vtkCellArray> polyhedra;
-  polyhedra->SetData(offsets, connectivity);
-  output->SetCells(types, polyhedra, faceLocations, faces);
+  fd3vtk::SetVertexCells(output, n);
 }
 
 void vtkFastVoronoi3D::AddCellData(

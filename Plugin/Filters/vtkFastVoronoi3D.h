@@ -42,17 +42,17 @@
 #include "vtkSmartPointer.h"             // For the cells' points
 #include "vtkUnstructuredGridAlgorithm.h"
 
+#include <cstdint>    // for std::uint32_t
+#include <functional> // for std::function
+
 class vtkFieldData;
 class vtkPointData;
 class vtkPoints;
 class vtkPolyData;
-#include <array>      // for std::array
-#include <cstdint>    // for std::uint32_t
-#include <functional> // for std::function
-
 namespace fd3
 {
 enum class Status;
+struct Bounds;
 struct VoronoiCells;
 struct VoronoiOptions;
 } // namespace fd3
@@ -147,16 +147,12 @@ protected:
   void RecordFigures(vtkIdType generators, vtkIdType duplicates, vtkIdType invalid);
   /// Warns of what the figures say was left out, or why there are no cells (`status`, of the
   /// kernel, `box`, the box the cells were clipped to); false when there are no cells to output.
-  bool ReportOnInput(
-    fd3::Status status, const std::array<double, 6>& box, vtkIdType numberOfPoints);
+  bool ReportOnInput(fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints);
   /// The first output's points and cells, polyhedra or generators as GeneratePolyhedra says
   /// (`xyz`: the points the kernel was given); returns the polyhedra's points, which the faces
   /// are on (null where the kernel made no polyhedra).
   vtkSmartPointer<vtkPoints> SetGeometry(
     vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz) const;
-  /// VTK_POLYHEDRON cells on `vertices` (VTK_EMPTY_CELL where a cell has no faces).
-  static void SetPolyhedra(
-    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPoints* vertices);
   /// A VTK_VERTEX cell at each cell's generator.
   static void SetGenerators(
     vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz);

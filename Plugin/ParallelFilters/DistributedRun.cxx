@@ -474,8 +474,8 @@ bool PointExchange::Send(const std::vector<List>& lists, Part&& part, Received& 
   });
 }
 
-DistributedRun::DistributedRun(vtkMultiProcessController* controller)
-  : Ranks(controller), Exchange(this->Ranks)
+DistributedRun::DistributedRun(vtkMultiProcessController* controller, int threads)
+  : Ranks(controller), Threads(threads), Exchange(this->Ranks)
 {}
 
 bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
@@ -516,57 +516,44 @@ bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
 bool DistributedRun::ChooseFrame(
   const std::function<std::vector<double>(const fd3::Bounds&)>& later)
 {
-  fd3::Bounds box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   const Coordinates& xyz = this->Own.Xyz;
-  for (std::size_t i = 0; i < this->Own.Finite; ++i)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      box[2 * a] = std::min(box[2 * a], xyz[3 * i + a]);
-      box[2 * a + 1] = std::max(box[2 * a + 1], xyz[3 * i + a]);
-    }
-  }
+  fd3::Bounds box;
   if (!this->Ranks.Local([&] {
+        box = fd3::finiteBounds(xyz.data(), this->Own.Finite, this->Threads);
         this->Boxes.assign(this->Ranks.Size, fd3::Bounds());
         return true;
       }))
   {
     return false;
   }
-  this->Ranks.Controller->AllGather(box.data(), this->Boxes[0].data(), 6);
-  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  this->Ranks.Controller->AllGather(box.lo, this->Boxes[0].lo, 6);
+  this->GlobalBounds = fd3::Bounds();
   for (const fd3::Bounds& b : this->Boxes)
   {
-    for (int a = 0; a < 3 && b[0] <= b[1]; ++a)
-    {
-      lo[a] = std::min(lo[a], b[2 * a]);
-      hi[a] = std::max(hi[a], b[2 * a + 1]);
-    }
+    this->GlobalBounds.include(b);
   }
-  this->GlobalBounds = { lo[0], hi[0], lo[1], hi[1], lo[2], hi[2] };
-  this->Diagonal = fd3::diagonal(this->GlobalBounds.data());
+  this->Diagonal = this->GlobalBounds.diagonal();
   const std::vector<double> more = later ? later(this->GlobalBounds) : std::vector<double>();
-  for (std::size_t i = 0; i < more.size(); ++i)
+  fd3::Bounds framed = this->GlobalBounds;
+  for (std::size_t i = 0; i < more.size(); i += 3)
   {
-    lo[i % 3] = std::min(lo[i % 3], more[i]);
-    hi[i % 3] = std::max(hi[i % 3], more[i]);
+    framed.include(&more[i]);
   }
   bool exact[3] = { true, true, true };
-  fd3::checkShifts(xyz.data(), this->Own.Count, lo, hi, exact);
-  fd3::checkShifts(more.data(), more.size() / 3, lo, hi, exact);
+  fd3::checkShifts(xyz.data(), this->Own.Count, framed, exact);
+  fd3::checkShifts(more.data(), more.size() / 3, framed, exact);
   int local[3] = { exact[0], exact[1], exact[2] }, global[3];
   this->Ranks.Controller->AllReduce(local, global, 3, vtkCommunicator::MIN_OP);
   for (int a = 0; a < 3; ++a)
   {
     exact[a] = global[a] != 0;
   }
-  const fd3::Frame frame = fd3::frameFor(lo, hi, exact);
+  const fd3::Frame frame = fd3::frameFor(framed, exact);
   int fits = fd3::fitsFrame(frame, xyz.data(), this->Own.Count) &&
     fd3::fitsFrame(frame, more.data(), more.size() / 3),
       allFit = 0;
   this->Ranks.Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
-  this->Frame = allFit ? frame : fd3::identityFrame(lo, hi);
+  this->Frame = allFit ? frame : fd3::identityFrame(framed);
   return true;
 }
 
@@ -798,7 +785,7 @@ void DistributedRun::Gather(vtkDataArray* coordinates, vtkPointData* data,
 std::vector<fd3::Bounds> DistributedRun::OtherBoxes() const
 {
   std::vector<fd3::Bounds> others = this->Boxes;
-  others[this->Ranks.Rank] = { 1, -1, 1, -1, 1, -1 };
+  others[this->Ranks.Rank] = fd3::Bounds();
   return others;
 }
 

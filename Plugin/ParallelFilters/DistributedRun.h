@@ -129,7 +129,8 @@ struct OwnPoints
 class DistributedRun
 {
 public:
-  explicit DistributedRun(vtkMultiProcessController* controller);
+  /// A run over the ranks of `controller`, each on `threads` threads.
+  DistributedRun(vtkMultiProcessController* controller, int threads);
 
   /// Step 1: the finite points spread over the ranks by space (PointExchange::BalancedCuts()),
   /// with their point data and input ids, this rank's non-finite ones after them. `points`: the
@@ -181,6 +182,7 @@ public:
   std::vector<vtkIdType> InputIds() const;
 
   RankGroup Ranks;
+  const int Threads;
   fd3::Bounds GlobalBounds;  ///< from step 2: of every rank's finite points
   vtkIdType InputPoints = 0; ///< all ranks'
   vtkIdType GhostPoints = 0; ///< all ranks'

@@ -5,6 +5,8 @@
 #include "vtkPFastDelaunay3D.h"
 
 #include "DistributedRun.h"
+#include "FilterCells.h"
+#include "FilterInput.h"
 
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
@@ -48,11 +50,12 @@ int vtkPFastDelaunay3D::RequestData(
     vtkErrorMacro("BoundingTriangulation is not available across MPI ranks; the output is empty");
     return 1;
   }
-  vtkSmartPointer<vtkPoints> inputPoints = InputPoints(input, this->OutputPointsPrecision);
+  vtkSmartPointer<vtkPoints> inputPoints =
+    fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision);
   vtkPointData* inputData = input ? input->GetPointData() : nullptr;
   const bool root = this->Controller->GetLocalProcessId() == 0;
 
-  fd3vtk::DistributedRun run(this->Controller);
+  fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
   const bool redistributed = run.Redistribute(input, inputPoints);
   if (redistributed && run.InputPoints == 0)
   {
@@ -60,7 +63,7 @@ int vtkPFastDelaunay3D::RequestData(
     {
       vtkWarningMacro("Cannot triangulate; no input points");
     }
-    SetPointsWithoutCells(output, nullptr, nullptr);
+    fd3vtk::SetPointsWithoutCells(output, nullptr, nullptr);
     return 1;
   }
   if (!redistributed || !run.ChooseFrame() || !run.Triangulate(this->KernelOptions(run.Diagonal)) ||
@@ -80,7 +83,7 @@ int vtkPFastDelaunay3D::RequestData(
   if (status != fd3::Status::Ok)
   {
     this->RecordFigures(figures);
-    SetPointsWithoutCells(output, inputPoints, inputData);
+    fd3vtk::SetPointsWithoutCells(output, inputPoints, inputData);
     return 1;
   }
   try // no rank waits for this one from here on
@@ -98,11 +101,11 @@ int vtkPFastDelaunay3D::RequestData(
     }
     else // a rank whose points are all NaN or Inf: they stay in its output, unused
     {
-      SetPointsWithoutCells(output, nullptr, nullptr);
+      fd3vtk::SetPointsWithoutCells(output, nullptr, nullptr);
     }
     run.SetOutputPoints(output);
     std::vector<double> converted;
-    this->AddCellArrays(output, CoordinatesAsDoubles(output->GetPoints(), converted));
+    this->AddCellArrays(output, fd3vtk::CoordinatesAsDoubles(output->GetPoints(), converted));
     if (this->ComputeDensity)
     {
       AddDensity(output, density); // ghosts' stars are partial here: NaN
@@ -138,7 +141,7 @@ int vtkPFastDelaunay3D::Stop(const std::string& failure, bool anyFailed,
   {
     vtkErrorMacro("Triangulation failed on another rank; the output holds the points and no cells");
   }
-  SetPointsWithoutCells(output, inputPoints, inputData);
+  fd3vtk::SetPointsWithoutCells(output, inputPoints, inputData);
   return 0;
 }
 

@@ -5,11 +5,11 @@
 #include "vtkPFastVoronoi3D.h"
 
 #include "DistributedRun.h"
+#include "FilterInput.h"
 
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
-#include "vtkFastDelaunay3D.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
@@ -30,13 +30,6 @@ vtkCxxSetObjectMacro(vtkPFastVoronoi3D, Controller, vtkMultiProcessController);
 
 namespace
 {
-/// Whether the box has a minimum at most its maximum on every axis (else it means "the points'
-/// bounds").
-bool IsBox(const std::array<double, 6>& box)
-{
-  return box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5];
-}
-
 /// The cells' GeneratorId: the input ids that the points brought (kInputIds, as cell data), which
 /// then leave the cell data.
 void SetGeneratorIds(vtkUnstructuredGrid* output)
@@ -82,11 +75,11 @@ int vtkPFastVoronoi3D::RequestData(
   faces->Initialize();
   this->RecordFigures(0, 0, 0);
   vtkSmartPointer<vtkPoints> inputPoints =
-    vtkFastDelaunay3D::InputPoints(input, vtkAlgorithm::DEFAULT_PRECISION);
+    fd3vtk::PointsInPrecision(input, vtkAlgorithm::DEFAULT_PRECISION);
   const bool root = this->Controller->GetLocalProcessId() == 0;
 
   // The points spread by space, each rank's mesh, and the halo that completes its points' cells.
-  fd3vtk::DistributedRun run(this->Controller);
+  fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
   const bool redistributed = run.Redistribute(input, inputPoints);
   if (redistributed && run.InputPoints == 0)
   {
@@ -99,7 +92,7 @@ int vtkPFastVoronoi3D::RequestData(
   // The cells come from each rank's mesh of its points and the halo, once the far points that
   // close every cell are added: the frame holds those too.
   fd3::VoronoiOptions options = this->KernelOptions();
-  const bool boxGiven = IsBox(options.box);
+  const bool boxGiven = options.box.finite(); // else the points' bounds
   const auto farPoints = [&](const fd3::Bounds& global) {
     return fd3::voronoiFarPoints(global, boxGiven ? options.box : global);
   };

@@ -111,7 +111,7 @@ fd3::Predicates tunedTo(const std::vector<Query>& queries)
       xyz.insert(xyz.end(), p.begin(), p.end());
     xyz.insert(xyz.end(), q.e.begin(), q.e.end());
   }
-  fd3::Box box;
+  fd3::Bounds box;
   for (int a = 0; a < 3; ++a)
   {
     box.lo[a] = -1;

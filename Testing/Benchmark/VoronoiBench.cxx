@@ -24,17 +24,6 @@ namespace fd3bench
 {
 namespace
 {
-std::array<double, 6> boundsOf(const fd3test::Points& p)
-{
-  std::array<double, 6> b = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < p.size(); ++i)
-  {
-    b[2 * (i % 3)] = std::min(b[2 * (i % 3)], p[i]);
-    b[2 * (i % 3) + 1] = std::max(b[2 * (i % 3) + 1], p[i]);
-  }
-  return b;
-}
-
 /// Core's cells; without `polyhedra`, their figures alone (volumes, areas, neighbours), as Voro++'s
 /// first run gives them.
 Measurement runCore(const fd3test::Points& p, int threads, bool polyhedra)
@@ -61,16 +50,15 @@ Measurement runCore(const fd3test::Points& p, int threads, bool polyhedra)
 Measurement runVoropp(const fd3test::Points& p, bool polyhedra)
 {
   const std::size_t n = p.size() / 3;
-  const std::array<double, 6> b = boundsOf(p);
+  const fd3::Bounds b = fd3::finiteBounds(p.data(), n);
   // About 5 points a block, Voro++'s advice; blocks as cubic as the box allows.
-  const double volume = (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
-  const double side = std::cbrt(5 * volume / double(n));
+  const double side = std::cbrt(5 * b.volume() / double(n));
   int blocks[3];
   for (int a = 0; a < 3; ++a)
-    blocks[a] = std::max(1, int((b[2 * a + 1] - b[2 * a]) / side));
+    blocks[a] = std::max(1, int(b.extent(a) / side));
   const auto t0 = Clock::now();
-  voro::container box(
-    b[0], b[1], b[2], b[3], b[4], b[5], blocks[0], blocks[1], blocks[2], false, false, false, 8);
+  voro::container box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0], blocks[1],
+    blocks[2], false, false, false, 8);
   for (std::size_t i = 0; i < n; ++i)
     box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
   voro::c_loop_all loop(box);
@@ -168,8 +156,7 @@ int voronoiMain(int argc, char* argv[])
     {
       const fd3test::Points p = fd3test::generate(kind, size, 1);
       const std::size_t n = p.size() / 3;
-      const std::array<double, 6> b = boundsOf(p);
-      const double box = (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
+      const double box = fd3::finiteBounds(p.data(), n).volume();
       std::vector<std::pair<std::string, Measurement>> rows;
       for (const bool polyhedra : {true, false})
         for (const int t : settings.threads)

@@ -5,6 +5,8 @@
 #include "PointSets.h"
 #include "fd3/Distributed.h"
 
+#include <array>
+
 namespace fd3test
 {
 /// Points per set in the tests that run on many threads (fewer under the thread sanitizer, which
@@ -19,6 +21,12 @@ constexpr std::size_t kThreadTestPoints = 40000;
 inline fd3::Frame frameOf(const Points& p)
 {
   return fd3::frameOf(p.data(), p.size() / 3);
+}
+
+/// The box {xmin, xmax, ymin, ymax, zmin, zmax}.
+inline fd3::Bounds boxOf(const std::array<double, 6>& minMax)
+{
+  return fd3::Bounds::fromMinMax(minMax.data());
 }
 } // namespace fd3test
 

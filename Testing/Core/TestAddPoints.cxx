@@ -203,9 +203,9 @@ TEST(AddPoints, TakenPointsAreHeldWhereRecordsCannotGiveThemBack)
   // A coordinate that the scaled frame takes below the smallest double: that frame does not hold
   // the points, and the identity frame they get instead gives them back.
   q = {-1e300, 0, 0, 1e300, 0, 0, 0, 1, 0, 1e-300, 0, 1};
-  const double lo[3] = {-1e300, 0, 0}, hi[3] = {1e300, 1, 1};
+  const double minMax[6] = {-1e300, 1e300, 0, 1, 0, 1};
   const bool exact[3] = {true, true, true};
-  const fd3::Frame scaled = fd3::frameFor(lo, hi, exact);
+  const fd3::Frame scaled = fd3::frameFor(fd3::Bounds::fromMinMax(minMax), exact);
   EXPECT_FALSE(fd3::fitsFrame(scaled, q.data(), 4));
   EXPECT_FALSE(fd3::recoverable(scaled, q.data(), 4));
   EXPECT_TRUE(fd3test::frameOf(q).identity);

@@ -24,16 +24,9 @@ Coordinates at(const fd3test::Points& p, std::size_t id)
 
 fd3::Bounds boxOf(const fd3test::Points& p, const std::vector<std::uint32_t>& ids)
 {
-  fd3::Bounds box = {1, -1, 1, -1, 1, -1};
-  for (std::size_t k = 0; k < ids.size(); ++k)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      const double x = p[3 * ids[k] + a];
-      box[2 * a] = k ? std::min(box[2 * a], x) : x;
-      box[2 * a + 1] = k ? std::max(box[2 * a + 1], x) : x;
-    }
-  }
+  fd3::Bounds box;
+  for (const std::uint32_t id : ids)
+    box.include(&p[3 * id]);
   return box;
 }
 

@@ -87,7 +87,7 @@ TEST(InsertionOrder, SamePlanForAnyNumberOfThreadsAlsoWithDenseClusters)
   std::mt19937 rng(5);
   for (std::uint16_t& k : key)
     k = static_cast<std::uint16_t>(rng());
-  const fd3::Box box = fd3::Box::of(p.data(), ids.data(), n);
+  const fd3::Bounds box = fd3::finiteBounds(p.data(), n);
   fd3::InsertionPlan reference;
   for (const int threads : {1, 2, 5, 16})
   {

@@ -22,7 +22,7 @@ std::unique_ptr<fd3::Triangulator> meshOf(const fd3test::Points& p)
     vertices[i].tet = fd3::kNoTet;
     vertices[i].point = static_cast<std::uint32_t>(i);
   }
-  fd3::Box box;
+  fd3::Bounds box;
   for (int a = 0; a < 3; ++a)
   {
     box.lo[a] = -1;

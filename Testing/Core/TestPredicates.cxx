@@ -16,12 +16,9 @@ namespace
 using fd3test::exactInSphere;
 using fd3test::exactOrient3d;
 
-fd3::Box boxOf(const std::vector<double>& xyz)
+fd3::Bounds boxOf(const std::vector<double>& xyz)
 {
-  fd3::Box box = fd3::Box::around(xyz.data());
-  for (std::size_t i = 3; i < xyz.size(); i += 3)
-    box.include(&xyz[i]);
-  return box;
+  return fd3::finiteBounds(xyz.data(), xyz.size() / 3);
 }
 
 // Squared distance from e to the circumcentre, minus the squared circumradius, in rationals:

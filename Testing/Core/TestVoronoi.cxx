@@ -49,9 +49,15 @@ double norm(const Vec& a)
   return std::sqrt(dot(a, a));
 }
 
-double boxVolume(const std::array<double, 6>& b)
+double boxVolume(const fd3::Bounds& b)
 {
-  return (b[1] - b[0]) * (b[3] - b[2]) * (b[5] - b[4]);
+  return b.extent(0) * b.extent(1) * b.extent(2);
+}
+
+/// Where wall w of the box lies on its axis (fd3::kBoxFace's order).
+double wallAt(const fd3::Bounds& b, int wall)
+{
+  return wall % 2 ? b.hi[wall / 2] : b.lo[wall / 2];
 }
 
 /// Newell's normal of a face (twice its vector area).
@@ -134,7 +140,8 @@ void expectValidCells(const std::vector<double>& xyz, const fd3::VoronoiCells& v
       {
         const int wall = int(q - fd3::kBoxFace);
         for (const std::uint32_t id : ids)
-          EXPECT_EQ(v.points[3 * id + wall / 2], v.box[wall]) << "cell " << c << " wall " << wall;
+          EXPECT_EQ(v.points[3 * id + wall / 2], wallAt(v.box, wall))
+            << "cell " << c << " wall " << wall;
         continue;
       }
       // On the bisector of p and q.
@@ -165,8 +172,8 @@ void expectValidCells(const std::vector<double>& xyz, const fd3::VoronoiCells& v
   EXPECT_NEAR(total, boxVolume(v.box), 1e-9 * boxVolume(v.box));
 }
 
-fd3::VoronoiCells cellsOf(const std::vector<double>& xyz, int threads = 1,
-  std::array<double, 6> box = {1, -1, 1, -1, 1, -1})
+fd3::VoronoiCells cellsOf(
+  const std::vector<double>& xyz, int threads = 1, const fd3::Bounds& box = fd3::Bounds())
 {
   fd3::VoronoiOptions options;
   options.threads = threads;
@@ -256,7 +263,7 @@ TEST(Voronoi, CellsOfAPieceFromItsPointsAndTheirNeighbours)
 {
   const fd3test::Points xyz = fd3test::generate("clusters", 4000, 9);
   const std::size_t n = xyz.size() / 3;
-  const std::array<double, 6> box = {-0.1, 1.1, -0.1, 1.1, -0.1, 1.1};
+  const fd3::Bounds box = fd3test::boxOf({-0.1, 1.1, -0.1, 1.1, -0.1, 1.1});
   const fd3::VoronoiCells whole = cellsOf(xyz, 1, box);
   ASSERT_EQ(whole.status, fd3::Status::Ok);
   const fd3::Triangulation mesh = fd3::triangulate(xyz.data(), n, fd3::Options());
@@ -323,20 +330,6 @@ TEST(Voronoi, CellsOfAPieceFromItsPointsAndTheirNeighbours)
   }
 }
 
-/// The bounds of the finite points among `xyz`.
-std::array<double, 6> finiteBounds(const std::vector<double>& xyz)
-{
-  std::array<double, 6> b = {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY};
-  for (std::size_t i = 0; i < xyz.size(); i += 3)
-    if (std::isfinite(xyz[i]) && std::isfinite(xyz[i + 1]) && std::isfinite(xyz[i + 2]))
-      for (int a = 0; a < 3; ++a)
-      {
-        b[2 * a] = std::min(b[2 * a], xyz[i + a]);
-        b[2 * a + 1] = std::max(b[2 * a + 1], xyz[i + a]);
-      }
-  return b;
-}
-
 // A distributed piece's mesh, its own points first and the received ones added, gives the cells
 // that its points give from scratch, bit for bit where both meshes share the frame (the
 // perturbation's order of ties follows the frame; the densities to rounding), and gives its
@@ -360,8 +353,8 @@ TEST(Voronoi, CellsOfAMeshAreThoseOfItsPoints)
         options.threads = threads;
         options.density = density;
         const fd3::VoronoiCells scratch = fd3::voronoiCells(xyz.data(), n, options);
-        const std::array<double, 6> bounds = finiteBounds(xyz);
-        options.box = own > 2 ? std::array<double, 6>{0.1, 0.9, 0.1, 0.9, 0.1, 0.9} : scratch.box;
+        const fd3::Bounds bounds = fd3::finiteBounds(xyz.data(), n);
+        options.box = own > 2 ? fd3test::boxOf({0.1, 0.9, 0.1, 0.9, 0.1, 0.9}) : scratch.box;
         const fd3::VoronoiCells clipped = fd3::voronoiCells(xyz.data(), n, options);
         std::vector<double> withFar = xyz;
         const std::vector<double> far = fd3::voronoiFarPoints(bounds, options.box);
@@ -397,10 +390,11 @@ TEST(Voronoi, CellsOfAMeshAreThoseOfItsPoints)
   // Without a finite point anywhere there is no box to clip to: no cells, as from scratch.
   const std::vector<double> nothing = {NAN, 0, 0, 0, INFINITY, 0};
   fd3::IncrementalDelaunay mesh(fd3::Coordinates(nothing.begin(), nothing.end()), fd3::Options(),
-    fd3test::frameOf(fd3::voronoiFarPoints({0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0})));
+    fd3test::frameOf(fd3::voronoiFarPoints(
+      fd3test::boxOf({0, 0, 0, 0, 0, 0}), fd3test::boxOf({0, 0, 0, 0, 0, 0}))));
   fd3::Coordinates back;
-  const fd3::VoronoiCells none = fd3::voronoiCells(mesh,
-    {INFINITY, -INFINITY, INFINITY, -INFINITY, INFINITY, -INFINITY}, fd3::VoronoiOptions(), back);
+  const fd3::VoronoiCells none =
+    fd3::voronoiCells(mesh, fd3::Bounds(), fd3::VoronoiOptions(), back);
   EXPECT_EQ(none.status, fd3::Status::Empty);
   EXPECT_EQ(none.numberOfCells(), 0u);
   EXPECT_EQ(none.stats.nonFinitePoints, 2u);
@@ -446,7 +440,7 @@ TEST(Voronoi, DensityIsTheTetrahedralizations)
   const std::vector<double> flat = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
   fd3::VoronoiOptions options;
   options.density = true;
-  options.box = {0, 1, 0, 1, -1, 1};
+  options.box = fd3test::boxOf({0, 1, 0, 1, -1, 1});
   const fd3::VoronoiCells v = fd3::voronoiCells(flat.data(), 4, options);
   ASSERT_EQ(v.densities.size(), 4u);
   for (const double d : v.densities)
@@ -457,19 +451,20 @@ TEST(Voronoi, DensityIsTheTetrahedralizations)
 TEST(Voronoi, BoxSmallerAndLargerThanThePoints)
 {
   const fd3test::Points xyz = fd3test::generate("ball", 2000, 5);
-  const fd3::VoronoiCells inner = cellsOf(xyz, 1, {-0.3, 0.2, -0.25, 0.3, -0.1, 0.4});
+  const fd3::VoronoiCells inner =
+    cellsOf(xyz, 1, fd3test::boxOf({-0.3, 0.2, -0.25, 0.3, -0.1, 0.4}));
   expectValidCells(xyz, inner);
   std::size_t empty = 0;
   for (std::size_t c = 0; c < inner.numberOfCells(); ++c)
     empty += inner.numberOfFaces(c) == 0;
   EXPECT_GT(empty, 0u); // generators whose region misses the box
-  expectValidCells(xyz, cellsOf(xyz, 1, {-3, 3, -2, 4, -5, 1}));
+  expectValidCells(xyz, cellsOf(xyz, 1, fd3test::boxOf({-3, 3, -2, 4, -5, 1})));
 }
 
 TEST(Voronoi, OnePointFillsTheBox)
 {
   const std::vector<double> xyz = {0.5, 0.25, 0.75};
-  const fd3::VoronoiCells v = cellsOf(xyz, 1, {0, 1, 0, 1, 0, 1});
+  const fd3::VoronoiCells v = cellsOf(xyz, 1, fd3test::boxOf({0, 1, 0, 1, 0, 1}));
   ASSERT_EQ(v.numberOfCells(), 1u);
   EXPECT_EQ(v.numberOfFaces(0), 6u);
   EXPECT_EQ(v.numberOfNeighbors(0), 0u);
@@ -488,7 +483,7 @@ TEST(Voronoi, CoplanarPointsMakePrisms)
   std::uniform_real_distribution<double> unit(0, 1);
   for (int i = 0; i < 500; ++i)
     xyz.insert(xyz.end(), {unit(random), unit(random), 0.5});
-  const fd3::VoronoiCells v = cellsOf(xyz, 1, {0, 1, 0, 1, 0, 2});
+  const fd3::VoronoiCells v = cellsOf(xyz, 1, fd3test::boxOf({0, 1, 0, 1, 0, 2}));
   expectValidCells(xyz, v);
   // Each cell is a prism of height 2: one face on the floor and one on the ceiling, each of half
   // its volume's area, and side faces parallel to z.
@@ -592,9 +587,10 @@ TEST(Voronoi, SpeckFarSmallerThanTheSpacing)
 /// A cell's volume by its definition, in long double: the box cut by the bisector of the
 /// generator and every other point, each cut closing the polyhedron with the convex polygon of
 /// its crossings.
-long double definedVolume(
-  const std::vector<double>& xyz, std::size_t p, const std::array<double, 6>& b)
+long double definedVolume(const std::vector<double>& xyz, std::size_t p, const fd3::Bounds& box)
 {
+  double b[6];
+  box.toMinMax(b);
   using Point = std::array<long double, 3>;
   using Face = std::vector<Point>;
   const Point corner[8] = {{b[0], b[2], b[4]}, {b[1], b[2], b[4]}, {b[1], b[3], b[4]},
@@ -697,8 +693,10 @@ TEST(Voronoi, VolumesOfTheSmallestAndSomeCellsByDefinition)
 
 #ifdef FD3_TEST_WITH_VOROPP
 /// Voro++'s cell volumes for the points in the box, by input id.
-std::vector<double> voroppVolumes(const std::vector<double>& xyz, const std::array<double, 6>& b)
+std::vector<double> voroppVolumes(const std::vector<double>& xyz, const fd3::Bounds& bounds)
 {
+  double b[6];
+  bounds.toMinMax(b);
   const std::size_t n = xyz.size() / 3;
   const int blocks = std::max(1, int(std::cbrt(double(n) / 5)));
   voro::container box(
@@ -726,11 +724,11 @@ class VoronoiAgainstVoropp : public ::testing::TestWithParam<const char*>
 TEST_P(VoronoiAgainstVoropp, SameVolumes)
 {
   const fd3test::Points xyz = fd3test::generate(GetParam(), 5000, 9);
-  std::array<double, 6> box = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
-  for (std::size_t i = 0; i < xyz.size(); ++i) // Voro++ takes points strictly inside its box
+  fd3::Bounds box = fd3::finiteBounds(xyz.data(), xyz.size() / 3);
+  for (int a = 0; a < 3; ++a) // Voro++ takes points strictly inside its box
   {
-    box[2 * (i % 3)] = std::min(box[2 * (i % 3)], xyz[i] - 0.01);
-    box[2 * (i % 3) + 1] = std::max(box[2 * (i % 3) + 1], xyz[i] + 0.01);
+    box.lo[a] -= 0.01;
+    box.hi[a] += 0.01;
   }
   const fd3::VoronoiCells v = cellsOf(xyz, 3, box);
   ASSERT_EQ(v.status, fd3::Status::Ok);

@@ -4,9 +4,9 @@
 #ifndef fd3_Distributed_h
 #define fd3_Distributed_h
 
+#include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -15,40 +15,34 @@
 namespace fd3
 {
 
-/// An axis-aligned box {xmin, xmax, ymin, ymax, zmin, zmax}, as VTK writes bounds; xmin > xmax
-/// is an empty box.
-using Bounds = std::array<double, 6>;
-
 /// The exact change of coordinates the kernel computes in, x -> (x - shift) * scale: scale is a
 /// power of two and every x - shift is exact, so that every predicate keeps its sign. Every point
-/// lies within [lo, hi].
+/// lies within `bounds`.
 struct Frame
 {
   double shift[3] = {0, 0, 0};
   double scale = 1.0;
-  double lo[3] = {0, 0, 0};
-  double hi[3] = {0, 0, 0};
+  Bounds bounds;
   /// No shift and no scale (identityFrame()): the points keep magnitudes that no scaled frame
   /// holds exactly, and the predicates work on any finite magnitude (at a higher cost).
   bool identity = false;
 };
 
-/// Which coordinates of `count` points can have the centre of the box [lo, hi] subtracted exactly:
-/// exact[a] is cleared when one cannot (it is never set, so that several calls, or several MPI
-/// ranks, combine by AND).
-void checkShifts(
-  const double* xyz, std::size_t count, const double lo[3], const double hi[3], bool exact[3]);
-/// The frame for points within [lo, hi], shifted by the box's centre on the axes where exact (as
+/// Which coordinates of `count` points can have the centre of `box` subtracted exactly: exact[a] is
+/// cleared when one cannot (it is never set, so that several calls, or several MPI ranks, combine
+/// by AND).
+void checkShifts(const double* xyz, std::size_t count, const Bounds& box, bool exact[3]);
+/// The frame for points within `box`, shifted by its centre on the axes where exact (as
 /// checkShifts() found for every point) and scaled into [-1, 1].
-Frame frameFor(const double lo[3], const double hi[3], const bool exact[3]);
+Frame frameFor(const Bounds& box, const bool exact[3]);
 /// Whether `frame` holds each finite one of `count` points exactly, with room for the exact
 /// arithmetic of doubles: the image of every coordinate is exact and a multiple of 2^-190, so that
 /// no product of five differences underflows. Where it is false for any point (magnitudes far
 /// apart: an outlier at 1e100 beside unit data, a cluster 1e-150 wide, a span above DBL_MAX),
 /// every piece must use identityFrame() instead.
 bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count);
-/// The frame that leaves points within [lo, hi] as they are (Frame::identity).
-Frame identityFrame(const double lo[3], const double hi[3]);
+/// The frame that leaves points within `box` as they are (Frame::identity).
+Frame identityFrame(const Bounds& box);
 /// The frame of one whole point set (its finite points), the one that triangulate() uses: every
 /// piece of the set computes the same with checkShifts(), frameFor() and fitsFrame() combined
 /// over the pieces.

@@ -10,25 +10,6 @@
 namespace fd3
 {
 
-/// The diagonal of a box given as {xmin, xmax, ymin, ymax, zmin, zmax} (VTK's bounds), 0 for an
-/// empty one, at most DBL_MAX for any finite one: from halves, so that spans beyond DBL_MAX stay
-/// finite, and scaled by the largest so that tiny ones do not underflow.
-inline double diagonal(const double bounds[6])
-{
-  double half[3], largest = 0;
-  for (int a = 0; a < 3; ++a)
-  {
-    half[a] = std::max(bounds[2 * a + 1] / 2 - bounds[2 * a] / 2, 0.0);
-    largest = std::max(largest, half[a]);
-  }
-  if (!(largest > 0))
-    return 0;
-  double sum = 0;
-  for (const double h : half)
-    sum += (h / largest) * (h / largest);
-  return std::min(2 * largest * std::sqrt(sum), DBL_MAX);
-}
-
 inline double distance2(const double* a, const double* b)
 {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];

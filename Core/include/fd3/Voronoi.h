@@ -8,10 +8,10 @@
 #ifndef fd3_Voronoi_h
 #define fd3_Voronoi_h
 
+#include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Distributed.h"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -21,14 +21,15 @@ namespace fd3
 {
 
 /// A face on the box: VoronoiCells::faceNeighbors holds kBoxFace + w for wall w of the box, in
-/// VTK's bounds order (xmin, xmax, ymin, ymax, zmin, zmax).
+/// VTK's bounds order (xmin, xmax, ymin, ymax, zmin, zmax): wall w lies on axis w / 2, at the box's
+/// lo (even w) or hi (odd w).
 constexpr std::uint32_t kBoxFace = 0xFFFFFFF0u;
 
 struct VoronoiOptions
 {
-  /// The clipping box {xmin, xmax, ymin, ymax, zmin, zmax}; one whose min exceeds its max on an
-  /// axis (the default) is the bounding box of the finite input points.
-  std::array<double, 6> box = {1, -1, 1, -1, 1, -1};
+  /// The clipping box; an empty one (the default) or one with a bound that is not finite is the
+  /// bounding box of the finite input points.
+  Bounds box;
   /// Threads (0: all hardware threads; bounded as Options::threads). The cells do not depend on it.
   int threads = 1;
   /// As Options::progress, for the tetrahedralization.
@@ -55,7 +56,7 @@ struct VoronoiCells
   /// Ok, Empty (no finite point), Aborted; or OutOfRange when the points and box span more than
   /// the Voronoi vertices' doubles hold. Anything else leaves no cells.
   Status status = Status::Ok;
-  std::array<double, 6> box = {0, 0, 0, 0, 0, 0}; ///< the box the cells were clipped to
+  Bounds box; ///< the box the cells were clipped to
   /// The arrays of doubles and of offsets, in the kernel's allocator (no zero fill).
   using Doubles = std::vector<double, BulkAllocator<double>>;
   using Offsets = std::vector<std::size_t, BulkAllocator<std::size_t>>;
@@ -101,17 +102,16 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
 /// points again: the mesh took its points (the piece's own first, options.generators of them,
 /// then those other pieces sent), all within `pointBounds` (the whole set's bounds, so that every
 /// piece adds the same far points), in a frame that also holds voronoiFarPoints(pointBounds,
-/// options.box); options.box must be a box. The cells are those voronoiCells() gives the same
+/// options.box); options.box must be a finite box. The cells are those voronoiCells() gives the same
 /// points. Adds the far points and ends the mesh, which gives back its points' coordinates in
 /// `xyz` (as IncrementalDelaunay::release does). Throws as triangulate() does.
-VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>& pointBounds,
+VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   const VoronoiOptions& options, Coordinates& xyz);
 
 /// The eight far points (x, y, z each) that the cells of points within `pointBounds`, clipped to
 /// `box`, add to the points' tetrahedralization (the corners of a cube about both); empty where
 /// they are beyond the doubles.
-std::vector<double> voronoiFarPoints(
-  const std::array<double, 6>& pointBounds, const std::array<double, 6>& box);
+std::vector<double> voronoiFarPoints(const Bounds& pointBounds, const Bounds& box);
 
 } // namespace fd3
 

@@ -61,8 +61,7 @@ bool meets(const Ball& ball, const Bounds& box)
   double d2 = 0;
   for (int k = 0; k < 3; ++k)
   {
-    const double gap =
-      std::max({box[2 * k] - ball.centre[k], ball.centre[k] - box[2 * k + 1], 0.0});
+    const double gap = std::max({box.lo[k] - ball.centre[k], ball.centre[k] - box.hi[k], 0.0});
     d2 += gap * gap;
   }
   return d2 <= ball.radius2;
@@ -83,16 +82,11 @@ bool beyondFaceMeets(
   double reach = 0, scale = 0;
   for (int k = 0; k < 3; ++k)
   {
-    const double corner = n[k] > 0 ? box[2 * k + 1] : box[2 * k];
+    const double corner = n[k] > 0 ? box.hi[k] : box.lo[k];
     reach += n[k] * (corner - a[k]);
     scale += std::abs(n[k]) * (std::abs(corner - a[k]) + std::abs(u[k]) + std::abs(v[k]));
   }
   return reach >= -kMargin * scale;
-}
-
-bool isEmpty(const Bounds& box)
-{
-  return !(box[0] <= box[1] && box[2] <= box[3] && box[4] <= box[5]);
 }
 } // namespace
 
@@ -103,7 +97,7 @@ void HaloBuilder::tetrahedron(const double* const p[4], const std::uint32_t ids[
   const Ball ball = circumball(p[0], p[1], p[2], p[3]);
   for (std::size_t b = 0; b < boxes_.size(); ++b)
   {
-    if (!isEmpty(boxes_[b]) && meets(ball, boxes_[b]))
+    if (!boxes_[b].empty() && meets(ball, boxes_[b]))
       halo_[b].insert(halo_[b].end(), ids, ids + 4);
   }
 }
@@ -113,7 +107,7 @@ void HaloBuilder::hullFace(
 {
   for (std::size_t b = 0; b < boxes_.size(); ++b)
   {
-    if (!isEmpty(boxes_[b]) && beyondFaceMeets(p[0], p[1], p[2], inner, boxes_[b]))
+    if (!boxes_[b].empty() && beyondFaceMeets(p[0], p[1], p[2], inner, boxes_[b]))
       halo_[b].insert(halo_[b].end(), ids, ids + 3);
   }
 }

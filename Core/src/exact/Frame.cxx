@@ -14,18 +14,17 @@ namespace fd3
 namespace
 {
 // Not finite where hi - lo exceeds DBL_MAX: no shift then.
-double centre(const double lo[3], const double hi[3], int axis)
+double centre(const Bounds& box, int axis)
 {
-  return lo[axis] + (hi[axis] - lo[axis]) / 2;
+  return box.lo[axis] + box.extent(axis) / 2;
 }
 } // namespace
 
-void checkShifts(
-  const double* xyz, std::size_t count, const double lo[3], const double hi[3], bool exact[3])
+void checkShifts(const double* xyz, std::size_t count, const Bounds& box, bool exact[3])
 {
   for (int a = 0; a < 3; ++a)
   {
-    const double shift = centre(lo, hi, a);
+    const double shift = centre(box, a);
     exact[a] = exact[a] && std::isfinite(shift);
     for (std::size_t i = 0; i < count && exact[a]; ++i)
     {
@@ -38,17 +37,16 @@ void checkShifts(
 
 // The scale brings the points into [-1, 1], so that no predicate overflows (1e300) or underflows
 // (1e-300); the shift, where exact, also keeps far-from-origin clouds away from both.
-Frame frameFor(const double lo[3], const double hi[3], const bool exact[3])
+Frame frameFor(const Bounds& box, const bool exact[3])
 {
   Frame frame;
+  frame.bounds = box;
   double extent = 0;
   for (int a = 0; a < 3; ++a)
   {
-    frame.shift[a] = exact[a] ? centre(lo, hi, a) : 0.0; // exact only where finite
-    frame.lo[a] = lo[a];
-    frame.hi[a] = hi[a];
-    extent =
-      std::max({extent, std::fabs(lo[a] - frame.shift[a]), std::fabs(hi[a] - frame.shift[a])});
+    frame.shift[a] = exact[a] ? centre(box, a) : 0.0; // exact only where finite
+    extent = std::max(
+      {extent, std::fabs(box.lo[a] - frame.shift[a]), std::fabs(box.hi[a] - frame.shift[a])});
   }
   int exponent = 0;
   std::frexp(extent, &exponent);
@@ -75,8 +73,8 @@ bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count)
   return true;
 }
 
-Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3],
-  const Stretches& stretches)
+Frame frameWithin(
+  const double* xyz, std::size_t count, const Bounds& box, const Stretches& stretches)
 {
   const auto everyStretch = [&](const std::function<void(std::size_t, std::size_t)>& f) {
     forStretches(stretches, count, f);
@@ -84,40 +82,30 @@ Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], cons
   std::atomic<bool> exact[3] = {true, true, true};
   everyStretch([&](std::size_t begin, std::size_t end) {
     bool mine[3] = {true, true, true};
-    checkShifts(xyz + 3 * begin, end - begin, lo, hi, mine);
+    checkShifts(xyz + 3 * begin, end - begin, box, mine);
     for (int a = 0; a < 3; ++a)
       if (!mine[a])
         exact[a] = false;
   });
   const bool shifts[3] = {exact[0], exact[1], exact[2]};
-  const Frame frame = frameFor(lo, hi, shifts);
+  const Frame frame = frameFor(box, shifts);
   std::atomic<bool> fits{true};
   everyStretch([&](std::size_t begin, std::size_t end) {
     if (!fitsFrame(frame, xyz + 3 * begin, end - begin))
       fits = false;
   });
-  return fits ? frame : identityFrame(lo, hi);
+  return fits ? frame : identityFrame(box);
 }
 
 Frame frameOf(const double* xyz, std::size_t count)
 {
-  Box box;
-  bool any = false;
-  for (std::size_t i = 0; i < count; ++i)
-    if (isFinite(xyz + 3 * i))
-    {
-      box = any ? box : Box::around(xyz + 3 * i);
-      box.include(xyz + 3 * i);
-      any = true;
-    }
-  return frameWithin(xyz, count, box.lo, box.hi);
+  return frameWithin(xyz, count, finiteBounds(xyz, count));
 }
 
-Frame identityFrame(const double lo[3], const double hi[3])
+Frame identityFrame(const Bounds& box)
 {
   Frame frame;
-  std::copy(lo, lo + 3, frame.lo);
-  std::copy(hi, hi + 3, frame.hi);
+  frame.bounds = box;
   frame.identity = true;
   return frame;
 }

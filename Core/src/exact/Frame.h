@@ -3,7 +3,7 @@
 #ifndef fd3_Frame_h
 #define fd3_Frame_h
 
-#include "Geometry.h"
+#include "fd3/Bounds.h"
 #include "fd3/Distributed.h"
 #include "system/Stretches.h"
 
@@ -27,10 +27,10 @@ inline bool mapsExactly(const Frame& frame, double x, int axis)
   return fromFrame(frame, toFrame(frame, x, axis), axis) == x;
 }
 
-/// The frame of `count` points whose finite ones lie within [lo, hi], their bounds: frameOf() for
-/// a caller that has the bounds already. Its passes over the points go by `stretches`, where given.
-Frame frameWithin(const double* xyz, std::size_t count, const double lo[3], const double hi[3],
-  const Stretches& stretches = nullptr);
+/// The frame of `count` points whose finite ones lie within `box`, their bounds: frameOf() for a
+/// caller that has the bounds already. Its passes over the points go by `stretches`, where given.
+Frame frameWithin(
+  const double* xyz, std::size_t count, const Bounds& box, const Stretches& stretches = nullptr);
 
 /// Whether vertex records of `count` points in `frame` give each finite one back bit for bit: every
 /// coordinate maps into the frame and back exactly (no underflow), and none is -0, which an exact
@@ -43,9 +43,9 @@ inline void toFrame(const Frame& frame, const double* p, double* out)
     out[a] = toFrame(frame, p[a], a);
 }
 
-inline Box toFrame(const Frame& frame, const Box& box)
+inline Bounds toFrame(const Frame& frame, const Bounds& box)
 {
-  Box out;
+  Bounds out;
   toFrame(frame, box.lo, out.lo);
   toFrame(frame, box.hi, out.hi);
   return out;

@@ -223,7 +223,8 @@ std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
   return static_cast<std::uint16_t>(((15 - level) << 12) | ((hash >> 48) & 0xFFFu));
 }
 
-void Predicates::adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box)
+void Predicates::adaptTo(
+  const double* xyz, std::size_t count, std::size_t stride, const Bounds& box)
 {
   // Static bounds: the semi-static ones with every difference at its largest possible value, the
   // box's extent on its axis (the 1% covers the rounding of the extents and of the differences).

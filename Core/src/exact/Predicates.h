@@ -13,8 +13,8 @@
 #ifndef fd3_Predicates_h
 #define fd3_Predicates_h
 
-#include "Geometry.h"
 #include "exact/Expansion.h"
+#include "fd3/Bounds.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -136,7 +136,7 @@ public:
   /// the compiler has them), and below 2^kFloatExactOrientBits u (orient3d) or
   /// 2^kFloatExactInSphereBits u (insphere) the float evaluation itself is exact, so even a tie
   /// costs no more than the float evaluation.
-  void adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Box& box);
+  void adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Bounds& box);
   /// Widens the tuning to more points of the same box (the grid may get finer, or go).
   void include(const double* xyz, std::size_t count, std::size_t stride);
   /// Takes other's tuning, keeping this one's counters.

@@ -7,7 +7,7 @@ namespace fd3
 {
 
 void BackgroundGrid::build(
-  std::size_t count, const Box& box, double pointsPerCell, const Stretches& fill)
+  std::size_t count, const Bounds& box, double pointsPerCell, const Stretches& fill)
 {
   cells_.reset();
   cellCount_ = 0;

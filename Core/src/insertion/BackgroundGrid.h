@@ -5,7 +5,7 @@
 #ifndef fd3_BackgroundGrid_h
 #define fd3_BackgroundGrid_h
 
-#include "Geometry.h"
+#include "fd3/Bounds.h"
 #include "system/Stretches.h"
 
 #include <algorithm>
@@ -24,7 +24,7 @@ public:
   /// Sizes the grid over `box` for about `pointsPerCell` of the `count` points per cell; 0
   /// disables it. The cells are emptied in the stretches of `fill`, where given.
   void build(
-    std::size_t count, const Box& box, double pointsPerCell, const Stretches& fill = nullptr);
+    std::size_t count, const Bounds& box, double pointsPerCell, const Stretches& fill = nullptr);
   bool enabled() const { return cellCount_ > 0; }
 
   void markInserted(const double* p, std::uint32_t vertex)

@@ -222,7 +222,7 @@ constexpr int kMaxRefinements = 64;
 class GridMap
 {
 public:
-  explicit GridMap(const Box& box)
+  explicit GridMap(const Bounds& box)
   {
     double halfSpan = 0;
     for (int a = 0; a < 3; ++a)
@@ -297,7 +297,16 @@ void refineLongRuns(std::vector<std::pair<std::size_t, std::size_t>>& runs,
 }
 
 /// With a team at the top level: the keys, the radix sort and the runs, each thread a stretch.
-void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Box& box,
+/// The box of the points xyz[3 * ids[i]], i < count.
+Bounds boundsOf(const double* xyz, const std::uint32_t* ids, std::size_t count)
+{
+  Bounds box;
+  for (std::size_t i = 0; i < count; ++i)
+    box.include(xyz + 3 * std::size_t(ids[i]));
+  return box;
+}
+
+void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const Bounds& box,
   int depth, ThreadTeam* team)
 {
   if (count < 2)
@@ -323,7 +332,7 @@ void hilbertSort(const double* xyz, std::uint32_t* ids, std::size_t count, const
   const auto cell = [&](std::size_t i) { return entries[i] >> 32; };
   const auto refine = [&](std::size_t begin, std::size_t end) {
     hilbertSort(
-      xyz, ids + begin, end - begin, Box::of(xyz, ids + begin, end - begin), depth + 1, nullptr);
+      xyz, ids + begin, end - begin, boundsOf(xyz, ids + begin, end - begin), depth + 1, nullptr);
   };
   // Each stretch takes the runs that start in it, but for the long ones (a dense cluster's cells),
   // which are refined once all stretches are done, the longest first to the thread with the least:
@@ -451,7 +460,7 @@ std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
 }
 
 InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids,
-  const Box& box, InsertionOrder order, std::uint64_t seed, ThreadTeam& team)
+  const Bounds& box, InsertionOrder order, std::uint64_t seed, ThreadTeam& team)
 {
   InsertionPlan plan;
   hilbertSort(xyz, ids.data(), ids.size(), box, 0, &team);

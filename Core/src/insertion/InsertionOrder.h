@@ -5,7 +5,7 @@
 #ifndef fd3_InsertionOrder_h
 #define fd3_InsertionOrder_h
 
-#include "Geometry.h"
+#include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 
 #include <cstdint>
@@ -49,7 +49,7 @@ struct InsertionPlan
 /// point i's perturbationKey() (Predicates.h). On every thread of `team`; the plan is the same
 /// for any number of them.
 InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids,
-  const Box& box, InsertionOrder order, std::uint64_t seed, ThreadTeam& team);
+  const Bounds& box, InsertionOrder order, std::uint64_t seed, ThreadTeam& team);
 
 /// Removes from the plan's order every point closer than `tolerance` to a point kept before it, and
 /// returns (removed, kept) input id pairs: what inserting them one by one and skipping those within

@@ -260,7 +260,7 @@ std::pair<std::size_t, std::size_t> SharedStretches::takeRest(std::size_t k)
 
 std::vector<int> Triangulator::cutAxes(const IdArray& vertices) const
 {
-  Box box = Box::around(point(vertices[0]));
+  Bounds box;
   for (std::size_t i = 0; i < vertices.size();
        i += std::max<std::size_t>(1, vertices.size() / kBoxSample))
     box.include(point(vertices[i]));

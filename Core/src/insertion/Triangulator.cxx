@@ -8,7 +8,7 @@
 
 namespace fd3
 {
-Triangulator::Triangulator(VertexArray vertices, const Box& box, const Box& bounds,
+Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Bounds& bounds,
   const Options& options, ThreadTeam& team, bool anyMagnitude)
   : team_(team), tuning_(options.randomSeed)
 {

@@ -4,7 +4,7 @@
 #ifndef fd3_Triangulator_h
 #define fd3_Triangulator_h
 
-#include "Geometry.h"
+#include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 #include "insertion/Inserter.h"
 #include "system/Threads.h"
@@ -28,8 +28,8 @@ public:
   /// too) and sets the predicates' static bounds. An inserter is made ready for each thread of
   /// `team`, which records every parallel pass.
   /// `anyMagnitude`: the points are not scaled into [-1, 1] (Predicates::allowAnyMagnitude()).
-  Triangulator(VertexArray vertices, const Box& box, const Box& bounds, const Options& options,
-    ThreadTeam& team, bool anyMagnitude);
+  Triangulator(VertexArray vertices, const Bounds& box, const Bounds& bounds,
+    const Options& options, ThreadTeam& team, bool anyMagnitude);
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false

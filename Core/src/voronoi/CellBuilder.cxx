@@ -204,7 +204,7 @@ void CellBuilder::emitClipped(std::uint32_t p, std::uint32_t cell, Stretch& out)
   traceRings();
   makePolyhedron();
   for (int wall = 0; wall < 6 && !cell_.neighbors.empty(); ++wall)
-    clipper_.clip(cell_, wall, in_.box[wall]);
+    clipper_.clip(cell_, wall, wall % 2 ? in_.box.hi[wall / 2] : in_.box.lo[wall / 2]);
   const Polyhedron& c = cell_;
   const std::size_t faces = c.neighbors.size();
   out.cells.push_back(cell);

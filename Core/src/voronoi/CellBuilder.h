@@ -39,7 +39,7 @@ struct CellSources
   const double* xyz;      ///< the points, along the curve
   const IdArray& inputId; ///< of each point but the far ones
   const Stars& stars;
-  const std::array<double, 6>& box;
+  const Bounds& box;
   bool polyhedra; ///< VoronoiOptions::polyhedra
   /// Per tetrahedron: its centre, while the clipped cells are built; then null, and the centres
   /// in the box are read from `points` through `pointOf`.

@@ -115,7 +115,7 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
 } // namespace
 
 void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedra,
-  const std::array<double, 6>& box, Doubles& centres, Flags& inBox)
+  const Bounds& box, Doubles& centres, Flags& inBox)
 {
   const std::size_t tets = tetrahedra.size() / 4;
   centres.resize(3 * tets);
@@ -128,8 +128,7 @@ void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedr
       for (int a = 0; a < 3; ++a)
         x[a] = xyz[3 * std::size_t(v[0]) + a];
       addScaledCircumcentre(xyz, v, x);
-      inBox[t] = x[0] >= box[0] && x[0] <= box[1] && x[1] >= box[2] && x[1] <= box[3] &&
-        x[2] >= box[4] && x[2] <= box[5];
+      inBox[t] = box.contains(x);
     }
   });
 }

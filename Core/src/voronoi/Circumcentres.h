@@ -7,7 +7,6 @@
 #include "system/Threads.h"
 #include "voronoi/Stars.h"
 
-#include <array>
 #include <cstddef>
 
 namespace fd3::voronoi
@@ -18,7 +17,7 @@ using Doubles = VoronoiCells::Doubles;
 /// Each tetrahedron's circumcentre, from its vertices in their order (in double-double where it
 /// is flat), and whether it lies in the closed box.
 void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedra,
-  const std::array<double, 6>& box, Doubles& centres, Flags& inBox);
+  const Bounds& box, Doubles& centres, Flags& inBox);
 
 /// The output point of each centre in the box, numbered in the tetrahedra's order: the centres
 /// of each group, the ones its cell owns, follow each other, cell after cell. One entry more

@@ -32,9 +32,9 @@
 //    clipped alike, but only their faces' neighbours, volumes and areas are written.
 #include "fd3/Voronoi.h"
 
-#include "Geometry.h"
+#include "FiniteBounds.h"
+#include "fd3/Bounds.h"
 #include "fd3/Distributed.h"
-#include "fd3/Measures.h"
 #include "insertion/InsertionOrder.h"
 #include "system/Threads.h"
 #include "voronoi/BoxClip.h"
@@ -46,7 +46,6 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
-#include <optional>
 #include <stdexcept>
 
 namespace fd3
@@ -55,43 +54,6 @@ namespace
 {
 using namespace voronoi;
 constexpr int kFarPoints = 8;
-
-/// The bounding box of the finite points, in VTK's order; false when there is none.
-bool finiteBounds(
-  ThreadTeam& team, const double* xyz, std::size_t count, std::array<double, 6>& bounds)
-{
-  std::vector<std::optional<Box>> boxes(team.partsFor(count)); // each stretch's
-  team.forRanges(count, "voronoi curve", [&](std::size_t k, std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      if (isFinite(xyz + 3 * i))
-      {
-        if (boxes[k])
-          boxes[k]->include(xyz + 3 * i);
-        else
-          boxes[k] = Box::around(xyz + 3 * i);
-      }
-  });
-  std::optional<Box> box;
-  for (const std::optional<Box>& b : boxes)
-    if (b && box)
-    {
-      box->include(b->lo);
-      box->include(b->hi);
-    }
-    else if (b)
-      box = b;
-  if (box)
-    bounds = {box->lo[0], box->hi[0], box->lo[1], box->hi[1], box->lo[2], box->hi[2]};
-  return box.has_value();
-}
-
-bool isBox(const std::array<double, 6>& b)
-{
-  for (int a = 0; a < 3; ++a)
-    if (!(b[2 * a] <= b[2 * a + 1]) || !std::isfinite(b[2 * a]) || !std::isfinite(b[2 * a + 1]))
-      return false;
-  return true;
-}
 
 /// The input's points along a Hilbert curve through their bounding box (exact copies in the
 /// order of their ids): the generators, then the points that only bound their cells (so that a
@@ -106,13 +68,13 @@ struct CurvePoints
 };
 
 CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
-  std::size_t generators, const std::array<double, 6>& points, const std::array<double, 6>& box)
+  std::size_t generators, const Bounds& points, const Bounds& box)
 {
   const double cells = double(1u << kHilbertBits);
   double scale[3];
   for (int a = 0; a < 3; ++a)
   {
-    const double extent = points[2 * a + 1] - points[2 * a];
+    const double extent = points.extent(a);
     scale[a] = extent > 0 && std::isfinite(extent) ? cells / extent : 0;
   }
   const std::vector<double> far = voronoiFarPoints(points, box);
@@ -133,7 +95,7 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
         std::uint32_t cell[3];
         for (int a = 0; a < 3; ++a)
           cell[a] = static_cast<std::uint32_t>(
-            std::min(cells - 1, std::max(0.0, (p[a] - points[2 * a]) * scale[a])));
+            std::min(cells - 1, std::max(0.0, (p[a] - points.lo[a]) * scale[a])));
         position = hilbertIndex(cell[0], cell[1], cell[2]);
         if (i >= generators) // after every generator: see circumcentres' owners
           position |= std::uint64_t(1) << (3 * kHilbertBits);
@@ -448,14 +410,14 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   cells.faceStart.assign(1, 0);
   cells.stats.inputPoints = count;
   ThreadTeam team(boundedThreads(options.threads));
-  std::array<double, 6> bounds;
-  if (!finiteBounds(team, xyz, count, bounds))
+  const Bounds bounds = finiteBounds(team, "voronoi curve", xyz, count);
+  if (bounds.empty())
   {
     cells.status = Status::Empty;
     cells.stats.nonFinitePoints = count;
     return cells;
   }
-  cells.box = isBox(options.box) ? options.box : bounds;
+  cells.box = options.box.finite() ? options.box : bounds;
   CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
   if (curve.xyz.empty())
   {
@@ -469,7 +431,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
     team, std::move(curve), count, options, std::move(mesh), density, std::move(cells));
 }
 
-VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>& pointBounds,
+VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   const VoronoiOptions& options, Coordinates& xyz)
 {
   VoronoiCells cells;
@@ -482,7 +444,7 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>
     cells.status = before;
     return cells;
   }
-  if (!isBox(options.box))
+  if (!options.box.finite())
     throw std::invalid_argument("fd3::voronoiCells: the clipping box of a mesh's cells is empty");
   cells.box = options.box;
   ThreadTeam team(boundedThreads(options.threads));
@@ -518,17 +480,14 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const std::array<double, 6>
     team, std::move(curve), count, options, std::move(tetrahedra), density, std::move(cells));
 }
 
-std::vector<double> voronoiFarPoints(
-  const std::array<double, 6>& pointBounds, const std::array<double, 6>& box)
+std::vector<double> voronoiFarPoints(const Bounds& pointBounds, const Bounds& box)
 {
-  double both[6], centre[3];
+  Bounds both = pointBounds;
+  both.include(box);
+  double centre[3];
   for (int a = 0; a < 3; ++a)
-  {
-    both[2 * a] = std::min(pointBounds[2 * a], box[2 * a]);
-    both[2 * a + 1] = std::max(pointBounds[2 * a + 1], box[2 * a + 1]);
-    centre[a] = both[2 * a] / 2 + both[2 * a + 1] / 2;
-  }
-  double reach = 2 * diagonal(both);
+    centre[a] = both.lo[a] / 2 + both.hi[a] / 2;
+  double reach = 2 * both.diagonal();
   if (reach == 0)
     reach = 1; // one point and a box of no volume: any cube will do
   std::vector<double> far(3 * kFarPoints);

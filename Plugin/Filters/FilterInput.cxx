@@ -1,0 +1,92 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+#include "FilterInput.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkArrayDispatch.h"
+#include "vtkDataArrayRange.h"
+#include "vtkDataSet.h"
+#include "vtkDoubleArray.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkSMPTools.h"
+
+namespace
+{
+/// Copies x,y,z tuples of any real array into doubles, without a virtual call per tuple.
+struct CopyToDoubles
+{
+  template <typename ArrayType>
+  void operator()(ArrayType* array, double* out) const
+  {
+    const auto tuples = vtk::DataArrayTupleRange<3>(array);
+    vtkSMPTools::For(0, tuples.size(), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          out[3 * i + k] = static_cast<double>(tuples[i][k]);
+        }
+      }
+    });
+  }
+};
+} // namespace
+
+namespace fd3vtk
+{
+vtkSmartPointer<vtkPoints> PointsInPrecision(vtkDataSet* input, int precision, vtkIdType extra)
+{
+  auto* pointSet = vtkPointSet::SafeDownCast(input);
+  vtkPoints* given = pointSet ? pointSet->GetPoints() : nullptr;
+  int type = given ? given->GetDataType() : VTK_DOUBLE;
+  if (precision == vtkAlgorithm::SINGLE_PRECISION)
+  {
+    type = VTK_FLOAT;
+  }
+  else if (precision == vtkAlgorithm::DOUBLE_PRECISION)
+  {
+    type = VTK_DOUBLE;
+  }
+  if (given && type == given->GetDataType() && extra == 0)
+  {
+    return given;
+  }
+  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataType(type);
+  points->SetNumberOfPoints(n + extra);
+  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    double x[3];
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      input->GetPoint(i, x);
+      points->SetPoint(i, x);
+    }
+  });
+  return points;
+}
+
+const double* CoordinatesAsDoubles(vtkPoints* points, std::vector<double>& copy)
+{
+  vtkDataArray* data = points->GetData();
+  if (auto* doubles = vtkDoubleArray::FastDownCast(data))
+  {
+    return doubles->GetPointer(0);
+  }
+  copy.resize(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
+  using Reals = vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>;
+  if (!Reals::Execute(data, CopyToDoubles{}, copy.data()))
+  {
+    CopyToDoubles{}(data, copy.data());
+  }
+  return copy.data();
+}
+
+int ThreadCount(int numberOfThreads)
+{
+  return numberOfThreads > 0 ? numberOfThreads : vtkSMPTools::GetEstimatedNumberOfThreads();
+}
+} // namespace fd3vtk

@@ -1,0 +1,36 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+// What the filters of FastDelaunay3D (and their MPI subclasses) take from their input before the
+// kernel runs: the points in the requested precision, their coordinates as doubles (whose finite
+// ones fd3::finiteBounds() bounds), and the threads to run on. Shared by the module's filters; not an API of its own.
+#ifndef FilterInput_h
+#define FilterInput_h
+
+#include "FastDelaunay3DFiltersModule.h" // For export macro
+#include "vtkSmartPointer.h"
+
+#include <vector>
+
+class vtkDataSet;
+class vtkPoints;
+
+namespace fd3vtk
+{
+/// The input's points in `precision` (an OutputPointsPrecision), with room for `extra` more after
+/// them: the input's own array when nothing changes (shared, same ids), else a copy.
+FASTDELAUNAY3DFILTERS_EXPORT vtkSmartPointer<vtkPoints> PointsInPrecision(
+  vtkDataSet* input, int precision, vtkIdType extra = 0);
+
+/// The points' coordinates as x,y,z doubles: the array itself when it holds doubles, else `copy`,
+/// filled without a virtual call per point.
+FASTDELAUNAY3DFILTERS_EXPORT const double* CoordinatesAsDoubles(
+  vtkPoints* points, std::vector<double>& copy);
+
+/// The threads a filter runs on: its NumberOfThreads, or VTK's SMP setting
+/// (vtkSMPTools::GetEstimatedNumberOfThreads(), which ParaView's thread setting governs) for 0.
+FASTDELAUNAY3DFILTERS_EXPORT int ThreadCount(int numberOfThreads);
+} // namespace fd3vtk
+
+#endif
