@@ -7,12 +7,10 @@
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCommunicator.h"
-#include "vtkDIYUtilities.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataSetAttributesFieldList.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
-#include "vtkMPIController.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -21,15 +19,6 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Distributed.h"
-#include "fd3/Measures.h"
-
-// clang-format off
-#include "vtk_diy2.h"
-#include VTK_DIY2(diy/assigner.hpp)
-#include VTK_DIY2(diy/link.hpp)
-#include VTK_DIY2(diy/master.hpp)
-#include VTK_DIY2(diy/mpi.hpp)
-// clang-format on
 
 #include <algorithm>
 #include <array>
@@ -45,71 +34,6 @@
 
 namespace fd3vtk
 {
-/// A split of space into parts, one per rank: a k-d tree whose leaves are ranks.
-class SpaceCuts
-{
-public:
-  using Point = std::array<double, 3>;
-
-  /// The tree of ranks [first, first + ranks) over the points [begin, end): those below the cut
-  /// go to the first ranks / 2 ranks, in proportion. Returns the node, or -(rank + 1) for a leaf.
-  int Split(
-    std::vector<Point>::iterator begin, std::vector<Point>::iterator end, int first, int ranks)
-  {
-    if (ranks == 1)
-    {
-      return -(first + 1);
-    }
-    Point lo = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
-    for (auto p = begin; p != end; ++p)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        lo[a] = std::min(lo[a], (*p)[a]);
-        hi[a] = std::max(hi[a], (*p)[a]);
-      }
-    }
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-    {
-      axis = hi[a] - lo[a] > hi[axis] - lo[axis] ? a : axis;
-    }
-    const int lower = ranks / 2;
-    const auto quantile = begin + (end - begin) * lower / ranks;
-    std::nth_element(
-      begin, quantile, end, [axis](const Point& a, const Point& b) { return a[axis] < b[axis]; });
-    const double at = quantile == end ? HUGE_VAL : (*quantile)[axis];
-    const auto split = std::partition(begin, end, [&](const Point& p) { return p[axis] < at; });
-    const int node = static_cast<int>(this->Nodes.size());
-    this->Nodes.push_back({ axis, at, 0, 0 });
-    const int below = this->Split(begin, split, first, lower);
-    const int above = this->Split(split, end, first + lower, ranks - lower);
-    this->Nodes[node].Below = below;
-    this->Nodes[node].Above = above;
-    return node;
-  }
-
-  int RankOf(const double x[3]) const
-  {
-    int node = 0;
-    while (node >= 0)
-    {
-      const Cut& cut = this->Nodes[node];
-      node = x[cut.Axis] < cut.At ? cut.Below : cut.Above;
-    }
-    return -node - 1;
-  }
-
-private:
-  struct Cut
-  {
-    int Axis;
-    double At;
-    int Below, Above;
-  };
-  std::vector<Cut> Nodes;
-};
-
 namespace
 {
 /// The point ids `ids` as a vtkIdList.
@@ -255,11 +179,6 @@ void OnCellIds(vtkCellArray* cells, Worker worker, Args&... args)
   }
 }
 
-/// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
-/// which catches what it throws; then every rank learns whether all got through, before any
-/// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the
-/// others waiting in a collective call: all of them stop after the same step.
-
 /// The input pieces' point ids in rank order, as the "GlobalIds" array of each point.
 vtkSmartPointer<vtkPointData> InputData(vtkDataSet* input, vtkIdType count, vtkIdType firstId)
 {
@@ -332,147 +251,24 @@ struct RankFigures
   }
 };
 
+/// Which of the lists hold something.
+template <typename List>
+std::vector<bool> NonEmpty(const std::vector<List>& lists)
+{
+  std::vector<bool> nonEmpty(lists.size());
+  for (std::size_t r = 0; r < lists.size(); ++r)
+  {
+    nonEmpty[r] = !lists[r].empty();
+  }
+  return nonEmpty;
+}
+
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// What the exchange brought, in rank order.
-void Take(diy::Master& master, const RankGroup& ranks, Received& received)
-{
-  std::vector<vtkSmartPointer<vtkPolyData>> byRank(ranks.Size);
-  master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
-    for (const diy::BlockID& from : proxy.link()->neighbors())
-    {
-      if (proxy.incoming(from.gid))
-      {
-        vtkDataArray* xyz = nullptr;
-        vtkFieldData* values = nullptr;
-        proxy.dequeue<vtkDataArray*>(from.gid, xyz);
-        proxy.dequeue<vtkFieldData*>(from.gid, values);
-        byRank[from.gid] = vtkSmartPointer<vtkPolyData>::New();
-        byRank[from.gid]->SetPoints(vtkNew<vtkPoints>());
-        byRank[from.gid]->GetPoints()->SetData(vtkSmartPointer<vtkDataArray>::Take(xyz));
-        byRank[from.gid]->GetPointData()->ShallowCopy(vtkSmartPointer<vtkFieldData>::Take(values));
-      }
-    }
-  });
-  for (int r = 0; r < ranks.Size; ++r)
-  {
-    if (byRank[r] && byRank[r]->GetNumberOfPoints() > 0)
-    {
-      received.Parts.push_back(byRank[r]);
-      received.Senders.push_back(r);
-    }
-  }
-}
 } // namespace
-
-bool IsDistributed(vtkMultiProcessController* controller)
-{
-  return vtkMPIController::SafeDownCast(controller) && controller->GetNumberOfProcesses() > 1;
-}
-
-RankGroup::RankGroup(vtkMultiProcessController* controller)
-  : Controller(controller), Rank(controller->GetLocalProcessId()),
-    Size(controller->GetNumberOfProcesses())
-{}
-
-bool RankGroup::AllSucceeded(bool succeeded)
-{
-  int local[2] = { succeeded, this->Failure.empty() }, global[2] = { 0, 0 };
-  this->Controller->AllReduce(local, global, 2, vtkCommunicator::MIN_OP);
-  this->AnyFailed = global[1] == 0;
-  return global[0] != 0;
-}
-
-bool PointExchange::BalancedCuts(
-  vtkDataArray* coordinates, const std::vector<vtkIdType>& finite, SpaceCuts& cuts)
-{
-  constexpr double kSample = 1 << 18; // parts within about 1% of the mean
-  vtkMultiProcessController* controller = this->Ranks.Controller;
-  const vtkIdType local = static_cast<vtkIdType>(finite.size());
-  vtkIdType total = 0;
-  controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
-  std::vector<double> sample;
-  if (!this->Ranks.Local([&] {
-        const auto mine = static_cast<std::size_t>(std::ceil(kSample * local / double(total)));
-        sample.resize(3 * std::min(mine, finite.size()));
-        for (std::size_t k = 0; k < sample.size() / 3; ++k)
-        {
-          coordinates->GetTuple(finite[k * finite.size() / (sample.size() / 3)], &sample[3 * k]);
-        }
-        return true;
-      }))
-  {
-    return false;
-  }
-  std::vector<vtkIdType> lengths(this->Ranks.Size), offsets(this->Ranks.Size);
-  const vtkIdType length = static_cast<vtkIdType>(sample.size());
-  controller->AllGather(&length, lengths.data(), 1);
-  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
-  std::vector<std::array<double, 3>> all;
-  if (!this->Ranks.Local([&] {
-        all.resize(static_cast<std::size_t>(offsets.back() + lengths.back()) / 3);
-        return true;
-      }))
-  {
-    return false;
-  }
-  controller->AllGatherV(sample.data(), all.data()->data(), length, lengths.data(), offsets.data());
-  return this->Ranks.Local([&] {
-    cuts.Split(all.begin(), all.end(), 0, this->Ranks.Size);
-    return true;
-  });
-}
-
-template <typename List, typename Part>
-bool PointExchange::Send(const std::vector<List>& lists, Part&& part, Received& received)
-{
-  const int rank = this->Ranks.Rank, size = this->Ranks.Size;
-  diy::mpi::communicator comm = vtkDIYUtilities::GetCommunicator(this->Ranks.Controller);
-  std::vector<int> sends(size);
-  for (int r = 0; r < size; ++r)
-  {
-    sends[r] = r != rank && !lists[r].empty();
-  }
-  std::vector<std::vector<int>> allSends;
-  diy::mpi::all_gather(comm, sends, allSends);
-  diy::Master master(comm, 1, -1, nullptr, [](void*) {});
-  diy::ContiguousAssigner assigner(size, size);
-  auto* link = new diy::Link(); // the master's
-  for (int r = 0; r < size; ++r)
-  {
-    if (allSends[rank][r] || allSends[r][rank])
-    {
-      link->add_neighbor(diy::BlockID(r, assigner.rank(r)));
-    }
-  }
-  int block = 0; // DIY's one block per rank; its content is not used
-  master.add(rank, &block, link);
-  if (!this->Ranks.Local([&] {
-        master.foreach ([&](void*, const diy::Master::ProxyWithLink& proxy) {
-          for (const diy::BlockID& to : proxy.link()->neighbors())
-          {
-            if (sends[to.gid])
-            {
-              vtkSmartPointer<vtkPolyData> points = part(to.gid);
-              proxy.enqueue<vtkDataArray*>(to, points->GetPoints()->GetData());
-              proxy.enqueue<vtkFieldData*>(to, points->GetPointData());
-            }
-          }
-        });
-        return true;
-      }))
-  {
-    return false;
-  }
-  master.exchange();
-  return this->Ranks.Local([&] {
-    Take(master, this->Ranks, received);
-    return true;
-  });
-}
 
 DistributedRun::DistributedRun(vtkMultiProcessController* controller, int threads)
   : Ranks(controller), Threads(threads), Exchange(this->Ranks)
@@ -585,7 +381,7 @@ bool DistributedRun::ExchangeHalo()
   // With no tetrahedron, a rank sends all its points to every other: each part is made as it
   // is sent.
   return this->Exchange.Send(
-    halo,
+    NonEmpty(halo),
     [&](int r) {
       return this->HaloPart(halo[r], meshed ? xyz[r] : this->Mesh->points({ halo[r] })[0]);
     },
@@ -742,7 +538,7 @@ bool DistributedRun::SpreadFinite(
   }
   const int type = this->PointType;
   if (!this->Exchange.Send(
-        lists, [&](int r) { return Subset(coordinates, data, lists[r], type); }, parts))
+        NonEmpty(lists), [&](int r) { return Subset(coordinates, data, lists[r], type); }, parts))
   {
     return false;
   }

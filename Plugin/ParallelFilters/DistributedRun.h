@@ -9,6 +9,9 @@
 #ifndef DistributedRun_h
 #define DistributedRun_h
 
+#include "PointExchange.h"
+#include "RankGroup.h"
+
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -37,82 +40,6 @@ namespace fd3vtk
 constexpr const char* kInputIds = "GlobalIds";
 
 using fd3::Coordinates;
-
-class SpaceCuts;
-
-/// Whether `controller` runs MPI with two processes or more, where the filters run distributed
-/// (else they run as their one-process superclasses).
-bool IsDistributed(vtkMultiProcessController* controller);
-
-/// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
-/// which catches what it throws; then every rank learns whether all got through, before any
-/// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the
-/// others waiting in a collective call: all of them stop after the same step.
-class RankGroup
-{
-public:
-  explicit RankGroup(vtkMultiProcessController* controller);
-
-  /// Runs `work` on this rank (it returns false when aborted); whether it succeeded on all.
-  template <typename Work>
-  bool Local(Work&& work)
-  {
-    bool succeeded = false;
-    try
-    {
-      succeeded = work();
-    }
-    catch (const std::exception& error)
-    {
-      this->Failure = error.what();
-    }
-    return this->AllSucceeded(succeeded);
-  }
-
-  /// Whether every rank succeeded; AnyFailed says whether a rank failed rather than aborted.
-  bool AllSucceeded(bool succeeded);
-
-  vtkMultiProcessController* const Controller;
-  const int Rank;
-  const int Size;
-  std::string Failure;    ///< why this rank failed, when it did
-  bool AnyFailed = false; ///< whether some rank failed (else a stop was an abort)
-};
-
-/// The point sets that other ranks sent to this one, one per sender, in rank order.
-struct Received
-{
-  std::vector<vtkSmartPointer<vtkPointSet>> Parts;
-  std::vector<int> Senders;
-};
-
-/// Points moved between ranks: the split of space that balances them, and the exchange of point
-/// sets as raw arrays. Nothing in it is particular to Delaunay.
-class PointExchange
-{
-public:
-  explicit PointExchange(RankGroup& ranks) : Ranks(ranks) {}
-
-  /// A split of space into one part per rank, balanced by count: recursive bisection of a
-  /// sample of every rank's `finite` points (kSample in all, each rank's share in proportion to
-  /// its count), each time across the sample's longest side, at the quantile that gives each side
-  /// its share of ranks. Every rank computes it from the same gathered sample, so all agree.
-  /// (vtkDistributedPointCloudFilter gives single-precision points under MPI, whatever the
-  /// input's, and is several times slower; vtkDIYKdTreeUtilities, whose cuts
-  /// vtkRedistributeDataSetFilter uses, is not in ParaView's SDK.)
-  bool BalancedCuts(
-    vtkDataArray* coordinates, const std::vector<vtkIdType>& finite, SpaceCuts& cuts);
-
-  /// Sends every other rank r the points part(r), made as they are sent, where lists[r] is not
-  /// empty, and appends what this rank receives to `received`. With DIY, as vtkDIYDataExchanger,
-  /// but as raw arrays: vtkDIYDataExchanger writes each data set as a compressed XML file, which
-  /// took most of the redistribution's time.
-  template <typename List, typename Part>
-  bool Send(const std::vector<List>& lists, Part&& part, Received& received);
-
-private:
-  RankGroup& Ranks;
-};
 
 /// This rank's points once spread by space: the finite points in its part of space, then its own
 /// non-finite ones (nothing to triangulate, but they stay in the output as unused points).
