@@ -22,6 +22,7 @@
 #include "fd3/Voronoi.h"
 
 #include <algorithm>
+#include <array>
 #include <exception>
 #include <string>
 
@@ -30,6 +31,34 @@ vtkCxxSetObjectMacro(vtkPFastVoronoi3D, Controller, vtkMultiProcessController);
 
 namespace
 {
+/// One rank's figures, then all ranks' together (Sum()). A rank's duplicates and non-finite
+/// points are its own points' (a position is one rank's, and the halo is finite).
+struct CellFigures
+{
+  double Cells = 0;
+  double Duplicates = 0;
+  double NonFinite = 0;
+  double Ghosts = 0;     ///< points received
+  double OutOfRange = 0; ///< ranks whose cells span more than doubles hold
+
+  void Sum(vtkMultiProcessController* controller)
+  {
+    constexpr std::array<double CellFigures::*, 5> kFields = { &CellFigures::Cells,
+      &CellFigures::Duplicates, &CellFigures::NonFinite, &CellFigures::Ghosts,
+      &CellFigures::OutOfRange };
+    std::array<double, kFields.size()> local, total;
+    for (std::size_t k = 0; k < kFields.size(); ++k)
+    {
+      local[k] = this->*kFields[k];
+    }
+    controller->AllReduce(local.data(), total.data(), local.size(), vtkCommunicator::SUM_OP);
+    for (std::size_t k = 0; k < kFields.size(); ++k)
+    {
+      this->*kFields[k] = total[k];
+    }
+  }
+};
+
 /// The cells' GeneratorId: the input ids that the points brought (kInputIds, as cell data), which
 /// then leave the cell data.
 void SetGeneratorIds(vtkUnstructuredGrid* output)
@@ -129,19 +158,19 @@ int vtkPFastVoronoi3D::RequestData(
     fd3::Coordinates().swap(run.Xyz); // else the generators' points come from it
   }
 
-  // The figures of all ranks: a rank's duplicates and non-finite points are its own points' (a
-  // position is one rank's, and the halo is finite).
-  const double local[5] = { double(cells.numberOfCells()), double(cells.stats.duplicatesMerged),
-    double(cells.stats.nonFinitePoints), double(cells.status == fd3::Status::OutOfRange),
-    double(ghosts) };
-  double total[5];
-  this->Controller->AllReduce(local, total, 5, vtkCommunicator::SUM_OP);
-  this->RecordFigures(static_cast<vtkIdType>(total[0]), static_cast<vtkIdType>(total[1]),
-    static_cast<vtkIdType>(total[2]));
-  this->NumberOfGhostPoints = static_cast<vtkIdType>(total[4]);
-  const fd3::Status status = total[3] > 0 ? fd3::Status::OutOfRange
-    : total[0] > 0                        ? fd3::Status::Ok
-                                          : fd3::Status::Empty;
+  CellFigures figures;
+  figures.Cells = double(cells.numberOfCells());
+  figures.Duplicates = double(cells.stats.duplicatesMerged);
+  figures.NonFinite = double(cells.stats.nonFinitePoints);
+  figures.Ghosts = double(ghosts);
+  figures.OutOfRange = cells.status == fd3::Status::OutOfRange;
+  figures.Sum(this->Controller);
+  this->RecordFigures(static_cast<vtkIdType>(figures.Cells),
+    static_cast<vtkIdType>(figures.Duplicates), static_cast<vtkIdType>(figures.NonFinite));
+  this->NumberOfGhostPoints = static_cast<vtkIdType>(figures.Ghosts);
+  const fd3::Status status = figures.OutOfRange > 0 ? fd3::Status::OutOfRange
+    : figures.Cells > 0                             ? fd3::Status::Ok
+                                                    : fd3::Status::Empty;
   const bool hasCells =
     root ? this->ReportOnInput(status, options.box, run.InputPoints) : status == fd3::Status::Ok;
   if (!hasCells)
