@@ -268,13 +268,6 @@ public:
     }
   }
 
-  /// Takes over another pool's free slots (both retired).
-  void absorb(SlotPool& other)
-  {
-    free_.insert(free_.end(), other.free_.begin(), other.free_.end());
-    other.free_.clear();
-  }
-
   const std::vector<TetId>& freeSlots() const { return free_; }
 
   /// Never-used slots claimed at a time.

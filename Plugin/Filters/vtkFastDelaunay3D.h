@@ -22,15 +22,16 @@
  * warning, and recorded in the getters and the field data.
  *
  * The kernel follows "Fast Delaunay triangulation in three dimensions" (Bowyer-Watson insertion, a
- * background grid searched layer by layer, a random walk to the containing tetrahedron, the cavity
- * grown through adjacency and filled without searching), with points inserted in BRIO/Hilbert order.
+ * background grid searched layer by layer, a walk to a tetrahedron in conflict with the point, the
+ * cavity grown through adjacency and filled without searching), with points inserted in
+ * BRIO/Hilbert order.
  *
  * @warning
- * Points with NaN or infinite coordinates are reported with an error and left out of the
- * tetrahedralization (they remain in the output as unused points). Fewer than 4 distinct points,
- * or points that are all collinear or coplanar, give a warning and an empty output. An
- * empty input gives a warning and an empty output; an aborted run an empty output; an internal
- * failure (such as running out of memory) an error and an empty output.
+ * Points with NaN or infinite coordinates are left out of the tetrahedralization and counted in
+ * the warning (they remain in the output as unused points). Fewer than 4 distinct points, or
+ * points that are all collinear or coplanar, give a warning and the points with no cells. An
+ * empty input gives a warning and an output without points; an aborted run an empty output; an
+ * internal failure (such as running out of memory) an error and the points with no cells.
  *
  * @sa
  * vtkDelaunay3D vtkDelaunay2D
@@ -183,8 +184,9 @@ public:
 
   ///@{
   /**
-   * Seed of the randomized parts (BRIO rounds, the random walk). The same seed gives the same
-   * output. Default is 1.
+   * Seed of the randomized parts: the BRIO rounds, the order in which ties between cospherical
+   * points are broken, and the walk's random choice of face where it runs long. The same seed
+   * gives the same output. Default is 1.
    */
   vtkSetMacro(RandomSeed, int);
   vtkGetMacro(RandomSeed, int);

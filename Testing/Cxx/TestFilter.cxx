@@ -390,9 +390,9 @@ TEST_P(AbortWithThreads, LeavesAnEmptyOutputAndTheFilterRunsAgain)
 INSTANTIATE_TEST_SUITE_P(Filter, AbortWithThreads, ::testing::Values(1, 2));
 
 // An internal failure in the middle of a run (here an exception thrown by a progress observer,
-// through the kernel): an error, the points and no cells, no leak (the sanitizer build checks), and the
-// filter runs correctly afterwards.
-TEST(Filter, InternalFailureLeavesAnEmptyOutputAndTheFilterRunsAgain)
+// through the kernel): an error, the points and no cells, no leak (the sanitizer build checks), and
+// the filter runs correctly afterwards.
+TEST(Filter, InternalFailureKeepsThePointsWithoutCellsAndTheFilterRunsAgain)
 {
   auto cloud = toPolyData(fd3test::uniformCube(60000, 8));
   vtkNew<vtkFastDelaunay3D> filter;

@@ -150,7 +150,6 @@ public:
   /// a rounding error to underflow, and the exact stage computes in GMP integers on the
   /// coordinates' binary values, which neither overflow nor underflow. Ends the grid's shortcuts.
   void allowAnyMagnitude();
-  bool allowsAnyMagnitude() const { return tuning_.anyMagnitude; }
   /// From now on the lifts' filter goes first. The static filter, one comparison, decides nearly
   /// every insphere test on volume points, but on surface samples, whose local scale is far below
   /// the box's, it leaves many of them open, and a branch on it is then a coin toss to the

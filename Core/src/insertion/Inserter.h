@@ -5,7 +5,8 @@
 //             -> correctCavity (visibility and volume threshold: the core made star-shaped)
 //             -> fillCavity (new tetrahedra linked through the boundary's edges, no search).
 // Each step lives in the source file named after it. Several inserters may work on one mesh at
-// once, each in a region of its own (Region, ParallelInsertion.cxx).
+// once (ParallelInsertion.cxx): each in a region of its own (Region), or each holding the
+// tetrahedra it touches in an owner table (a locking pass).
 #ifndef fd3_Inserter_h
 #define fd3_Inserter_h
 

@@ -54,8 +54,7 @@ TetId Inserter::startTet(VertId v) const
 // region has three vertices in no other, so no other inserter writes it (nor its vertex 0, which
 // shares a word with the flags). A region's points follow the whole set's curve out of its box and
 // back in elsewhere, and on surface samples the curve also jumps across empty space: without the
-// grid, walks on several threads crossed the region. Sorting each region's points along a curve
-// of its own did not shorten them.
+// grid, walks on several threads crossed the region.
 TetId Inserter::regionStart(VertId v) const
 {
   if (!mesh_.grid.enabled())

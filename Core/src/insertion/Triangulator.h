@@ -1,6 +1,7 @@
 // The triangulation's driver: the mesh that every inserter shares, one inserter and one slot pool
 // per thread, and the order in which they insert the points: serially for the first BRIO rounds,
-// then round by round in parallel (ParallelInsertion.cxx), each thread in a region of its own.
+// then round by round in parallel (ParallelInsertion.cxx): in regions, one per thread, then in
+// locking passes.
 #ifndef fd3_Triangulator_h
 #define fd3_Triangulator_h
 

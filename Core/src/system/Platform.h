@@ -1,5 +1,5 @@
 // The compiler-specific operations the kernel uses, each with a portable fallback. Defining
-// FD3_PORTABLE (CMake option FD3_PORTABLE, built and tested by ./setup.sh test) forces the
+// FD3_PORTABLE (CMake option FD3_PORTABLE, built and tested by ./setup.sh sanitizers) forces the
 // fallbacks, so that they stay correct on compilers where they are the only choice.
 #ifndef fd3_Platform_h
 #define fd3_Platform_h
