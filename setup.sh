@@ -23,7 +23,7 @@ cd "$(dirname "$0")"
 # package needs but does not pull in, an X server for rendering tests, and the test tools.
 packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
-  cmake ninja-build g++ pkg-config clang libclang-rt-14-dev voro++-dev)
+  cmake ninja-build g++ pkg-config clang clang-format libclang-rt-14-dev voro++-dev)
 # The benchmark alone compares against CGAL and TetGen (never dependencies of Core or Plugin; both
 # are GPL-family licensed and only linked into the benchmark program) and plots.
 [ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy)
@@ -36,6 +36,11 @@ if ((${#missing[@]})); then
   sudo=""; [ "$(id -u)" = 0 ] || sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# New commits are checked as CI checks them (.ci/check-commits), in a clone of the project.
+if [ -d .git ] && [ -z "$(git config core.hooksPath || true)" ]; then
+  git config core.hooksPath .githooks
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
