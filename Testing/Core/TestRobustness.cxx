@@ -1,4 +1,5 @@
 // Degenerate, hostile and huge inputs: every result must pass the exact validator.
+#include "CoreTestUtilities.h"
 #include "ExactValidator.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
@@ -15,17 +16,12 @@ using fd3test::joined;
 using fd3test::Points;
 using fd3test::scaled;
 
-void expectExactDelaunay(const Points& p, const std::string& what, int threads = 1)
+fd3::Triangulation expectExactDelaunay(const Points& p, const std::string& what, int threads = 1)
 {
-  const std::size_t n = p.size() / 3;
   fd3::Options options;
   options.threads = threads;
   options.pointsPerThread = 64; // parallel rounds even on these small sets
-  const fd3::Triangulation r = fd3::triangulate(p.data(), n, options);
-  ASSERT_EQ(r.status, fd3::Status::Ok) << what << ": " << fd3::toString(r.status);
-  const auto report = fd3test::checkTriangulation(p.data(), n, r.tetrahedra);
-  EXPECT_TRUE(report.valid()) << what << ": " << report.summary();
-  EXPECT_EQ(r.stats.insertedPoints, report.distinctPoints) << what;
+  return fd3test::triangulateAndCheck(p, options, what);
 }
 
 Points subset(const Points& p, double keep, std::uint64_t seed)
@@ -54,7 +50,12 @@ TEST(Robustness, RandomSubsetsOfLattices)
 
 TEST(Robustness, PointsExactlyOnASphere)
 {
-  expectExactDelaunay(fd3test::exactSphere(20000, 5), "sphere");
+  const Points p = fd3test::exactSphere(20000, 5);
+  ASSERT_EQ(p.size(), 3u * 20000);
+  const fd3::Triangulation r = expectExactDelaunay(p, "sphere");
+  EXPECT_GT(r.stats.symbolicTies, 0u);
+  // The perturbation pulls every tetrahedron to the first vertex: about 2 per point.
+  EXPECT_LT(r.stats.tetrahedra, 3u * 20000);
 }
 
 TEST(Robustness, PointsExactlyOnAFewPlanes)
@@ -190,11 +191,13 @@ TEST(Robustness, ThinSlabsAndTightClusters)
   expectExactDelaunay(fd3test::clusters(5000, 5, 1e-12, 3), "clusters of spread 1e-12");
 }
 
+// Scaling by a power of two and an exact shift keep every predicate's sign: huge, tiny and
+// far-from-origin coordinates give exact results, and lattices there still hit the exact path.
 TEST(Robustness, HugeTinyAndFarFromTheOrigin)
 {
   for (double scale : {1e-300, 1e300})
   {
-    Points p = fd3test::uniformCube(2000, 10);
+    Points p = joined(fd3test::uniformCube(2000, 10), fd3test::lattice(4));
     for (double& x : p)
       x *= scale;
     expectExactDelaunay(p, "scale " + std::to_string(scale));
@@ -203,6 +206,10 @@ TEST(Robustness, HugeTinyAndFarFromTheOrigin)
   for (double& x : far)
     x += 1e9;
   expectExactDelaunay(far, "offset 1e9");
+  Points lattice = fd3test::lattice(5);
+  for (double& x : lattice)
+    x = 1e9 + x * 0.25;
+  EXPECT_GT(expectExactDelaunay(lattice, "lattice at 1e9").stats.symbolicTies, 0u);
 }
 
 // Magnitudes that no scaled frame holds exactly, each once on one thread and once on two.
