@@ -180,6 +180,7 @@ struct IncrementalDelaunay::Impl
 
   void insertFirst(const double* xyz, std::size_t count);
   void insertMore(const double* xyz, std::size_t count);
+  bool insertOne(const double* p, MeshChange& change);
   /// The output; with `release`, the mesh's records go into it, which ends the mesh, and with
   /// `xyz` too, the coordinates of every point go there (IncrementalDelaunay::release(xyz)).
   Triangulation output(bool release, Coordinates* xyz = nullptr);
@@ -300,9 +301,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
 void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
 {
   for (std::size_t i = 0; i < count; ++i)
-    for (int a = 0; a < 3 && isFinite(xyz + 3 * i); ++a)
-      if (!(frame.bounds.lo[a] <= xyz[3 * i + a] && xyz[3 * i + a] <= frame.bounds.hi[a]))
-        throw std::invalid_argument("fd3::IncrementalDelaunay::add: a point outside the frame");
+    if (isFinite(xyz + 3 * i) && !frame.bounds.contains(xyz + 3 * i))
+      throw std::invalid_argument("fd3::IncrementalDelaunay::add: a point outside the frame");
   if (!triangulator)
   {
     // Not started yet: start again from every point so far, these included.
@@ -333,6 +333,28 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
       status = Status::Aborted;
   }
   points += count;
+}
+
+bool IncrementalDelaunay::Impl::insertOne(const double* p, MeshChange& change)
+{
+  change.deleted.clear();
+  change.made.clear();
+  if (isFinite(p) && !frame.bounds.contains(p))
+    throw std::invalid_argument("fd3::IncrementalDelaunay::addOne: a point outside the frame");
+  if (takesPoints)
+    held.insert(held.end(), p, p + 3);
+  const auto id = static_cast<std::uint32_t>(points++);
+  ++stats.inputPoints;
+  if (!isFinite(p))
+  {
+    ++stats.nonFinitePoints;
+    return false;
+  }
+  Vertex vertex;
+  toFrame(frame, p, vertex.xyz);
+  vertex.tet = kNoTet;
+  vertex.point = id;
+  return triangulator->insertOne(vertex, change.deleted, change.made);
 }
 
 Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
@@ -519,6 +541,35 @@ void IncrementalDelaunay::add(const double* xyz, std::size_t count)
   if (impl_->released || impl_->status == Status::Aborted || impl_->status == Status::CheckFailed)
     throw std::logic_error("fd3::IncrementalDelaunay::add: the tetrahedralization ended");
   impl_->insertMore(xyz, count);
+}
+
+bool IncrementalDelaunay::addOne(const double p[3], MeshChange& change)
+{
+  if (impl_->released || impl_->status != Status::Ok)
+    throw std::logic_error("fd3::IncrementalDelaunay::addOne: no tetrahedralization to add to");
+  if (impl_->points + 1 >= kMaxVertices)
+    throw std::length_error("fd3::IncrementalDelaunay::addOne: more than 2^30 points");
+  return impl_->insertOne(p, change);
+}
+
+std::vector<std::uint32_t> IncrementalDelaunay::liveTetrahedra() const
+{
+  std::vector<std::uint32_t> live;
+  if (impl_->released || !impl_->triangulator)
+    return live;
+  const TetMesh& mesh = impl_->triangulator->tetrahedra();
+  for (TetId t = 0; t < mesh.slots(); ++t)
+    if (!mesh.isDead(t) && !mesh.isGhost(t))
+      live.push_back(t);
+  return live;
+}
+
+void IncrementalDelaunay::tetrahedron(std::uint32_t t, std::uint32_t ids[4]) const
+{
+  const TetMesh& mesh = impl_->triangulator->tetrahedra();
+  const VertexArray& vertices = impl_->triangulator->vertices();
+  for (int k = 0; k < 4; ++k)
+    ids[k] = vertices[mesh.vertex(t, k)].point;
 }
 
 Triangulation IncrementalDelaunay::snapshot() const

@@ -10,9 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -248,3 +250,89 @@ TEST(AddPoints, PointsOutsideTheFrameAreRefused)
   EXPECT_EQ(mesh.status(), fd3::Status::Ok);
 }
 } // namespace
+
+namespace
+{
+/// A mesh kept current from addOne()'s changes alone, as vtkFastDelaunay3D's incremental API
+/// keeps its vtkUnstructuredGrid: each live tetrahedron's sorted point ids, by id.
+class MirroredMesh
+{
+public:
+  explicit MirroredMesh(const fd3::IncrementalDelaunay& mesh) : mesh_(mesh)
+  {
+    for (const std::uint32_t t : mesh.liveTetrahedra())
+      make(t);
+  }
+  void apply(const fd3::MeshChange& change)
+  {
+    for (const std::uint32_t t : change.deleted)
+      ASSERT_EQ(live_.erase(t), 1u) << "tetrahedron " << t << " deleted twice or never made";
+    for (const std::uint32_t t : change.made)
+      make(t);
+  }
+  std::vector<std::array<std::uint32_t, 4>> tetrahedra() const
+  {
+    std::vector<std::array<std::uint32_t, 4>> all;
+    for (const auto& entry : live_)
+      all.push_back(entry.second);
+    std::sort(all.begin(), all.end());
+    return all;
+  }
+
+private:
+  void make(std::uint32_t t)
+  {
+    std::array<std::uint32_t, 4> ids;
+    mesh_.tetrahedron(t, ids.data());
+    std::sort(ids.begin(), ids.end());
+    EXPECT_TRUE(live_.emplace(t, ids).second) << "tetrahedron " << t << " made while live";
+  }
+  const fd3::IncrementalDelaunay& mesh_;
+  std::map<std::uint32_t, std::array<std::uint32_t, 4>> live_;
+};
+} // namespace
+
+// Points added one at a time with the changes reported: a mesh kept current from those changes
+// alone holds the tetrahedra of all the points at once, after every insertion on a lattice (ties)
+// and at the end on uniform points; repeats and non-finite points change nothing.
+TEST(AddPoints, OneAtATimeReportsEveryChange)
+{
+  for (const std::string kind : {"cube", "lattice"})
+  {
+    SCOPED_TRACE(kind);
+    const fd3test::Points p = fd3test::generate(kind, kind == std::string("cube") ? 3000 : 300, 4);
+    const std::size_t n = p.size() / 3, first = n / 4; // a lattice's first plane is flat
+    fd3::IncrementalDelaunay mesh(p.data(), first, fd3::Options(), fd3test::frameOf(p));
+    ASSERT_EQ(mesh.status(), fd3::Status::Ok);
+    MirroredMesh mirror(mesh);
+    fd3::MeshChange change;
+    for (std::size_t i = first; i < n; ++i)
+    {
+      ASSERT_TRUE(mesh.addOne(&p[3 * i], change)) << "point " << i;
+      EXPECT_FALSE(change.made.empty());
+      mirror.apply(change);
+      if (kind == std::string("lattice") || i + 1 == n)
+        ASSERT_EQ(mirror.tetrahedra(), fd3test::canonicalTetrahedra(mesh.snapshot().tetrahedra))
+          << "after point " << i;
+    }
+    const fd3::Triangulation whole = fd3::triangulate(p.data(), n, fd3::Options());
+    EXPECT_EQ(mirror.tetrahedra(), fd3test::canonicalTetrahedra(whole.tetrahedra));
+    // A repeat of a vertex and a NaN point take ids but change nothing.
+    EXPECT_FALSE(mesh.addOne(&p[3 * 7], change));
+    EXPECT_TRUE(change.deleted.empty() && change.made.empty());
+    const double nan[3] = {std::nan(""), 0, 0};
+    EXPECT_FALSE(mesh.addOne(nan, change));
+    const fd3::Triangulation after = mesh.snapshot();
+    EXPECT_EQ(after.representative[n], 7u);
+    EXPECT_EQ(after.representative[n + 1], fd3::kNoPoint);
+    EXPECT_EQ(after.stats.duplicatesMerged, 1u);
+    EXPECT_EQ(after.stats.nonFinitePoints, 1u);
+    const double outside[3] = {1e9, 0, 0};
+    EXPECT_THROW(mesh.addOne(outside, change), std::invalid_argument);
+  }
+  // A mesh with no tetrahedron yet has nothing to report changes of.
+  const double three[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  fd3::IncrementalDelaunay few(three, 3, fd3::Options(), fd3::frameOf(three, 3));
+  fd3::MeshChange change;
+  EXPECT_THROW(few.addOne(three, change), std::logic_error);
+}

@@ -51,6 +51,15 @@ Frame frameOf(const double* xyz, std::size_t count);
 /// would touch every page once more before they are filled.
 using Coordinates = std::vector<double, BulkAllocator<double>>;
 
+/// What inserting one point changed among a mesh's finite tetrahedra (IncrementalDelaunay::
+/// addOne()): the ids of those it deleted and of those it made. A tetrahedron keeps its id while
+/// it lives; a deleted one's id goes to a tetrahedron made by a later insertion.
+struct MeshChange
+{
+  std::vector<std::uint32_t> deleted;
+  std::vector<std::uint32_t> made;
+};
+
 /// A Delaunay tetrahedralization that points can be added to once it is built: the distributed
 /// filter inserts the ghost points it receives from other MPI ranks into the mesh of its own.
 /// Ids of added points follow the earlier ones. The rules are triangulate()'s, with the figures
@@ -84,6 +93,17 @@ public:
   /// into it as in triangulate(). Throws std::logic_error after an abort, a failed check or
   /// release(), std::invalid_argument for a point outside the frame.
   void add(const double* xyz, std::size_t count);
+  /// add() of one point that reports what it changed, for a caller that keeps a mesh of its own
+  /// current (vtkFastDelaunay3D's incremental API): one insertion on the calling thread, its
+  /// deleted and made finite tetrahedra in `change`. The point takes the next id, as in add();
+  /// returns whether it became a vertex (false: not finite, or a repeat of a vertex, which it is
+  /// merged into). Throws as add() does, and std::logic_error while status() is not Ok.
+  bool addOne(const double p[3], MeshChange& change);
+  /// The ids of the live finite tetrahedra, for a caller of addOne() that starts its own mesh.
+  std::vector<std::uint32_t> liveTetrahedra() const;
+  /// The point ids of live tetrahedron t, positively oriented.
+  void tetrahedron(std::uint32_t t, std::uint32_t ids[4]) const;
+
   /// Every point so far, for the finite tetrahedra, neighbours (Options::computeNeighbors),
   /// representatives and figures: a copy, the mesh stays.
   Triangulation snapshot() const;

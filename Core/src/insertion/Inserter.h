@@ -123,6 +123,8 @@ public:
   bool mayTouch(TetId t) const;
 
   const Statistics& stats() const { return stats_; }
+  /// The last insertion's cavity: the tetrahedra it deleted (freed slots now) and made.
+  const Cavity& lastCavity() const { return cavity_; }
   const Predicates& predicates() const { return predicates_; }
   /// Takes the tuning of `tuned`, after points were added to the mesh.
   void retune(const Predicates& tuned) { predicates_.tuneLike(tuned); }

@@ -54,6 +54,34 @@ bool Triangulator::insertMore(VertexArray more, const std::vector<std::size_t>& 
   return insertRounds(begin, vertexCount(), starts, false, progress);
 }
 
+bool Triangulator::insertOne(
+  const Vertex& vertex, std::vector<TetId>& deleted, std::vector<TetId>& made)
+{
+  tuning_.include(vertex.xyz, 1, sizeof(Vertex) / sizeof(double));
+  Inserter& inserter = *inserters_[0];
+  inserter.retune(tuning_);
+  inserter.lookForDuplicates();
+  inserter.unrestricted();
+  mesh_.vertices.push_back(vertex);
+  makeRoomFor(1);
+  const VertId v = static_cast<VertId>(vertexCount() - 1);
+  Inserter::Outcome outcome;
+  while ((outcome = inserter.insert(v)) == Inserter::Outcome::Deferred)
+    growRecords();
+  ++done_;
+  pools_[0]->retire(mesh_.tets); // every slot below slots() live or dead, as after a round
+  if (outcome == Inserter::Outcome::Duplicate)
+    return false;
+  const TetMesh& tets = mesh_.tets;
+  for (const TetId t : inserter.lastCavity().tets)
+    if (!tets.isGhost(t))
+      deleted.push_back(t);
+  for (const TetId t : inserter.lastCavity().created)
+    if (!tets.isGhost(t))
+      made.push_back(t);
+  return true;
+}
+
 bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
   const std::vector<std::size_t>& roundStarts, bool reserveEarly,
   const std::function<bool(double)>& progress)

@@ -42,6 +42,10 @@ public:
   /// are left out and listed in duplicates().
   bool insertMore(VertexArray more, const std::vector<std::size_t>& roundStarts,
     const std::function<bool(double)>& progress);
+  /// Appends `vertex` and inserts it on this thread, appending the finite tetrahedra the insertion
+  /// deleted and made to `deleted` and `made`; false, with no change, when it repeats a vertex
+  /// (listed in duplicates()).
+  bool insertOne(const Vertex& vertex, std::vector<TetId>& deleted, std::vector<TetId>& made);
 
   /// The figures of every inserter, summed.
   Statistics statistics() const;
