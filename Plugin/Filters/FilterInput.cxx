@@ -33,18 +33,35 @@ struct CopyToDoubles
     });
   }
 };
+template <typename Algorithm>
+auto CheckAbort(Algorithm* filter, int) -> decltype(filter->CheckAbort())
+{
+  return filter->CheckAbort();
+}
+template <typename Algorithm>
+bool CheckAbort(Algorithm* filter, long)
+{
+  return filter->GetAbortExecute() != 0;
+}
 } // namespace
 
 namespace fd3vtk
 {
+bool AbortRequested(vtkAlgorithm* filter)
+{
+  return CheckAbort(filter, 0);
+}
+
 vtkSmartPointer<vtkPoints> PointsInPrecision(vtkDataSet* input, int precision, vtkIdType extra)
 {
   auto* pointSet = vtkPointSet::SafeDownCast(input);
   vtkPoints* given = pointSet ? pointSet->GetPoints() : nullptr;
-  int type = given ? given->GetDataType() : VTK_DOUBLE;
-  if (precision == vtkAlgorithm::SINGLE_PRECISION)
+  // As vtkDelaunay3D: DOUBLE_PRECISION doubles, DEFAULT_PRECISION the input's type, and any
+  // other value floats.
+  int type = VTK_FLOAT;
+  if (precision == vtkAlgorithm::DEFAULT_PRECISION)
   {
-    type = VTK_FLOAT;
+    type = given ? given->GetDataType() : VTK_DOUBLE;
   }
   else if (precision == vtkAlgorithm::DOUBLE_PRECISION)
   {

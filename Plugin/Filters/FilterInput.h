@@ -13,13 +13,15 @@
 
 #include <vector>
 
+class vtkAlgorithm;
 class vtkDataSet;
 class vtkPoints;
 
 namespace fd3vtk
 {
-/// The input's points in `precision` (an OutputPointsPrecision), with room for `extra` more after
-/// them: the input's own array when nothing changes (shared, same ids), else a copy.
+/// The input's points in `precision` (an OutputPointsPrecision; a value that is none gives floats,
+/// as in vtkDelaunay3D), with room for `extra` more after them: the input's own array when nothing
+/// changes (shared, same ids), else a copy.
 FASTDELAUNAY3DFILTERS_EXPORT vtkSmartPointer<vtkPoints> PointsInPrecision(
   vtkDataSet* input, int precision, vtkIdType extra = 0);
 
@@ -27,6 +29,10 @@ FASTDELAUNAY3DFILTERS_EXPORT vtkSmartPointer<vtkPoints> PointsInPrecision(
 /// filled without a virtual call per point.
 FASTDELAUNAY3DFILTERS_EXPORT const double* CoordinatesAsDoubles(
   vtkPoints* points, std::vector<double>& copy);
+
+/// Whether the filter has been asked to stop: vtkAlgorithm::CheckAbort() where VTK has it (VTK 9.3,
+/// ParaView 5.11's VTK), else GetAbortExecute().
+FASTDELAUNAY3DFILTERS_EXPORT bool AbortRequested(vtkAlgorithm* filter);
 
 /// The threads a filter runs on: its NumberOfThreads, or VTK's SMP setting
 /// (vtkSMPTools::GetEstimatedNumberOfThreads(), which ParaView's thread setting governs) for 0.

@@ -7,6 +7,7 @@
 #include "FilterArrays.h"
 #include "FilterCells.h"
 #include "FilterInput.h"
+#include "PointInsertion.h"
 
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
@@ -15,11 +16,15 @@
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIncrementalPointLocator.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointLocator.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPThreadLocalObject.h"
@@ -96,9 +101,9 @@ void AddCellMeasures(
     vtkIdList* idList = scratch.Local();
     for (vtkIdType c = begin; c < end; ++c)
     {
-      vtkIdType size;
-      const vtkIdType* ids;
-      output->GetCells()->GetCellAtId(c, size, ids, idList);
+      output->GetCells()->GetCellAtId(c, idList);
+      const vtkIdType size = idList->GetNumberOfIds();
+      const vtkIdType* ids = idList->GetPointer(0);
       const double* p[4];
       for (vtkIdType k = 0; k < size && k < 4; ++k)
       {
@@ -167,6 +172,93 @@ using fd3vtk::ThreadCount;
 } // namespace
 
 vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
+vtkFastDelaunay3D::~vtkFastDelaunay3D() = default;
+
+void vtkFastDelaunay3D::SetLocator(vtkIncrementalPointLocator* locator)
+{
+  if (this->Locator != locator)
+  {
+    this->Locator = locator;
+    this->Modified();
+  }
+}
+
+void vtkFastDelaunay3D::CreateDefaultLocator()
+{
+  if (!this->Locator)
+  {
+    auto locator = vtkSmartPointer<vtkPointLocator>::New();
+    locator->SetDivisions(25, 25, 25);
+    this->Locator = locator;
+  }
+}
+
+vtkMTimeType vtkFastDelaunay3D::GetMTime()
+{
+  const vtkMTimeType mtime = this->Superclass::GetMTime();
+  return this->Locator ? std::max(mtime, this->Locator->GetMTime()) : mtime;
+}
+
+vtkUnstructuredGrid* vtkFastDelaunay3D::InitPointInsertion(
+  double center[3], double length, vtkIdType numPts, vtkPoints*& points)
+{
+  vtkUnstructuredGrid* mesh = vtkUnstructuredGrid::New();
+  mesh->EditableOn(); // its links change with every point
+  this->Insertion.reset();
+  this->RecordFigures(fd3::Statistics());
+  if (numPts <= 0 || !points)
+  {
+    return mesh;
+  }
+  length = length > 0 ? length : 1.0; // NaN too
+  try
+  {
+    this->Insertion =
+      std::make_unique<fd3vtk::PointInsertion>(mesh, points, center, length, numPts, this->Locator);
+  }
+  catch (const std::exception& failure) // a center or length beyond the doubles, out of memory
+  {
+    vtkErrorMacro("InitPointInsertion failed: " << failure.what());
+    return mesh;
+  }
+  points->Delete(); // the mesh holds it: vtkDelaunay3D's contract takes the caller's reference
+  return mesh;
+}
+
+void vtkFastDelaunay3D::InsertPoint(
+  vtkUnstructuredGrid* Mesh, vtkPoints* points, vtkIdType id, double x[3], vtkIdList* holeTetras)
+{
+  if (!this->Insertion || !Mesh || !points)
+  {
+    vtkErrorMacro("InsertPoint: no insertion under way (InitPointInsertion starts one)");
+    return;
+  }
+  vtkNew<vtkIdList> unused;
+  try
+  {
+    switch (this->Insertion->Insert(Mesh, points, id, x, holeTetras ? holeTetras : unused.Get()))
+    {
+      case fd3vtk::PointInsertion::Outcome::Inserted:
+        ++this->NumberOfInsertedPoints;
+        break;
+      case fd3vtk::PointInsertion::Outcome::Merged:
+        ++this->NumberOfDuplicatePoints;
+        break;
+      case fd3vtk::PointInsertion::Outcome::NotFinite:
+        ++this->NumberOfInvalidPoints;
+        break;
+    }
+  }
+  catch (const std::exception& failure) // out of memory
+  {
+    vtkErrorMacro("InsertPoint failed: " << failure.what());
+  }
+}
+
+void vtkFastDelaunay3D::EndPointInsertion()
+{
+  this->Insertion.reset();
+}
 
 void vtkFastDelaunay3D::SetClamped(double& property, double value, double lo, double hi, double nan)
 {
@@ -224,7 +316,13 @@ int vtkFastDelaunay3D::RequestData(
     {
       vtkWarningMacro("Cannot triangulate; no input points");
     }
-    SetPointsWithoutCells(output, nullptr, input ? input->GetPointData() : nullptr);
+    // As vtkDelaunay3D's: no points object at all, whatever the precision asked for.
+    output->Initialize();
+    if (input)
+    {
+      output->GetPointData()->PassData(input->GetPointData());
+    }
+    SetCells(output, {});
     return 1;
   }
 
@@ -246,7 +344,7 @@ int vtkFastDelaunay3D::RequestData(
   fd3::Triangulation result;
   try
   {
-    result = fd3::triangulate(xyz, count, this->KernelOptions(bounds.diagonal()));
+    result = this->Triangulate(xyz, count, numberOfPoints, bounds);
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -297,6 +395,76 @@ int vtkFastDelaunay3D::RequestData(
   return 1;
 }
 
+fd3::Triangulation vtkFastDelaunay3D::Triangulate(
+  const double* xyz, std::size_t count, vtkIdType inputPoints, const fd3::Bounds& bounds)
+{
+  const fd3::Options options = this->KernelOptions(bounds.diagonal());
+  const std::vector<vtkIdType> mergedInto =
+    this->Locator ? this->MergeByLocator(xyz, inputPoints, bounds) : std::vector<vtkIdType>();
+  const std::size_t merged = static_cast<std::size_t>(
+    std::count_if(mergedInto.begin(), mergedInto.end(), [](vtkIdType to) { return to >= 0; }));
+  if (merged == 0)
+  {
+    return fd3::triangulate(xyz, count, options);
+  }
+  // The kernel leaves out what it cannot place: the merged points, as NaN in a copy.
+  std::vector<double> kept(xyz, xyz + 3 * count);
+  for (std::size_t i = 0; i < mergedInto.size(); ++i)
+  {
+    if (mergedInto[i] >= 0)
+    {
+      std::fill_n(&kept[3 * i], 3, std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  fd3::Triangulation result = fd3::triangulate(kept.data(), count, options);
+  // They were merged, not invalid: counted with the skipped points, each represented by the point
+  // it was merged into (which Density counts them at).
+  result.stats.nonFinitePoints -= merged;
+  result.stats.closePointsSkipped += merged;
+  for (std::size_t i = 0; i < mergedInto.size() && !result.representative.empty(); ++i)
+  {
+    if (mergedInto[i] >= 0)
+    {
+      result.representative[i] = result.representative[static_cast<std::size_t>(mergedInto[i])];
+    }
+  }
+  return result;
+}
+
+std::vector<vtkIdType> vtkFastDelaunay3D::MergeByLocator(
+  const double* xyz, vtkIdType count, const fd3::Bounds& box)
+{
+  std::vector<vtkIdType> mergedInto(static_cast<std::size_t>(count), -1);
+  if (box.empty())
+  {
+    return mergedInto;
+  }
+  double bounds[6];
+  box.toMinMax(bounds);
+  vtkNew<vtkPoints> inserted;
+  inserted->SetDataType(VTK_DOUBLE);
+  this->Locator->InitPointInsertion(inserted, bounds);
+  std::vector<vtkIdType> inputId; // of each point inserted into the locator
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const double* x = xyz + 3 * i;
+    if (!fd3::isFinite(x))
+    {
+      continue;
+    }
+    const vtkIdType near = this->Locator->IsInsertedPoint(x);
+    if (near >= 0)
+    {
+      mergedInto[static_cast<std::size_t>(i)] = inputId[static_cast<std::size_t>(near)];
+      continue;
+    }
+    this->Locator->InsertPoint(static_cast<vtkIdType>(inputId.size()), x);
+    inputId.push_back(i);
+  }
+  this->Locator->Initialize(); // its buckets are not needed any more
+  return mergedInto;
+}
+
 fd3::Options vtkFastDelaunay3D::KernelOptions(double diagonal)
 {
   fd3::Options options;
@@ -320,7 +488,7 @@ fd3::Options vtkFastDelaunay3D::KernelOptions(double diagonal)
   options.computeNeighbors = this->Alpha > 0; // the alpha complex walks across faces
   options.progress = [this](double fraction) {
     this->UpdateProgress(fraction);
-    return !this->CheckAbort();
+    return !fd3vtk::AbortRequested(this);
   };
   return options;
 }
@@ -475,6 +643,14 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   os << indent << "Offset: " << this->Offset << "\n";
   os << indent << "Bounding Triangulation: " << (this->BoundingTriangulation ? "On\n" : "Off\n");
+  if (this->Locator)
+  {
+    os << indent << "Locator: " << this->Locator << "\n";
+  }
+  else
+  {
+    os << indent << "Locator: (none)\n";
+  }
   os << indent << "Output Points Precision: " << this->OutputPointsPrecision << "\n";
   os << indent << "GridResolution: " << this->GridResolution << "\n";
   os << indent << "VolumeThreshold: " << this->VolumeThreshold << "\n";

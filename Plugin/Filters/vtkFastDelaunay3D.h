@@ -40,19 +40,27 @@
 #define vtkFastDelaunay3D_h
 
 #include "FastDelaunay3DFiltersModule.h" // For export macro
+#include "vtkIncrementalPointLocator.h"  // for the Locator's getter
 #include "vtkSmartPointer.h"             // for vtkSmartPointer
 #include "vtkUnstructuredGridAlgorithm.h"
 
 #include <cstddef>    // for std::size_t
 #include <cstdint>    // for std::uint32_t
 #include <functional> // for std::function
+#include <memory>     // for std::unique_ptr
 #include <vector>     // for std::vector
 
 class vtkFieldData;
+class vtkIdList;
 class vtkPointData;
 class vtkPoints;
+namespace fd3vtk
+{
+class PointInsertion;
+}
 namespace fd3
 {
+struct Bounds;
 struct Options;
 struct Statistics;
 struct Triangulation;
@@ -83,6 +91,8 @@ public:
    */
   virtual void SetAlpha(double alpha);
   vtkGetMacro(Alpha, double);
+  virtual double GetAlphaMinValue() { return 0.0; }
+  virtual double GetAlphaMaxValue() { return VTK_DOUBLE_MAX; }
   ///@}
 
   ///@{
@@ -115,6 +125,8 @@ public:
    */
   virtual void SetTolerance(double tolerance);
   vtkGetMacro(Tolerance, double);
+  virtual double GetToleranceMinValue() { return 0.0; }
+  virtual double GetToleranceMaxValue() { return 1.0; }
   ///@}
 
   ///@{
@@ -126,6 +138,8 @@ public:
    */
   virtual void SetOffset(double offset);
   vtkGetMacro(Offset, double);
+  virtual double GetOffsetMinValue() { return 2.5; }
+  virtual double GetOffsetMaxValue() { return VTK_DOUBLE_MAX; }
   ///@}
 
   ///@{
@@ -142,7 +156,8 @@ public:
   ///@{
   /**
    * Precision of the output points: vtkAlgorithm::DEFAULT_PRECISION (that of the input),
-   * SINGLE_PRECISION or DOUBLE_PRECISION. The tetrahedralization is exact for the output points.
+   * SINGLE_PRECISION or DOUBLE_PRECISION; any other value gives single precision, as in
+   * vtkDelaunay3D. The tetrahedralization is exact for the output points.
    */
   vtkSetMacro(OutputPointsPrecision, int);
   vtkGetMacro(OutputPointsPrecision, int);
@@ -247,6 +262,51 @@ public:
 
   ///@{
   /**
+   * A spatial locator that merges close points as vtkDelaunay3D's does: a finite point within the
+   * locator's own tolerance (vtkLocator::SetTolerance, a distance; 0.001 for
+   * CreateDefaultLocator()'s) of a point before it in input order is merged into that point, left
+   * out of the tetrahedralization and counted with the skipped points. None by default: then the
+   * kernel's own background grid merges exact duplicates, and Tolerance applies. Tolerance applies
+   * with a locator too. A locator is not used across MPI ranks.
+   */
+  void SetLocator(vtkIncrementalPointLocator* locator);
+  vtkGetObjectMacro(Locator, vtkIncrementalPointLocator);
+  ///@}
+
+  /**
+   * Sets a vtkPointLocator of 25 x 25 x 25 buckets as the locator, where there is none (as
+   * vtkDelaunay3D's does).
+   */
+  void CreateDefaultLocator();
+
+  /**
+   * vtkDelaunay3D's incremental API, on the exact kernel. InitPointInsertion returns a new mesh
+   * (the caller deletes it) holding a bounding octahedron, `center` +- `length` along each axis
+   * (1 where length is not above 0), as points numPts..numPts+5 of `points`, and its tetrahedra;
+   * the mesh takes `points` over (the caller's reference: do not delete it). Each InsertPoint then
+   * inserts point `id` (below numPts) at x: its coordinates go into `points`, and the mesh is kept
+   * the exact Delaunay tetrahedralization of the octahedron and the points inserted. The cells of
+   * the tetrahedra a point deletes are given to those it makes; those left over hold stale ids and
+   * are appended to `holeTetras` (skip them, and the cells that use the octahedron's points,
+   * unless they are wanted). Any finite point can be inserted, inside the octahedron or not; a
+   * repeat of an inserted point (or one within the Locator's tolerance, where one is set) and a
+   * NaN or infinite point change nothing and are counted as duplicates and invalid points.
+   * EndPointInsertion ends the insertion (the caller still deletes the mesh). With numPts 0 the
+   * mesh is empty and `points` stays the caller's.
+   */
+  vtkUnstructuredGrid* InitPointInsertion(
+    double center[3], double length, vtkIdType numPts, vtkPoints*& points);
+  void InsertPoint(
+    vtkUnstructuredGrid* Mesh, vtkPoints* points, vtkIdType id, double x[3], vtkIdList* holeTetras);
+  void EndPointInsertion();
+
+  /**
+   * The filter's modification time, and its locator's.
+   */
+  vtkMTimeType GetMTime() override;
+
+  ///@{
+  /**
    * Figures of the last execution: distinct points inserted, exact duplicates merged, points
    * skipped for Tolerance, points with NaN/Inf coordinates, tetrahedra produced; the mean and
    * maximum walk length (tetrahedra visited to locate a point: the paper's "Path"), the mean cavity
@@ -275,7 +335,7 @@ public:
 
 protected:
   vtkFastDelaunay3D();
-  ~vtkFastDelaunay3D() override = default;
+  ~vtkFastDelaunay3D() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
@@ -299,6 +359,7 @@ protected:
   vtkTypeBool ComputeRadiusEdgeRatio = 0;
   vtkTypeBool ComputeDensity = 0;
   vtkTypeBool ComputeStatistics = 0;
+  vtkSmartPointer<vtkIncrementalPointLocator> Locator;
 
   vtkIdType NumberOfInsertedPoints = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
@@ -319,6 +380,10 @@ protected:
   using CellFilter = std::function<bool(const std::uint32_t* ids, int size)>;
 
   fd3::Options KernelOptions(double diagonal);
+  /// The kernel's tetrahedralization of the first `count` points of xyz, the input's first
+  /// `inputPoints` of them merged by the Locator where there is one.
+  fd3::Triangulation Triangulate(
+    const double* xyz, std::size_t count, vtkIdType inputPoints, const fd3::Bounds& bounds);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);
@@ -346,6 +411,12 @@ private:
     bool CountsLeftOutPoints;
   };
   std::vector<Figure> Figures() const;
+
+  /// The Locator's merging of the input's finite points, in input order: for each point, the id
+  /// of the one it is merged into, or -1.
+  std::vector<vtkIdType> MergeByLocator(const double* xyz, vtkIdType count, const fd3::Bounds& box);
+
+  std::unique_ptr<fd3vtk::PointInsertion> Insertion; ///< between InitPointInsertion and its end
 
   vtkFastDelaunay3D(const vtkFastDelaunay3D&) = delete;
   void operator=(const vtkFastDelaunay3D&) = delete;

@@ -50,6 +50,11 @@ int vtkPFastDelaunay3D::RequestData(
     vtkErrorMacro("BoundingTriangulation is not available across MPI ranks; the output is empty");
     return 1;
   }
+  if (this->Locator && this->Controller->GetLocalProcessId() == 0)
+  {
+    vtkWarningMacro("The Locator is not used across MPI ranks: exact duplicates are merged, and "
+                    "Tolerance applies");
+  }
   vtkSmartPointer<vtkPoints> inputPoints =
     fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision);
   vtkPointData* inputData = input ? input->GetPointData() : nullptr;

@@ -1,6 +1,8 @@
 // Drop-in parity with vtkDelaunay3D: same defaults, same tetrahedra and alpha shapes where both
 // are well defined, and the extra properties' contracts.
 #include "VtkTestUtilities.h"
+#include "fd3/Delaunay.h"
+#include "fd3/Distributed.h"
 #include "vtkFastDelaunay3D.h"
 
 #include <gtest/gtest.h>
@@ -12,14 +14,19 @@
 #include "vtkDataArray.h"
 #include "vtkDelaunay3D.h"
 #include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <map>
 #include <set>
@@ -265,6 +272,302 @@ TEST(Parity, OptionalArraysAndStatistics)
   }
   EXPECT_GT(phases, 0);
   EXPECT_GT(figure("OutputSeconds"), 0);
+}
+
+// What VTK's TestDelaunay3D asks: the output points' type follows OutputPointsPrecision on float
+// and double input given as an unstructured grid with cells of its own; an empty input gives no
+// points object at all (nothing of the wrong precision), with a warning and no error.
+TEST(Parity, PointTypesAsVtkDelaunay3DsOnEveryInputAndNoneWhenEmpty)
+{
+  struct Case
+  {
+    int input, precision, expected;
+  };
+  const Case cases[] = {{VTK_FLOAT, vtkAlgorithm::DEFAULT_PRECISION, VTK_FLOAT},
+    {VTK_DOUBLE, vtkAlgorithm::DEFAULT_PRECISION, VTK_DOUBLE},
+    {VTK_FLOAT, vtkAlgorithm::SINGLE_PRECISION, VTK_FLOAT},
+    {VTK_DOUBLE, vtkAlgorithm::SINGLE_PRECISION, VTK_FLOAT},
+    {VTK_FLOAT, vtkAlgorithm::DOUBLE_PRECISION, VTK_DOUBLE},
+    {VTK_DOUBLE, vtkAlgorithm::DOUBLE_PRECISION, VTK_DOUBLE},
+    {VTK_DOUBLE, 7, VTK_FLOAT}}; // a value that is no precision
+  for (const Case& c : cases)
+  {
+    vtkNew<vtkPoints> points;
+    points->SetDataType(c.input);
+    for (const auto& x :
+      {std::array<double, 3>{0.1, 0.2, 0.3}, {0.9, 0.1, 0.2}, {0.3, 0.8, 0.1}, {0.4, 0.4, 0.9}})
+      points->InsertNextPoint(x.data());
+    vtkNew<vtkUnstructuredGrid> grid;
+    grid->SetPoints(points);
+    const vtkIdType ids[4] = {0, 1, 2, 3};
+    grid->InsertNextCell(VTK_VERTEX, 4, ids); // the input's cells play no part
+    vtkNew<vtkFastDelaunay3D> ours;
+    vtkNew<vtkDelaunay3D> theirs;
+    ours->SetOutputPointsPrecision(c.precision);
+    theirs->SetOutputPointsPrecision(c.precision);
+    for (vtkUnstructuredGridAlgorithm* filter : {static_cast<vtkUnstructuredGridAlgorithm*>(ours),
+           static_cast<vtkUnstructuredGridAlgorithm*>(theirs)})
+    {
+      filter->SetInputData(grid);
+      filter->Update();
+    }
+    ASSERT_NE(ours->GetOutput()->GetPoints(), nullptr);
+    EXPECT_EQ(ours->GetOutput()->GetPoints()->GetDataType(), c.expected);
+    EXPECT_EQ(theirs->GetOutput()->GetPoints()->GetDataType(), c.expected);
+    EXPECT_EQ(ours->GetOutput()->GetNumberOfCells(), 1);
+  }
+  vtkNew<vtkUnstructuredGrid> empty;
+  empty->SetPoints(vtkNew<vtkPoints>()); // float, no points
+  vtkNew<vtkFastDelaunay3D> ours;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  ours->AddObserver(vtkCommand::WarningEvent, observer);
+  ours->AddObserver(vtkCommand::ErrorEvent, observer);
+  ours->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  ours->SetInputData(empty);
+  ours->Update();
+  EXPECT_EQ(ours->GetOutput()->GetPoints(), nullptr);
+  EXPECT_EQ(ours->GetOutput()->GetNumberOfCells(), 0);
+  EXPECT_EQ(observer->CheckWarningMessage("Cannot triangulate; no input points"), 0);
+  EXPECT_FALSE(observer->GetError());
+}
+
+// What VTK's Delaunay3D.py draws: 25 random points, Tolerance 0.01, Alpha 0.2 (no tetrahedron is
+// that small): the same triangles, lines and vertices as vtkDelaunay3D's away from the hull, where
+// vtkDelaunay3D reports a hull face only when its bounding tetrahedron's id is the larger.
+TEST(Parity, SmallRandomAlphaShape)
+{
+  vtkMath::RandomSeed(6);
+  fd3test::Points p;
+  for (int i = 0; i < 75; ++i)
+    p.push_back(vtkMath::Random(0, 1));
+  auto cloud = toPolyData(p);
+  vtkNew<vtkDelaunay3D> theirs;
+  vtkNew<vtkFastDelaunay3D> ours;
+  for (vtkUnstructuredGridAlgorithm* filter : {static_cast<vtkUnstructuredGridAlgorithm*>(theirs),
+         static_cast<vtkUnstructuredGridAlgorithm*>(ours)})
+    filter->SetInputData(cloud);
+  theirs->SetTolerance(0.01);
+  theirs->SetAlpha(0.2);
+  ours->SetTolerance(0.01);
+  ours->SetAlpha(0.2);
+  theirs->Update();
+  ours->Update();
+  auto a = CellsByType(theirs->GetOutput());
+  auto b = CellsByType(ours->GetOutput());
+  EXPECT_TRUE(b[VTK_TETRA].empty());
+  EXPECT_EQ(a[VTK_VERTEX], b[VTK_VERTEX]); // points on no triangle or line
+  vtkNew<vtkFastDelaunay3D> whole;
+  whole->SetInputData(cloud);
+  whole->Update();
+  const std::set<vtkIdType> hull = HullPoints(whole->GetOutput());
+  for (int type : {VTK_TRIANGLE, VTK_LINE})
+  {
+    EXPECT_EQ(AwayFrom(a[type], hull), AwayFrom(b[type], hull)) << "cell type " << type;
+    EXPECT_FALSE(b[type].empty()) << "cell type " << type;
+  }
+}
+
+// What VTK's Delaunay3DAlphaTest.py draws: boxes of cospherical corners (every insphere test of a
+// box's corners is a tie), Alpha 2.8, AlphaLines off. The ties may be broken otherwise than by
+// vtkDelaunay3D, so the cells are checked against the alpha shape's definition: tetrahedra of
+// circumradius at most Alpha from the exact tetrahedralization, triangles on none of them, no
+// lines, and every point on some cell.
+TEST(Parity, DegenerateBoxesAlphaShape)
+{
+  const fd3test::Points p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1,
+    5, 0, 0, 5, 1, 0, 10, 0, 0, 11, 0, 0, 10, 1, 0, 11, 1, 0, 10, 0, 1, 11, 0, 1, 10, 1, 1, 11, 1,
+    1, 5, 0, 1, 5, 1, 1};
+  auto cloud = toPolyData(p);
+  vtkNew<vtkFastDelaunay3D> ours;
+  ours->SetInputData(cloud);
+  ours->SetTolerance(0.01);
+  ours->SetAlpha(2.8);
+  ours->AlphaTetsOn();
+  ours->AlphaTrisOn();
+  ours->AlphaLinesOff();
+  ours->AlphaVertsOn();
+  ours->Update();
+  auto cells = CellsByType(ours->GetOutput());
+  EXPECT_TRUE(cells[VTK_LINE].empty());
+  ASSERT_FALSE(cells[VTK_TETRA].empty());
+  vtkNew<vtkFastDelaunay3D> whole;
+  whole->SetInputData(cloud);
+  whole->Update();
+  EXPECT_TRUE(fd3test::checkOutput(whole->GetOutput()).valid());
+  auto all = CellsByType(whole->GetOutput());
+  std::set<Cell> facesOfKept;
+  std::set<vtkIdType> used;
+  for (const Cell& t : cells[VTK_TETRA])
+  {
+    EXPECT_TRUE(all[VTK_TETRA].count(t)) << "a tetrahedron of the tetrahedralization";
+    double x[4][3];
+    for (int k = 0; k < 4; ++k)
+      cloud->GetPoint(t[k], x[k]);
+    double centre[3];
+    EXPECT_LE(std::sqrt(vtkTetra::Circumsphere(x[0], x[1], x[2], x[3], centre)), 2.8 + 1e-12);
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      Cell f;
+      for (int k = 0; k < 4; ++k)
+        if (k != skip)
+          f.push_back(t[k]);
+      facesOfKept.insert(f);
+    }
+    used.insert(t.begin(), t.end());
+  }
+  for (const Cell& f : cells[VTK_TRIANGLE])
+  {
+    EXPECT_FALSE(facesOfKept.count(f)) << "a triangle of a kept tetrahedron is not output";
+    used.insert(f.begin(), f.end());
+  }
+  for (const Cell& v : cells[VTK_VERTEX])
+    used.insert(v.begin(), v.end());
+  EXPECT_EQ(used.size(), p.size() / 3);
+}
+
+// The points a locator of tolerance `tolerance` merges, as vtkPointLocator does: in input order,
+// each point within the tolerance of one kept before it.
+std::vector<bool> MergedWithin(const fd3test::Points& p, double tolerance)
+{
+  std::vector<bool> merged(p.size() / 3, false);
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < merged.size(); ++i)
+  {
+    for (const std::size_t k : kept)
+    {
+      double d2 = 0;
+      for (int a = 0; a < 3; ++a)
+        d2 += (p[3 * i + a] - p[3 * k + a]) * (p[3 * i + a] - p[3 * k + a]);
+      merged[i] = merged[i] || d2 <= tolerance * tolerance;
+    }
+    if (!merged[i])
+      kept.push_back(i);
+  }
+  return merged;
+}
+
+// A Locator merges as vtkDelaunay3D's: a point within its tolerance (a distance) of an earlier
+// one is left out and counted with the skipped points; the rest are exactly tetrahedralized; the
+// locator's changes re-execute the filter, and its use in a run does not.
+TEST(Parity, LocatorMergesWithinItsTolerance)
+{
+  fd3test::Points p = fd3test::uniformCube(1000, 28);
+  p.insert(p.end(), {p[0] + 4e-4, p[1], p[2], p[3] + 2e-3, p[4], p[5]});
+  auto cloud = toPolyData(p);
+  vtkNew<vtkFastDelaunay3D> ours;
+  ours->SetInputData(cloud);
+  ours->ComputeDensityOn();
+  ours->Update();
+  EXPECT_EQ(ours->GetNumberOfInsertedPoints(), 1002); // the kernel merges exact duplicates only
+  ours->CreateDefaultLocator();                       // tolerance 0.001
+  for (const double tolerance : {0.001, 0.005})
+  {
+    ours->GetLocator()->SetTolerance(tolerance);
+    ours->Update();
+    const std::vector<bool> merged = MergedWithin(p, tolerance);
+    const auto count = static_cast<vtkIdType>(std::count(merged.begin(), merged.end(), true));
+    ASSERT_GE(count, 1);
+    EXPECT_EQ(ours->GetNumberOfSkippedPoints(), count) << tolerance;
+    EXPECT_EQ(ours->GetNumberOfInsertedPoints(), 1002 - count) << tolerance;
+    EXPECT_EQ(ours->GetNumberOfInvalidPoints(), 0);
+    fd3test::Points kept = p; // the merged points are no vertices
+    for (std::size_t i = 0; i < merged.size(); ++i)
+      if (merged[i])
+        kept[3 * i] = std::nan("");
+    const auto report = fd3test::checkTriangulation(
+      kept.data(), kept.size() / 3, fd3test::tetrahedra(ours->GetOutput()));
+    EXPECT_TRUE(report.valid()) << report.summary();
+  }
+  vtkDataArray* density = ours->GetOutput()->GetPointData()->GetArray("Density");
+  ASSERT_NE(density, nullptr);
+  EXPECT_EQ(density->GetTuple1(1000), density->GetTuple1(0)); // the merged point's is its own's
+  const vtkMTimeType ran = ours->GetOutput()->GetMTime();
+  ours->Update();
+  ours->Update();
+  EXPECT_EQ(ours->GetOutput()->GetMTime(), ran) << "the locator's use re-executed the filter";
+  ours->SetLocator(nullptr);
+  ours->Update();
+  EXPECT_EQ(ours->GetNumberOfSkippedPoints(), 0);
+}
+
+// The incremental API keeps the caller's mesh the exact Delaunay tetrahedralization of the
+// octahedron and the points inserted: its cells, but the holes, are that tetrahedralization's
+// after every point, the holes are the cells deleted and not given again, the links follow, and
+// a repeat, a NaN point and a point far outside the octahedron are counted or inserted.
+TEST(Parity, IncrementalInsertionKeepsTheExactMesh)
+{
+  const fd3test::Points p = fd3test::lattice(4); // ties everywhere
+  const vtkIdType n = static_cast<vtkIdType>(p.size() / 3) + 3;
+  vtkNew<vtkFastDelaunay3D> ours;
+  double centre[3] = {1.5, 1.5, 1.5};
+  vtkPoints* points = vtkPoints::New();
+  points->SetDataType(VTK_DOUBLE);
+  vtkUnstructuredGrid* mesh = ours->InitPointInsertion(centre, 20, n, points);
+  fd3test::Points all; // the octahedron, then the points inserted: what the mesh must be of
+  for (vtkIdType k = 0; k < 6; ++k)
+  {
+    double x[3];
+    points->GetPoint(n + k, x);
+    all.insert(all.end(), x, x + 3);
+  }
+  std::vector<vtkIdType> idOf = {n, n + 1, n + 2, n + 3, n + 4, n + 5};
+  vtkNew<vtkIdList> holes;
+  auto insert = [&](vtkIdType id, double x, double y, double z) {
+    double xyz[3] = {x, y, z};
+    ours->InsertPoint(mesh, points, id, xyz, holes);
+  };
+  // The exact tetrahedralization of the same points in the same frame, from scratch: where points
+  // are cospherical, the frame's coordinates decide which tetrahedra break the ties.
+  const double everything[6] = {-DBL_MAX, DBL_MAX, -DBL_MAX, DBL_MAX, -DBL_MAX, DBL_MAX};
+  const fd3::Frame frame = fd3::identityFrame(fd3::Bounds::fromMinMax(everything));
+  auto expectExact = [&](const std::string& when) {
+    const fd3::Triangulation exact =
+      fd3::IncrementalDelaunay(all.data(), all.size() / 3, fd3::Options(), frame).release();
+    std::set<Cell> expected, live;
+    for (std::size_t t = 0; t < exact.numberOfTetrahedra(); ++t)
+    {
+      Cell c;
+      for (int k = 0; k < 4; ++k)
+        c.push_back(idOf[exact.tetrahedra[4 * t + k]]);
+      std::sort(c.begin(), c.end());
+      expected.insert(c);
+    }
+    const std::set<vtkIdType> holeSet(holes->begin(), holes->end());
+    vtkNew<vtkIdList> cellsOfPoint;
+    for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+    {
+      if (holeSet.count(c))
+        continue;
+      vtkIdType size;
+      const vtkIdType* ids;
+      mesh->GetCellPoints(c, size, ids);
+      Cell cell(ids, ids + size);
+      std::sort(cell.begin(), cell.end());
+      live.insert(cell);
+      mesh->GetPointCells(ids[0], cellsOfPoint);
+      EXPECT_NE(cellsOfPoint->IsId(c), -1) << when << ": the links know cell " << c;
+    }
+    EXPECT_EQ(live, expected) << when;
+  };
+  for (vtkIdType i = 0; i + 3 < n; ++i)
+  {
+    insert(i, p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    all.insert(all.end(), &p[3 * i], &p[3 * i] + 3);
+    idOf.push_back(i);
+    if (i % 16 == 15)
+      expectExact("after point " + std::to_string(i));
+  }
+  insert(n - 3, p[0], p[1], p[2]);   // a repeat
+  insert(n - 2, std::nan(""), 0, 0); // not finite
+  insert(n - 1, 100, 0, 0);          // beyond the octahedron
+  all.insert(all.end(), {100, 0, 0});
+  idOf.push_back(n - 1);
+  expectExact("at the end");
+  EXPECT_EQ(ours->GetNumberOfInsertedPoints(), n - 2);
+  EXPECT_EQ(ours->GetNumberOfDuplicatePoints(), 1);
+  EXPECT_EQ(ours->GetNumberOfInvalidPoints(), 1);
+  ours->EndPointInsertion();
+  mesh->Delete();
 }
 
 TEST(Parity, ProgressMovesDuringInsertion)
