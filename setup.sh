@@ -11,6 +11,10 @@
 #                       and the threads' scaling model (1 to 64 threads, default 4000000 points)
 #                       into output/scaling.{md,csv}
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
+#   ./setup.sh vtk      ... then build against VTK alone, without ParaView: Debian's VTK 9.1
+#                       (libvtk9-dev, python3-vtk9), which conflicts with ParaView's packages, is
+#                       unpacked into build-vtk-sdk/, and the filters' tests, which need no
+#                       ParaView, run in build-vtk (CI runs it after test)
 #   ./setup.sh sanitizers  ... then the same suite built with AddressSanitizer +
 #                       UndefinedBehaviorSanitizer (Debug: the kernel's own mesh check on; the
 #                       portable fallbacks of the compiler intrinsics instead of the intrinsics) in
@@ -27,6 +31,8 @@ packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conver
 # The benchmark alone compares against CGAL and TetGen (never dependencies of Core or Plugin; both
 # are GPL-family licensed and only linked into the benchmark program) and plots.
 [ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy)
+# Debian's VTK 9.1 finds TBB (its SMP backend) when a project finds it.
+[ "${1:-}" = vtk ] && packages+=(libtbb-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -84,5 +90,18 @@ case "${1:-build}" in
     cmake --build build-tsan --target TestCore -j2
     TSAN_OPTIONS=halt_on_error=1 build-tsan/bin/TestCore \
       --gtest_filter='Threads.*:AddPoints.SameTetrahedra*:Voronoi.SameCells*' ;;
-  *) echo "usage: $0 [build|demo|test|sanitizers|benchmark [sizes]]" >&2; exit 2 ;;
+  vtk)
+    sdk="$PWD/build-vtk-sdk"
+    vtk_dir="$sdk/usr/lib/x86_64-linux-gnu/cmake/vtk-9.1"
+    if [ ! -f "$vtk_dir/vtk-config.cmake" ]; then
+      mkdir -p "$sdk/debs"
+      (cd "$sdk/debs" && apt-get download libvtk9-dev libvtk9.1 python3-vtk9 vtk9 2>/dev/null)
+      for deb in "$sdk"/debs/*.deb; do dpkg -x "$deb" "$sdk"; done
+    fi
+    cmake -S . -B build-vtk -G Ninja -DCMAKE_BUILD_TYPE=Release -DFD3_PARAVIEW=OFF \
+      -DVTK_DIR="$vtk_dir" -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+    cmake --build build-vtk -j2
+    # The kernel's own tests and the fuzzer do not touch VTK: test already ran them.
+    (cd build-vtk && "${xvfb[@]}" ctest -j2 --output-on-failure -LE 'core|fuzz') ;;
+  *) echo "usage: $0 [build|demo|test|vtk|sanitizers|benchmark [sizes]]" >&2; exit 2 ;;
 esac

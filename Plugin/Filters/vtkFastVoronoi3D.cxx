@@ -140,7 +140,7 @@ fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
   options.polyhedra = this->GeneratePolyhedra || this->GenerateFaces;
   options.progress = [this](double fraction) {
     this->UpdateProgress(0.8 * fraction);
-    return !this->CheckAbort();
+    return !fd3vtk::AbortRequested(this);
   };
   return options;
 }

@@ -130,7 +130,7 @@ int vtkPFastVoronoi3D::RequestData(
   meshOptions.computeNeighbors = false; // the cells list the stars instead
   meshOptions.progress = [this](double fraction) {
     this->UpdateProgress(0.3 * fraction);
-    return !this->CheckAbort();
+    return !fd3vtk::AbortRequested(this);
   };
   if (!redistributed || !run.ChooseFrame(farPoints) || !run.Triangulate(meshOptions) ||
     !run.ExchangeHalo())
