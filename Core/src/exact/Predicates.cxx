@@ -445,6 +445,18 @@ int Predicates::orient3dExact(const double* a, const double* b, const double* c,
   return minor3(u, v, w).sign();
 }
 
+bool Predicates::insideBeyondFirstFilter(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  double lifts[4];
+  const double det = inSphereDeterminant(a, b, c, d, e, lifts);
+  int s = inSphereFiltered(det, lifts, a, b, c, d, e);
+  if (s == 0 && !tuning_.floatExactInSphere)
+    s = inSphereDoubleDouble(a, b, c, d, e);
+  const double* const p[4] = {a, b, c, d};
+  return (s != 0 ? s : symbolicInSphere(p, e)) > 0;
+}
+
 // The insphere determinant over exact differences (each a double-double), in double-double
 // arithmetic, decided when it clears its error bound; else the exact stage. Points on an integer
 // grid go straight to the exact stage, which is as cheap there and also settles exact ties.

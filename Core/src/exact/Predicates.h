@@ -21,7 +21,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#if defined(__SSE2__)
+#if defined(__AVX__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
@@ -124,8 +126,16 @@ public:
   /// instead of a dense tangle.
   int inSphereSoS(const double* const p[4], const double* pe);
   /// inSphereSoS(p, pe) > 0, all the cavity search asks: where the static filter decides, which
-  /// it does for nearly every test, one comparison after the determinant.
+  /// it does for nearly every test, one comparison after the determinant (InSphereProbe).
   bool insideSoS(const double* const p[4], const double* pe);
+  /// insideSoS() for a test that the first filter (the static one, or the lifts' one where
+  /// preferred) left open: the rest of the filters, then the exact stage and the perturbation.
+  bool insideBeyondFirstFilter(
+    const double* a, const double* b, const double* c, const double* d, const double* e);
+  /// The static bound of insphere: a float determinant beyond it has the exact sign.
+  double inSphereStaticBound() const { return tuning_.inSphereStatic; }
+  /// The lifts' filter (filter::kInSphereLift) on a determinant and its lifts.
+  bool liftsFilterProves(double det, const double lifts[4]) const;
 
   /// Tunes the predicates to a point set within `box` (point i at xyz + i * stride); every point
   /// passed from then on must lie in the box and be one of them or of those include()d later.
@@ -193,7 +203,6 @@ private:
   int inCircleExact(const double* const p[4], int u, int v);
   Expansion minor3(Expansion const u[3], Expansion const v[3], Expansion const w[3]);
 
-  bool liftsFilterProves(double det, const double lifts[4]) const;
   /// Whether a semi-static bound on a product of differences as large as `scale` holds: no
   /// product underflowed and, for any magnitude, the largest differences are within `range`.
   bool semiStaticHolds(double scale, double range, const double largest[3]) const
@@ -279,13 +288,87 @@ inline double inSphereDeterminantPlain(const double* a, const double* b, const d
   return (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
 }
 
-/// inSphereDeterminantPlain(), with SSE2 (every x86-64) two lanes at once: each lane does the very
-/// operations of the plain form, so both give the same double (TestPredicates checks it).
-inline double inSphereDeterminant(const double* a, const double* b, const double* c,
-  const double* d, const double* e, double* lifts = nullptr)
+/// The point e of insphere tests, loaded as inSphereDeterminant() uses it: many tests against
+/// one e (a cavity's) load it once.
+struct InSphereApex
 {
-#if defined(__SSE2__)
-  const __m128d exy = _mm_loadu_pd(e), ez = _mm_set1_pd(e[2]);
+  explicit InSphereApex(const double* e)
+#if defined(__AVX__)
+    : x(_mm256_set1_pd(e[0])), y(_mm256_set1_pd(e[1])), z(_mm256_set1_pd(e[2]))
+#elif defined(__SSE2__)
+    : xy(_mm_loadu_pd(e)), z(_mm_set1_pd(e[2]))
+#else
+    : point(e)
+#endif
+  {}
+#if defined(__AVX__)
+  __m256d x, y, z;
+#elif defined(__SSE2__)
+  __m128d xy, z;
+#else
+  const double* point;
+#endif
+};
+
+#if defined(__AVX__)
+namespace lanes
+{
+/// (v1, v2, v3, v0)
+inline __m256d rotate(__m256d v)
+{
+  return _mm256_shuffle_pd(v, _mm256_permute2f128_pd(v, v, 1), 0b0101);
+}
+/// (v3, v0, v1, v2)
+inline __m256d rotateBack(__m256d v)
+{
+  return _mm256_shuffle_pd(_mm256_permute2f128_pd(v, v, 1), v, 0b0101);
+}
+/// (v2, v3, v0, v1)
+inline __m256d swapHalves(__m256d v)
+{
+  return _mm256_permute2f128_pd(v, v, 1);
+}
+} // namespace lanes
+#endif
+
+/// inSphereDeterminantPlain(a, b, c, d, e), in lanes: with AVX, the four points' coordinates are
+/// four lanes, and a-b-c-d cyclic shifts of them make the minors; with SSE2 (every x86-64), two
+/// lanes at once. Each lane does the very operations of the plain form, with a - (-b) for a + b
+/// where a minor comes out negated (both exact the same), so every form gives the same double
+/// (TestPredicates checks it).
+inline double inSphereDeterminant(const InSphereApex& e, const double* a, const double* b,
+  const double* c, const double* d, double* lifts = nullptr)
+{
+#if defined(__AVX__)
+  using namespace lanes;
+  // (ax, ay, cx, cy) and (bx, by, dx, dy) give the x and y lanes.
+  const __m256d ac =
+    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(a)), _mm_loadu_pd(c), 1);
+  const __m256d bd =
+    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(b)), _mm_loadu_pd(d), 1);
+  const __m256d x = _mm256_sub_pd(_mm256_unpacklo_pd(ac, bd), e.x);
+  const __m256d y = _mm256_sub_pd(_mm256_unpackhi_pd(ac, bd), e.y);
+  const __m256d z = _mm256_sub_pd(_mm256_set_pd(d[2], c[2], b[2], a[2]), e.z);
+  // (ab, bc, cd, da) and (ac, bd, -ac, -bd).
+  const __m256d m = _mm256_sub_pd(_mm256_mul_pd(x, rotate(y)), _mm256_mul_pd(rotate(x), y));
+  const __m256d n = _mm256_sub_pd(_mm256_mul_pd(x, swapHalves(y)), _mm256_mul_pd(swapHalves(x), y));
+  // (abc, bcd, cda, dab)
+  const __m256d t =
+    _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(z, rotate(m)), _mm256_mul_pd(rotate(z), n)),
+      _mm256_mul_pd(swapHalves(z), m));
+  // (alift, blift, clift, dlift)
+  const __m256d l =
+    _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+  if (lifts)
+    _mm256_storeu_pd(lifts, l);
+  // (dlift * abc, alift * bcd, blift * cda, clift * dab), then
+  // (dlift * abc - clift * dab) + (blift * cda - alift * bcd).
+  const __m256d w = _mm256_mul_pd(rotateBack(l), t);
+  const __m128d low = _mm256_castpd256_pd128(w), high = _mm256_extractf128_pd(w, 1);
+  const __m128d halves = _mm_sub_pd(_mm_unpacklo_pd(low, high), _mm_shuffle_pd(high, low, 3));
+  return _mm_cvtsd_f64(_mm_add_sd(halves, _mm_unpackhi_pd(halves, halves)));
+#elif defined(__SSE2__)
+  const __m128d exy = e.xy, ez = e.z;
   const __m128d axy = _mm_sub_pd(_mm_loadu_pd(a), exy), bxy = _mm_sub_pd(_mm_loadu_pd(b), exy);
   const __m128d cxy = _mm_sub_pd(_mm_loadu_pd(c), exy), dxy = _mm_sub_pd(_mm_loadu_pd(d), exy);
   const __m128d zab = _mm_sub_pd(_mm_set_pd(b[2], a[2]), ez); // (aez, bez)
@@ -322,8 +405,14 @@ inline double inSphereDeterminant(const double* a, const double* b, const double
     _mm_mul_pd(_mm_unpacklo_pd(lcd, lab), _mm_shuffle_pd(t2, t1, 3)));
   return _mm_cvtsd_f64(_mm_add_sd(halves, _mm_unpackhi_pd(halves, halves)));
 #else
-  return inSphereDeterminantPlain(a, b, c, d, e, lifts);
+  return inSphereDeterminantPlain(a, b, c, d, e.point, lifts);
 #endif
+}
+
+inline double inSphereDeterminant(const double* a, const double* b, const double* c,
+  const double* d, const double* e, double* lifts = nullptr)
+{
+  return inSphereDeterminant(InSphereApex(e), a, b, c, d, lifts);
 }
 
 inline int Predicates::inSphereFiltered(
@@ -389,16 +478,38 @@ inline int Predicates::inSphereSoS(const double* const p[4], const double* pe)
   return s != 0 ? s : symbolicInSphere(p, pe);
 }
 
+/// The cavity search's tests of one insertion: is each tetrahedron's circumsphere around the new
+/// point e (Predicates::insideSoS())? e and the filter's choice are loaded once for them all, and
+/// a test that the first filter leaves open goes out of line.
+class InSphereProbe
+{
+public:
+  InSphereProbe(Predicates& predicates, const double* e)
+    : predicates_(predicates), e_(e), apex_(e), staticBound_(predicates.inSphereStaticBound()),
+      liftsFirst_(predicates.prefersLiftsFilter())
+  {}
+  /// Whether e lies in the circumsphere of the positive tetrahedron abcd, ties broken
+  /// symbolically.
+  bool inside(const double* a, const double* b, const double* c, const double* d) const
+  {
+    double lifts[4];
+    const double det = inSphereDeterminant(apex_, a, b, c, d, lifts);
+    if (liftsFirst_ ? predicates_.liftsFilterProves(det, lifts) : std::fabs(det) > staticBound_)
+      return det < 0;
+    return predicates_.insideBeyondFirstFilter(a, b, c, d, e_);
+  }
+
+private:
+  Predicates& predicates_;
+  const double* e_;
+  InSphereApex apex_;
+  double staticBound_;
+  bool liftsFirst_;
+};
+
 inline bool Predicates::insideSoS(const double* const p[4], const double* pe)
 {
-  double lifts[4];
-  const double det = inSphereDeterminant(p[0], p[1], p[2], p[3], pe, lifts);
-  if (liftsFirst_ ? liftsFilterProves(det, lifts) : std::fabs(det) > tuning_.inSphereStatic)
-    return det < 0;
-  int s = inSphereFiltered(det, lifts, p[0], p[1], p[2], p[3], pe);
-  if (s == 0 && !tuning_.floatExactInSphere)
-    s = inSphereDoubleDouble(p[0], p[1], p[2], p[3], pe);
-  return (s != 0 ? s : symbolicInSphere(p, pe)) > 0;
+  return InSphereProbe(*this, pe).inside(p[0], p[1], p[2], p[3]);
 }
 
 } // namespace fd3
