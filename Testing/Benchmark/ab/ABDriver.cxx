@@ -3,7 +3,8 @@
 // version since the public API settled offers: fd3::triangulate() and, where the version has
 // it (FD3_AB_VORONOI), fd3::voronoiCells().
 //   ABDriver <kind> <points> <threads> [voronoi]
-// prints: <seconds> <output hash> <tetrahedra or cells>
+// prints: <seconds> <output hash> <tetrahedra or cells>, and the kernel's phase times to stderr.
+// The seconds are the kernel's call alone, not the hashing of its output.
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
 #ifdef FD3_AB_VORONOI
@@ -83,6 +84,10 @@ int main(int argc, char* argv[])
   const int threads = std::atoi(argv[3]);
   const bool voronoi = argc > 4 && std::string(argv[4]) == "voronoi";
   const auto start = std::chrono::steady_clock::now();
+  double seconds = 0;
+  const auto stop = [&] {
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   std::uint64_t hash = 0;
   std::size_t count = 0;
   if (voronoi)
@@ -91,6 +96,7 @@ int main(int argc, char* argv[])
     fd3::VoronoiOptions options;
     options.threads = threads;
     const fd3::VoronoiCells cells = fd3::voronoiCells(p.data(), p.size() / 3, options);
+    stop();
     hash = hashOfCells(cells);
     count = cells.numberOfCells();
 #else
@@ -104,11 +110,13 @@ int main(int argc, char* argv[])
     options.computeNeighbors = false; // as the VTK filter runs it
     options.threads = threads;
     const fd3::Triangulation t = fd3::triangulate(p.data(), p.size() / 3, options);
+    stop();
     hash = hashOfTetrahedra(t);
     count = t.numberOfTetrahedra();
+    const fd3::Statistics& s = t.stats;
+    std::fprintf(stderr, "phases (s): sort %.3f locate %.3f cavity %.3f fill %.3f output %.3f\n",
+      s.secondsSort, s.secondsLocate, s.secondsCavity, s.secondsFill, s.secondsOutput);
   }
-  const double seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%.4f %016" PRIx64 " %zu\n", seconds, hash, count);
   return 0;
 }
