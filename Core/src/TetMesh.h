@@ -87,63 +87,102 @@ enum TetFlag : std::uint32_t
   kDead = 3         // a free slot
 };
 
-class TetMesh
+/// A read-only view of a mesh's records, for inner loops: held in a local, the records' address
+/// stays in a register, where the mesh's member would be reloaded after every store that might
+/// alias it (a byte store aliases everything). Valid until the records move (TetMesh::makeRoom,
+/// TetMesh::reserve).
+class TetReader
 {
 public:
+  explicit TetReader(const std::uint32_t* words) : words_(words) {}
+
   VertId vertex(TetId t, int i) const
   {
-    const std::uint32_t v = records_[8 * std::size_t(t) + i];
+    const std::uint32_t v = words_[8 * std::size_t(t) + i];
     return i == 0 ? v & kIdMask : v;
   }
   /// The four vertices of t (v0 without its flags).
   void vertices(TetId t, VertId out[4]) const
   {
-    const std::uint32_t* r = &records_[8 * std::size_t(t)];
+    const std::uint32_t* r = words_ + 8 * std::size_t(t);
     out[0] = r[0] & kIdMask;
     out[1] = r[1];
     out[2] = r[2];
     out[3] = r[3];
   }
-
-  FaceCode neighbor(TetId t, int f) const { return records_[8 * std::size_t(t) + 4 + f]; }
+  FaceCode neighbor(TetId t, int f) const { return words_[8 * std::size_t(t) + 4 + f]; }
   FaceCode across(FaceCode code) const { return neighbor(tetOf(code), faceOf(code)); }
-  void setNeighbor(FaceCode code, FaceCode value)
+  std::uint32_t flags(TetId t) const { return words_[8 * std::size_t(t)] >> kVertexIdBits; }
+  bool isGhost(TetId t) const { return words_[8 * std::size_t(t) + 3] == kInfinite; }
+  bool isDead(TetId t) const { return flags(t) == kDead; }
+  /// Starts loading t's record, which the caller will need soon (hides memory latency while
+  /// the cavity is grown breadth-first).
+  void prefetch(TetId t) const { fd3::prefetch(words_ + 8 * std::size_t(t)); }
+
+protected:
+  static constexpr std::uint32_t kIdMask = kMaxVertices - 1;
+  const std::uint32_t* words_;
+};
+
+/// TetReader's view with the writes (a view, like a span: const, it still writes).
+class TetRecords : public TetReader
+{
+public:
+  explicit TetRecords(std::uint32_t* words) : TetReader(words) {}
+
+  void setNeighbor(FaceCode code, FaceCode value) const
   {
-    records_[8 * std::size_t(tetOf(code)) + 4 + faceOf(code)] = value;
+    word(8 * std::size_t(tetOf(code)) + 4 + faceOf(code)) = value;
   }
-  void link(FaceCode a, FaceCode b)
+  void link(FaceCode a, FaceCode b) const
   {
     setNeighbor(a, b);
     setNeighbor(b, a);
   }
-
-  std::uint32_t flags(TetId t) const { return records_[8 * std::size_t(t)] >> kVertexIdBits; }
-  void setFlags(TetId t, std::uint32_t flags)
+  void setFlags(TetId t, std::uint32_t flags) const
   {
-    std::uint32_t& slot = records_[8 * std::size_t(t)];
+    std::uint32_t& slot = word(8 * std::size_t(t));
     slot = (slot & kIdMask) | (flags << kVertexIdBits);
   }
-
-  /// Starts loading t's record, which the caller will need soon (hides memory latency while
-  /// the cavity is grown breadth-first).
-  void prefetch(TetId t) const { fd3::prefetch(&records_[8 * std::size_t(t)]); }
-
-  bool isGhost(TetId t) const { return records_[8 * std::size_t(t) + 3] == kInfinite; }
-  bool isDead(TetId t) const { return flags(t) == kDead; }
-
   /// Flags a never-written slot dead.
-  void markDead(TetId t) { records_[8 * std::size_t(t)] = kDead << kVertexIdBits; }
-
+  void markDead(TetId t) const { word(8 * std::size_t(t)) = kDead << kVertexIdBits; }
   /// Writes the whole record of t at once: vertices v (flags clear), no neighbours yet.
-  void create(TetId t, const VertId v[4])
+  void create(TetId t, const VertId v[4]) const
   {
-    std::uint32_t* r = &records_[8 * std::size_t(t)];
+    std::uint32_t* r = &word(8 * std::size_t(t));
     for (int i = 0; i < 4; ++i)
     {
       r[i] = v[i];
       r[4 + i] = kUnlinked;
     }
   }
+
+private:
+  // Made from writable words (the constructor's): the view only shares its base's pointer.
+  std::uint32_t& word(std::size_t i) const { return const_cast<std::uint32_t*>(words_)[i]; }
+};
+
+class TetMesh
+{
+public:
+  /// The records as a raw view (TetReader), for inner loops; every accessor below goes through it.
+  TetReader reader() const { return TetReader(records_.data()); }
+  TetRecords records() { return TetRecords(records_.data()); }
+
+  VertId vertex(TetId t, int i) const { return reader().vertex(t, i); }
+  void vertices(TetId t, VertId out[4]) const { reader().vertices(t, out); }
+  FaceCode neighbor(TetId t, int f) const { return reader().neighbor(t, f); }
+  FaceCode across(FaceCode code) const { return reader().across(code); }
+  std::uint32_t flags(TetId t) const { return reader().flags(t); }
+  bool isGhost(TetId t) const { return reader().isGhost(t); }
+  bool isDead(TetId t) const { return reader().isDead(t); }
+  void prefetch(TetId t) const { reader().prefetch(t); }
+
+  void setNeighbor(FaceCode code, FaceCode value) { records().setNeighbor(code, value); }
+  void link(FaceCode a, FaceCode b) { records().link(a, b); }
+  void setFlags(TetId t, std::uint32_t flags) { records().setFlags(t, flags); }
+  void markDead(TetId t) { records().markDead(t); }
+  void create(TetId t, const VertId v[4]) { records().create(t, v); }
 
   /// Slots ever handed out (live, free, or in a pool's block), the records' high-water mark.
   std::size_t slots() const { return claimed_.load(std::memory_order_relaxed); }
@@ -211,7 +250,6 @@ public:
   }
 
 private:
-  static constexpr std::uint32_t kIdMask = kMaxVertices - 1;
   IdArray records_; // 8 words per slot, slots() of them in use, the rest not yet initialized
   std::atomic<std::size_t> claimed_{0};
 };

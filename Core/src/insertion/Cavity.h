@@ -66,8 +66,9 @@ private:
 
 struct Cavity
 {
-  ScratchVector<TetId> tets; ///< in conflict with the new point: flagged kInCavity, to delete
-  ScratchVector<std::uint8_t> entryFace; ///< digCavity's: the face each of tets was entered by
+  /// In conflict with the new point: flagged kInCavity, to delete. Each as the face by which the
+  /// search entered it (the base by face 0): tetOf() names the tetrahedron.
+  ScratchVector<FaceCode> deleted;
   ScratchVector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
   ScratchVector<BoundaryFacet> boundary;
   std::vector<TetId> created; ///< created[i] is the new tetrahedron on boundary[i]
@@ -78,16 +79,24 @@ struct Cavity
   // number of facets. Every entry read was written in the same insertion, so the table is never
   // cleared.
   static constexpr std::uint32_t kMaxLocalVertices = 512;
-  std::vector<VertId> localVertex; ///< the vertex of each local number
-  std::vector<TetId> localTet;     ///< a new tetrahedron of each local number
-  std::vector<FaceCode> edgeFace;  ///< grown on demand, up to kMaxLocalVertices^2
-  std::vector<std::pair<FaceCode, std::uint32_t>>
-    interiorFaces;           ///< face, entry of its reversed edge
-  LocalNumbers localNumbers; ///< in a locking pass, in place of Vertex::tet
+  struct LocalVertex
+  {
+    VertId vertex;
+    TetId tet; ///< one of its new tetrahedra
+  };
+  struct InteriorFace
+  {
+    FaceCode face;
+    std::uint32_t reversedEdge; ///< the entry of edgeFace that holds its neighbour
+  };
+  std::vector<LocalVertex> localVertices;  ///< by local number
+  std::vector<FaceCode> edgeFace;          ///< grown on demand, up to kMaxLocalVertices^2
+  std::vector<InteriorFace> interiorFaces; ///< three per new tetrahedron
+  LocalNumbers localNumbers;               ///< in a locking pass, in place of Vertex::tet
 
   void clear()
   {
-    tets.clear();
+    deleted.clear();
     rejected.clear();
     boundary.clear();
     created.clear();

@@ -68,15 +68,18 @@ void Inserter::giveBack(TetId t)
 
 void Inserter::collectBoundary()
 {
-  ScratchVector<TetId>& tets = cavity_.tets;
-  tets.erase(
-    std::remove_if(tets.begin(), tets.end(), [&](TetId t) { return tets_.flags(t) != kInCavity; }),
-    tets.end());
+  ScratchVector<FaceCode>& deleted = cavity_.deleted;
+  deleted.erase(std::remove_if(deleted.begin(), deleted.end(),
+                  [&](FaceCode c) { return tets_.flags(tetOf(c)) != kInCavity; }),
+    deleted.end());
   cavity_.boundary.clear();
-  for (TetId t : tets)
+  for (FaceCode c : deleted)
+  {
+    const TetId t = tetOf(c);
     for (int f = 0; f < 4; ++f)
       if (tets_.flags(tetOf(tets_.neighbor(t, f))) != kInCavity)
         cavity_.boundary.push_back({t, f});
+  }
 }
 
 // A ghost kept only because its hull face is coplanar with the point (the tie rule of
@@ -84,8 +87,9 @@ void Inserter::collectBoundary()
 bool Inserter::dropOrphanGhosts(VertId v)
 {
   bool changed = false;
-  for (TetId t : cavity_.tets)
+  for (FaceCode c : cavity_.deleted)
   {
+    const TetId t = tetOf(c);
     if (tets_.flags(t) != kInCavity || !tets_.isGhost(t) ||
       tets_.flags(tetOf(tets_.neighbor(t, 3))) == kInCavity)
       continue;
@@ -109,7 +113,9 @@ bool Inserter::keepEnclosedVertex(VertId v)
     for (int i = 0; i < 4; ++i)
       if (i != b.face && tets_.vertex(b.inner, i) != kInfinite)
         vertexStamp_[tets_.vertex(b.inner, i)] = stamp_;
-  for (TetId t : cavity_.tets)
+  for (FaceCode c : cavity_.deleted)
+  {
+    const TetId t = tetOf(c);
     for (int i = 0; i < 4; ++i)
     {
       const VertId u = tets_.vertex(t, i);
@@ -119,6 +125,7 @@ bool Inserter::keepEnclosedVertex(VertId v)
         return true;
       }
     }
+  }
   return false;
 }
 

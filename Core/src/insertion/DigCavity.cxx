@@ -11,18 +11,9 @@ namespace fd3
 {
 namespace
 {
-// Room in `list` for more than twice `count` elements, the first `count` kept.
-template <typename T>
-T* grow(ScratchVector<T>& list, std::size_t count)
-{
-  list.resize(std::max<std::size_t>(2 * count + 4, 64));
-  return list.data();
-}
-
-// The faces of a tetrahedron other than the one it was entered through; the last row, for the
-// base, lists all four.
-constexpr std::uint8_t kNoEntryFace = 4;
-constexpr int kFacesBesides[5][4] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}, {0, 1, 2, 3}};
+// The faces of a tetrahedron other than the one it was entered through, which leads back into
+// the cavity: a fixed three faces are visited, not four with a skip whose position is random.
+constexpr int kFacesBesides[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 } // namespace
 
 bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
@@ -54,10 +45,21 @@ bool Inserter::ghostInConflict(TetId ghost, VertId v)
 
 void Inserter::undoCavity()
 {
-  for (TetId t : cavity_.tets)
+  for (const FaceCode c : cavity_.deleted)
+    tets_.setFlags(tetOf(c), 0);
+  for (const TetId t : cavity_.rejected)
     tets_.setFlags(t, 0);
-  for (TetId t : cavity_.rejected)
-    tets_.setFlags(t, 0);
+}
+
+std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
+{
+  // The lists keep their memory from one insertion to the next, and grow by half at least.
+  std::size_t room = cavity_.deleted.size();
+  room = std::max({count, room + room / 2, cavity_.deleted.capacity()});
+  cavity_.deleted.resize(room);
+  cavity_.rejected.resize(room);
+  cavity_.boundary.resize(room);
+  return room;
 }
 
 // Returns false, undoing everything, when the cavity reaches a tetrahedron that is not the
@@ -68,89 +70,116 @@ void Inserter::undoCavity()
 // No branch depends on a test's outcome, a coin toss to the predictor: the outcome only picks the
 // flag written and which list's count advances (the lists have room for every face of the
 // tetrahedron at hand). Behind a mispredicted branch, the processor threw away the next tests it
-// had started while the determinant was computed.
+// had started while the determinant was computed. The records, the vertices and the lists are
+// reached through locals, which the compiler keeps in registers across the stores.
+template <Inserter::Access A>
 bool Inserter::digCavity(TetId base, VertId v)
 {
+  const TetRecords tets = tets_.records();
+  const Vertex* const vertices = mesh_.vertices.data();
+  const InSphereProbe probe(predicates_, vertices[v].xyz);
   cavity_.clear();
+  std::size_t room = makeRoomInCavityLists(64);
+  FaceCode* deleted = cavity_.deleted.data();
+  TetId* rejected = cavity_.rejected.data();
+  BoundaryFacet* boundary = cavity_.boundary.data();
   std::size_t inCavity = 1, kept = 0, facets = 0;
-  TetId* tets = grow(cavity_.tets, 0);
-  std::uint8_t* entry = grow(cavity_.entryFace, 0);
-  TetId* rejected = grow(cavity_.rejected, 0);
-  BoundaryFacet* boundary = grow(cavity_.boundary, 0);
+  bool given = false; // the cavity reached beyond what this inserter may change
+  // Face f of t, which is in the cavity: the tetrahedron across is tested if it was not yet, and
+  // the face is on the boundary unless that one is in the cavity.
+  const auto visit = [&](TetId t, int f) {
+    const FaceCode across = tets.neighbor(t, f);
+    const TetId n = tetOf(across);
+    if constexpr (A == Access::Locking)
+      if (given || !acquire(n))
+      {
+        given = true; // another inserter's: not even its flags may be read
+        return;
+      }
+    const std::uint32_t flag = tets.flags(n);
+    if (flag == kInCavity)
+      return;
+    bool inside = false;
+    if (flag == 0)
+    {
+      VertId nv[4];
+      tets.vertices(n, nv);
+      if (nv[3] == kInfinite)
+      {
+        inside = ghostInConflict(n, v);
+        if constexpr (A == Access::Locking)
+          given |= lockLost_;
+      }
+      else
+        inside = probe.inside(
+          vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz);
+      assert(mayTouch(n));
+      tets.setFlags(n, inside ? kInCavity : kNotInCavity);
+      deleted[inCavity] = across;
+      inCavity += inside;
+      rejected[kept] = n;
+      kept += !inside;
+      // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
+      // outcome would wait for the determinant.
+      for (int g = 0; g < 4; ++g)
+      {
+        const TetId m = tetOf(tets.neighbor(n, g));
+        tets.prefetch(m);
+        if constexpr (A == Access::Locking)
+          prefetch(owners_ + m);
+      }
+      // n shares with t, whose four vertices are in the region, all but the one opposite.
+      if constexpr (A == Access::Region)
+      {
+        const VertId opposite = nv[faceOf(across)];
+        given |= inside && opposite != kInfinite && !region_.contains(vertices[opposite].xyz);
+      }
+    }
+    // Field by field: a whole BoundaryFacet spilled t and f to the stack as two 4-byte stores
+    // and reloaded them as one 8-byte value, which stalls store forwarding.
+    boundary[facets].inner = t;
+    boundary[facets].face = f;
+    facets += !inside;
+  };
   assert(mayTouch(base));
-  tets_.setFlags(base, kInCavity);
-  tets[0] = base;
-  entry[0] = kNoEntryFace;
+  tets.setFlags(base, kInCavity);
+  deleted[0] = faceCode(base, 0);
   for (int f = 0; f < 4; ++f)
-    prefetchTet(tetOf(tets_.neighbor(base, f)));
-  bool owned = true;
-  for (std::size_t i = 0; i < inCavity; ++i)
+    prefetchTet(tetOf(tets.neighbor(base, f)));
+  for (int f = 0; f < 4; ++f)
+    visit(base, f);
+  for (std::size_t i = 1; i < inCavity && !given; ++i)
   {
-    if (cavity_.tets.size() < inCavity + 4)
+    // Before the tetrahedron of rank i is visited, each list holds at most 3i + 2 entries (1 + 4
+    // for the base, 3 for each one after it).
+    if (3 * i + 5 > room)
     {
-      tets = grow(cavity_.tets, inCavity);
-      entry = grow(cavity_.entryFace, inCavity);
+      room = makeRoomInCavityLists(3 * i + 5);
+      deleted = cavity_.deleted.data();
+      rejected = cavity_.rejected.data();
+      boundary = cavity_.boundary.data();
     }
-    if (cavity_.rejected.size() < kept + 4)
-      rejected = grow(cavity_.rejected, kept);
-    if (cavity_.boundary.size() < facets + 4)
-      boundary = grow(cavity_.boundary, facets);
-    const TetId t = tets[i];
-    // The face t was reached through leads back into the cavity: a fixed three faces are visited
-    // (four for the base), not four with a skip whose position is random.
-    const int* faces = kFacesBesides[entry[i]];
-    const int count = entry[i] == kNoEntryFace ? 4 : 3;
-    for (int k = 0; k < count; ++k)
-    {
-      const int f = faces[k];
-      const FaceCode across = tets_.neighbor(t, f);
-      const TetId n = tetOf(across);
-      if (owners_ && !acquire(n))
-      {
-        lockLost_ = true; // another inserter's: not even its flags may be read
-        break;
-      }
-      const std::uint32_t flag = tets_.flags(n);
-      if (flag == kInCavity)
-        continue;
-      bool inside = false;
-      if (flag == 0)
-      {
-        inside = inConflict(n, v) && !lockLost_;
-        assert(mayTouch(n));
-        tets_.setFlags(n, inside ? kInCavity : kNotInCavity);
-        tets[inCavity] = n;
-        entry[inCavity] = static_cast<std::uint8_t>(faceOf(across));
-        inCavity += inside;
-        rejected[kept] = n;
-        kept += !inside;
-        // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
-        // outcome would wait for the determinant.
-        for (int g = 0; g < 4; ++g)
-          prefetchTet(tetOf(tets_.neighbor(n, g)));
-        // n shares with t, whose four vertices are in the region, all but the one opposite.
-        if (restricted_)
-          owned &= !inside || inRegion(tets_.vertex(n, faceOf(across)));
-      }
-      // Field by field: a whole BoundaryFacet spilled t and f to the stack as two 4-byte stores
-      // and reloaded them as one 8-byte value, which stalls store forwarding.
-      boundary[facets].inner = t;
-      boundary[facets].face = f;
-      facets += !inside;
-    }
-    if (!owned || lockLost_)
-      break;
+    const FaceCode entered = deleted[i];
+    const int* faces = kFacesBesides[faceOf(entered)];
+    visit(tetOf(entered), faces[0]);
+    visit(tetOf(entered), faces[1]);
+    visit(tetOf(entered), faces[2]);
   }
-  cavity_.tets.resize(inCavity);
+  cavity_.deleted.resize(inCavity);
   cavity_.rejected.resize(kept);
   cavity_.boundary.resize(facets);
-  if (!owned || lockLost_)
+  if (given)
   {
+    lockLost_ = false;
     undoCavity();
     return false;
   }
   stats_.cavityTetrahedra += inCavity;
   return true;
 }
+
+template bool Inserter::digCavity<Inserter::Access::Free>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Region>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Locking>(TetId, VertId);
 
 } // namespace fd3

@@ -28,6 +28,7 @@ constexpr std::uint32_t kKeep[4][4] = {
 } // namespace
 
 // Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.
+template <Inserter::Access A>
 bool Inserter::fillCavity(VertId v)
 {
   std::vector<TetId>& created = cavity_.created;
@@ -37,36 +38,24 @@ bool Inserter::fillCavity(VertId v)
     undoCavity();
     return false;
   }
-  if (owners_)
+  if constexpr (A == Access::Locking)
     for (const TetId t : created) // this pool's free slots, or new ones no one else can reach
     {
       owners_[t].store(me_, std::memory_order_relaxed);
       held_.push_back(t);
     }
-  if (!createAndLink(v))
+  if (!createAndLink<A>(v))
+    linkByRotation();
+  for (const FaceCode c : cavity_.deleted)
   {
-    // More boundary vertices than the edge table takes: the new tetrahedra exist and are linked
-    // across the boundary; each interior face is linked by rotating about its boundary edge.
-    for (std::size_t i = 0; i < created.size(); ++i)
-    {
-      VertId nv[4];
-      tets_.vertices(created[i], nv);
-      for (int k = 0; k < 4; ++k)
-        setVertexTet(nv[k], created[i]);
-      for (int f = 0; f < 4; ++f)
-        if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
-          linkAroundEdge(i, f);
-    }
+    assert(isOwned(tetOf(c)));
+    pool_.give(tets_, tetOf(c));
   }
-  for (TetId t : cavity_.tets)
-  {
-    assert(isOwned(t));
-    pool_.give(tets_, t);
-  }
+  const TetRecords tets = tets_.records();
   for (TetId t : cavity_.rejected)
   {
     assert(mayTouch(t));
-    tets_.setFlags(t, 0);
+    tets.setFlags(t, 0);
   }
   regionStart_ = created.back();
   return true;
@@ -74,19 +63,21 @@ bool Inserter::fillCavity(VertId v)
 
 // One pass over the boundary facets. The new tetrahedron of facet (t, f) is t with vertex f
 // replaced by v, which keeps the orientation positive because v sees the facet from t's side; it is
-// linked to the tetrahedron across the facet, and the deleted t's slot for face f is pointed at it
-// (how the rotation of linkAroundEdge recognizes a boundary facet). Every facet, in its outward
-// order q0 q1 q2 (kFaceVertices[f]), runs along its edges q0->q1, q1->q2, q2->q0, and the facet
-// across each edge runs along it the other way: the new face through v and edge qj->qk (opposite
-// the facet's third vertex) is recorded at that directed edge and, once every facet is done,
-// linked to the face recorded at qk->qj. Edges are indexed by local numbers of the boundary's
-// vertices, given on first sight through localNumberSlot() without a branch (a new vertex takes
-// number `count`, which only advances then). The boundary is a triangulated sphere, so its
-// vertices number F/2 + 2 for F facets (Euler), which sizes the table before the pass. Returns
-// false, with every new tetrahedron created and linked across the boundary but not to each other,
-// when the table is too small.
+// linked to the tetrahedron across the facet. Every facet, in its outward order q0 q1 q2
+// (kFaceVertices[f]), runs along its edges q0->q1, q1->q2, q2->q0, and the facet across each edge
+// runs along it the other way: the new face through v and edge qj->qk (opposite the facet's third
+// vertex) is recorded at that directed edge and, once every facet is done, linked to the face
+// recorded at qk->qj. Edges are indexed by local numbers of the boundary's vertices, given on
+// first sight through localNumberSlot() without a branch (a new vertex takes number `count`,
+// which only advances then). The boundary is a triangulated sphere, so its vertices number F/2 + 2
+// for F facets (Euler), which sizes the table before the pass. Returns false, with every new
+// tetrahedron created and linked across the boundary but not to each other, when the boundary is
+// too large for the table or not a sphere after all.
+template <Inserter::Access A>
 bool Inserter::createAndLink(VertId v)
 {
+  const TetRecords tets = tets_.records();
+  Vertex* const vertices = mesh_.vertices.data();
   const std::size_t facets = cavity_.created.size();
   const std::uint32_t expected = static_cast<std::uint32_t>(facets / 2 + 2);
   std::uint32_t width = 16;
@@ -95,19 +86,15 @@ bool Inserter::createAndLink(VertId v)
   const bool fits = expected <= Cavity::kMaxLocalVertices;
   if (fits && cavity_.edgeFace.size() < std::size_t(width) * width)
     cavity_.edgeFace.resize(std::size_t(width) * width);
-  cavity_.localVertex.resize(width + 3);
-  if (owners_)
+  cavity_.localVertices.resize(width + 3);
+  if constexpr (A == Access::Locking)
     cavity_.localNumbers.reset(width + 3);
-  cavity_.localTet.resize(width + 3);
   cavity_.interiorFaces.resize(3 * facets);
-  // Raw pointers: the stores through the vertex records would otherwise make the compiler reload
-  // each vector's address at every use.
   const BoundaryFacet* boundary = cavity_.boundary.data();
   const TetId* created = cavity_.created.data();
-  VertId* vertexOf = cavity_.localVertex.data();
-  TetId* firstTet = cavity_.localTet.data();
+  Cavity::LocalVertex* localVertices = cavity_.localVertices.data();
   FaceCode* edgeFace = cavity_.edgeFace.data();
-  auto* interiorFaces = cavity_.interiorFaces.data();
+  Cavity::InteriorFace* interiorFaces = cavity_.interiorFaces.data();
   std::uint32_t count = 0;
   bool linked = fits;
   for (std::size_t i = 0; i < facets; ++i)
@@ -115,13 +102,12 @@ bool Inserter::createAndLink(VertId v)
     const BoundaryFacet b = boundary[i];
     const TetId n = created[i];
     VertId nv[4];
-    tets_.vertices(b.inner, nv);
+    tets.vertices(b.inner, nv);
     for (int k = 0; k < 4; ++k)
       nv[k] = (nv[k] & kKeep[b.face][k]) | (v & ~kKeep[b.face][k]);
-    tets_.create(n, nv);
-    assert(mayTouch(n) && mayTouch(tetOf(tets_.neighbor(b.inner, b.face))));
-    tets_.link(faceCode(n, b.face), tets_.neighbor(b.inner, b.face));
-    tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(n, b.face));
+    tets.create(n, nv);
+    assert(mayTouch(n) && mayTouch(tetOf(tets.neighbor(b.inner, b.face))));
+    tets.link(faceCode(n, b.face), tets.neighbor(b.inner, b.face));
     if (!linked)
       continue;
     const int* q = kFaceVertices[b.face];
@@ -129,12 +115,11 @@ bool Inserter::createAndLink(VertId v)
     for (int j = 0; j < 3; ++j)
     {
       assert(inRegion(nv[q[j]]));
-      TetId& entry = localNumberSlot(nv[q[j]]);
+      TetId& entry = localNumberSlot<A>(vertices, nv[q[j]]);
       const bool isNew = (entry & kHighHalf) != kLocalTag;
       local[j] = isNew ? count : (entry & 0xFFFFu);
       entry = kLocalTag | local[j];
-      vertexOf[count] = nv[q[j]];
-      firstTet[count] = n;
+      localVertices[count] = {nv[q[j]], n};
       count += isNew;
     }
     if (count > width)
@@ -152,14 +137,43 @@ bool Inserter::createAndLink(VertId v)
   }
   // Each vertex gets one of its new tetrahedra in place of its number.
   for (std::uint32_t k = 0; k < count; ++k)
-    setVertexTet(vertexOf[k], firstTet[k]);
-  setVertexTet(v, created[0]);
+    setVertexTet<A>(localVertices[k].vertex, localVertices[k].tet);
+  setVertexTet<A>(v, created[0]);
   ghostTet_ = kNoTet;
   if (!linked)
     return false;
   for (std::size_t i = 0; i < 3 * facets; ++i)
-    tets_.setNeighbor(interiorFaces[i].first, edgeFace[interiorFaces[i].second]);
+    tets.setNeighbor(interiorFaces[i].face, edgeFace[interiorFaces[i].reversedEdge]);
   return true;
+}
+
+template bool Inserter::fillCavity<Inserter::Access::Free>(VertId);
+template bool Inserter::fillCavity<Inserter::Access::Region>(VertId);
+template bool Inserter::fillCavity<Inserter::Access::Locking>(VertId);
+
+// createAndLink()'s fallback, for cavities whose boundary the edge table does not take: the
+// new tetrahedra exist and are linked across the boundary; each face between two of them is
+// linked by rotating about its boundary edge through the deleted tetrahedra, whose slot for each
+// boundary facet is first pointed at the new tetrahedron on it (how the rotation recognizes a
+// boundary facet).
+void Inserter::linkByRotation()
+{
+  const std::vector<TetId>& created = cavity_.created;
+  for (std::size_t i = 0; i < created.size(); ++i)
+  {
+    const BoundaryFacet& b = cavity_.boundary[i];
+    tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(created[i], b.face));
+  }
+  for (std::size_t i = 0; i < created.size(); ++i)
+  {
+    VertId nv[4];
+    tets_.vertices(created[i], nv);
+    for (int k = 0; k < 4; ++k)
+      setVertexTet(nv[k], created[i]);
+    for (int f = 0; f < 4; ++f)
+      if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
+        linkAroundEdge(i, f);
+  }
 }
 
 // New tetrahedron i was built on boundary facet (t, g); its face `face` holds the new point and

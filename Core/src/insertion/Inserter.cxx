@@ -202,7 +202,8 @@ Inserter::Outcome Inserter::deferred()
   return Outcome::Deferred;
 }
 
-Inserter::Outcome Inserter::insert(VertId v)
+template <Inserter::Access A>
+Inserter::Outcome Inserter::insertAs(VertId v)
 {
   PhaseClock clock(v % kSampling == 0);
   const TetId base = locate(v);
@@ -215,7 +216,7 @@ Inserter::Outcome Inserter::insert(VertId v)
         releaseHeld();
       return Outcome::Duplicate;
     }
-  if (base == kNoTet || !digCavity(base, v))
+  if (base == kNoTet || !digCavity<A>(base, v))
   {
     // The base is unchanged and near the next point: the last tetrahedron created may lie many
     // put-off points back, where most insertions reach outside their region.
@@ -225,7 +226,7 @@ Inserter::Outcome Inserter::insert(VertId v)
   }
   correctCavity(v);
   clock.lap(stats_.secondsCavity);
-  if (!fillCavity(v))
+  if (!fillCavity<A>(v))
     return deferred();
   clock.lap(stats_.secondsFill);
   // Past about one test in nine that the static filter leaves to the lifts' filter (a cavity and
@@ -234,7 +235,7 @@ Inserter::Outcome Inserter::insert(VertId v)
   if (!predicates_.prefersLiftsFilter() &&
     predicates_.liftsFilterRescues() > stats_.cavityTetrahedra / 4 + 4096)
     predicates_.preferLiftsFilter();
-  if (owners_)
+  if constexpr (A == Access::Locking)
     releaseHeld();
   if (mesh_.grid.enabled())
     mesh_.grid.markInserted(point(v), v);
@@ -242,5 +243,9 @@ Inserter::Outcome Inserter::insert(VertId v)
   ++stats_.insertedPoints;
   return Outcome::Inserted;
 }
+
+template Inserter::Outcome Inserter::insertAs<Inserter::Access::Free>(VertId);
+template Inserter::Outcome Inserter::insertAs<Inserter::Access::Region>(VertId);
+template Inserter::Outcome Inserter::insertAs<Inserter::Access::Locking>(VertId);
 
 } // namespace fd3

@@ -94,6 +94,16 @@ public:
   void lockIn(OwnerTable* owners, std::size_t slots, std::uint8_t me);
   void unlocked();
 
+  /// How an inserter may touch the mesh: alone (Free), in its region (Region), or holding what it
+  /// touches in an owner table (Locking). The steps of an insertion are compiled once for each,
+  /// so that one that works alone makes none of the others' checks.
+  enum class Access
+  {
+    Free,
+    Region,
+    Locking
+  };
+
   enum class Outcome
   {
     Inserted,
@@ -101,7 +111,14 @@ public:
     Duplicate ///< v repeats a vertex of the mesh (only looked for after lookForDuplicates())
   };
   /// Inserts vertex v, a point of the region.
-  Outcome insert(VertId v);
+  Outcome insert(VertId v)
+  {
+    if (owners_)
+      return insertAs<Access::Locking>(v);
+    if (restricted_)
+      return insertAs<Access::Region>(v);
+    return insertAs<Access::Free>(v);
+  }
 
   /// From now on, every point is first located in the tetrahedron that contains it (not only one
   /// in conflict), which has as vertex any vertex that the point repeats: that one is then
@@ -138,16 +155,23 @@ private:
   }
   /// The field of u that holds its local number during a fill (its tet); kInfinite's is this
   /// inserter's own. In a locking pass, an entry of the cavity's own table.
-  TetId& localNumberSlot(VertId u)
+  template <Access A>
+  TetId& localNumberSlot(Vertex* vertices, VertId u)
   {
-    if (owners_)
+    if constexpr (A == Access::Locking)
       return cavity_.localNumbers.slot(u);
-    return u == kInfinite ? ghostTet_ : mesh_.vertices[u].tet;
+    return u == kInfinite ? ghostTet_ : vertices[u].tet;
   }
+  /// Sets the tetrahedron of u (in a locking pass, other inserters may read it at the same time).
+  template <Access A = Access::Locking>
   void setVertexTet(VertId u, TetId t)
   {
-    if (u != kInfinite)
+    if (u == kInfinite)
+      return;
+    if constexpr (A == Access::Locking)
       relaxedStore(mesh_.vertices[u].tet, t);
+    else
+      mesh_.vertices[u].tet = t;
   }
   /// Starts loading t's record and, in a locking pass, its owner, which acquire() reads first.
   void prefetchTet(TetId t) const
@@ -176,6 +200,9 @@ private:
   TetId locate(VertId v);
   /// The vertex of base (which contains v's point) that v repeats, or kNoVertex.
   VertId repeatedVertex(TetId base, VertId v) const;
+  template <Access A>
+  Outcome insertAs(VertId v);
+
   // DigCavity.cxx
   int inSphereSoS(const VertId tet[4], VertId e)
   {
@@ -198,6 +225,9 @@ private:
   }
   bool ghostInConflict(TetId ghost, VertId v);
   void undoCavity();
+  /// Room for `count` entries or more in each of the cavity's lists; returns the room.
+  std::size_t makeRoomInCavityLists(std::size_t count);
+  template <Access A>
   bool digCavity(TetId base, VertId v);
   // CorrectCavity.cxx
   void correctCavity(VertId v);
@@ -208,8 +238,11 @@ private:
   bool dropOrphanGhosts(VertId v);
   bool keepEnclosedVertex(VertId v);
   // FillCavity.cxx
+  template <Access A>
   bool fillCavity(VertId v);
+  template <Access A>
   bool createAndLink(VertId v);
+  void linkByRotation();
   void linkAroundEdge(std::size_t created, int face);
 
   std::uint32_t nextRandom();

@@ -73,9 +73,9 @@ bool Triangulator::insertOne(
   if (outcome == Inserter::Outcome::Duplicate)
     return false;
   const TetMesh& tets = mesh_.tets;
-  for (const TetId t : inserter.lastCavity().tets)
-    if (!tets.isGhost(t))
-      deleted.push_back(t);
+  for (const FaceCode c : inserter.lastCavity().deleted)
+    if (!tets.isGhost(tetOf(c)))
+      deleted.push_back(tetOf(c));
   for (const TetId t : inserter.lastCavity().created)
     if (!tets.isGhost(t))
       made.push_back(t);
