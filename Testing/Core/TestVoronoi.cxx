@@ -83,6 +83,20 @@ void expectValidCells(const std::vector<double>& xyz, const fd3::VoronoiCells& v
   const std::size_t cells = v.numberOfCells();
   ASSERT_EQ(v.cellFaces.size(), cells + 1);
   ASSERT_EQ(v.volumes.size(), cells);
+  // Each cell's points: its faces' vertices, each once.
+  ASSERT_EQ(v.cellPointStart.size(), cells + 1);
+  ASSERT_EQ(v.cellPoints.size(), v.cellPointStart[cells]);
+  for (std::size_t c = 0; c < cells; ++c)
+  {
+    const std::set<std::uint32_t> onFaces(v.faceVertices.begin() + v.faceStart[v.cellFaces[c]],
+      v.faceVertices.begin() + v.faceStart[v.cellFaces[c + 1]]);
+    std::vector<std::uint32_t> listed(
+      v.cellPoints.begin() + v.cellPointStart[c], v.cellPoints.begin() + v.cellPointStart[c + 1]);
+    std::sort(listed.begin(), listed.end());
+    ASSERT_TRUE(std::equal(listed.begin(), listed.end(), onFaces.begin(), onFaces.end()))
+      << "cell " << c << ": " << listed.size() << " points listed, " << onFaces.size()
+      << " on its faces";
+  }
   const double scale = std::cbrt(boxVolume(v.box));
   const double tolerance = 1e-9 * scale;
   double total = 0;
@@ -189,6 +203,8 @@ void expectSameCells(const fd3::VoronoiCells& a, const fd3::VoronoiCells& b)
   EXPECT_EQ(a.cellFaces, b.cellFaces);
   EXPECT_EQ(a.faceStart, b.faceStart);
   EXPECT_EQ(a.faceVertices, b.faceVertices);
+  EXPECT_EQ(a.cellPointStart, b.cellPointStart);
+  EXPECT_EQ(a.cellPoints, b.cellPoints);
   EXPECT_EQ(a.faceNeighbors, b.faceNeighbors);
   EXPECT_EQ(a.volumes, b.volumes);
   EXPECT_EQ(a.areas, b.areas);
@@ -235,8 +251,8 @@ TEST_P(VoronoiSets, FiguresWithoutPolyhedraAreThePolyhedras)
     EXPECT_EQ(figures.faceNeighbors, full.faceNeighbors);
     EXPECT_EQ(figures.volumes, full.volumes);
     EXPECT_EQ(figures.areas, full.areas);
-    EXPECT_TRUE(
-      figures.points.empty() && figures.faceStart.empty() && figures.faceVertices.empty());
+    EXPECT_TRUE(figures.points.empty() && figures.faceStart.empty() &&
+      figures.faceVertices.empty() && figures.cellPointStart.empty() && figures.cellPoints.empty());
   }
 }
 

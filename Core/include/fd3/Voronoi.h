@@ -42,9 +42,10 @@ struct VoronoiOptions
   /// Whether to give each cell its generator's Delaunay tessellation field estimate (densities():
   /// from the tetrahedralization of the points alone, as triangulate() makes it).
   bool density = false;
-  /// Whether to give the cells' polyhedra (points, faceStart, faceVertices). Without them each
-  /// cell still has its faces' neighbours, its volume and its area (what a Voronoi density, a
-  /// neighbour graph or a size distribution needs), in about half the memory.
+  /// Whether to give the cells' polyhedra (points, faceStart, faceVertices, cellPointStart,
+  /// cellPoints). Without them each cell still has its faces' neighbours, its volume and its area
+  /// (what a Voronoi density, a neighbour graph or a size distribution needs), in about half the
+  /// memory.
   bool polyhedra = true;
 };
 
@@ -60,8 +61,8 @@ struct VoronoiCells
   /// The arrays of doubles and of offsets, in the kernel's allocator (no zero fill).
   using Doubles = std::vector<double, BulkAllocator<double>>;
   using Offsets = std::vector<std::size_t, BulkAllocator<std::size_t>>;
-  /// The cells' vertices (empty without VoronoiOptions::polyhedra, as are faceStart and
-  /// faceVertices), x,y,z each: the circumcentres in the box, cell after cell (each cell's
+  /// The cells' vertices (empty without VoronoiOptions::polyhedra, as are faceStart,
+  /// faceVertices, cellPointStart and cellPoints), x,y,z each: the circumcentres in the box, cell after cell (each cell's
   /// own, those of the tetrahedra whose lowest vertex is its generator), then the crossings of
   /// the box, cell after cell (each clipped cell has its own, at the same coordinates as its
   /// neighbours').
@@ -72,6 +73,10 @@ struct VoronoiCells
   Offsets cellFaces;    ///< cell c's faces: [cellFaces[c], cellFaces[c+1])
   Offsets faceStart;    ///< face f's vertices: [faceStart[f], faceStart[f+1])
   IdArray faceVertices; ///< point ids; counter-clockwise seen from outside
+  /// Each cell's vertices, each once: [cellPointStart[c], cellPointStart[c+1]) of cellPoints, ids
+  /// of points (what a polyhedral cell type lists beside its faces).
+  Offsets cellPointStart;
+  IdArray cellPoints;
   /// The input point id of the generator across each face, or kBoxFace + wall.
   IdArray faceNeighbors;
   Doubles volumes, areas; ///< per cell; areas include the box's faces

@@ -138,6 +138,7 @@ void CellBuilder::emitWhole(
     if constexpr (Polyhedra)
     {
       pointOf_[i] = in_.pointOf[star_[i]];
+      out.cellPoints[out.cellPointStart[cell] + i] = pointOf_[i];
       x = in_.points + 3 * std::size_t(pointOf_[i]);
     }
     else
@@ -210,6 +211,8 @@ void CellBuilder::emitClipped(std::uint32_t p, std::uint32_t cell, Stretch& out)
   out.cells.push_back(cell);
   out.faceCounts.push_back(static_cast<std::uint32_t>(faces));
   crossingOf_.assign(c.x.size(), kNone);
+  listed_.assign(c.x.size(), false);
+  std::uint32_t points = 0;
   const double* g = in_.xyz + 3 * std::size_t(p);
   double sixVolume = 0, twiceArea = 0;
   std::uint32_t crossings = 0;
@@ -221,17 +224,19 @@ void CellBuilder::emitClipped(std::uint32_t p, std::uint32_t cell, Stretch& out)
     for (std::uint32_t k = 0; k < size && in_.polyhedra; ++k)
     {
       const std::uint32_t v = c.loops[begin + k], t = c.tet[v];
-      if (t != kNone)
-      {
-        out.vertices.push_back(t);
-        continue;
-      }
-      if (crossingOf_[v] == kNone)
+      if (t == kNone && crossingOf_[v] == kNone)
       {
         crossingOf_[v] = crossings++;
         out.crossingPoints.insert(out.crossingPoints.end(), c.x[v].begin(), c.x[v].end());
       }
-      out.vertices.push_back(kOwnVertex | crossingOf_[v]);
+      const std::uint32_t id = t != kNone ? t : kOwnVertex | crossingOf_[v];
+      out.vertices.push_back(id);
+      if (!listed_[v])
+      {
+        listed_[v] = true;
+        out.points.push_back(id);
+        ++points;
+      }
     }
     NewellSum newell;
     for (std::uint32_t k = 0; k < size; ++k)
@@ -243,6 +248,7 @@ void CellBuilder::emitClipped(std::uint32_t p, std::uint32_t cell, Stretch& out)
     newell.close(sixVolume, twiceArea);
   }
   out.crossings.push_back(crossings);
+  out.pointCounts.push_back(points);
   out.volumes.push_back(sixVolume / 6);
   out.areas.push_back(twiceArea / 2);
 }

@@ -28,7 +28,9 @@ struct Stretch
   std::vector<std::uint32_t> crossings;  ///< per cell
   std::vector<std::uint32_t> faceSizes;  ///< per face
   std::vector<std::uint32_t> vertices;
-  std::vector<std::uint32_t> neighbors; ///< per face
+  std::vector<std::uint32_t> pointCounts; ///< per cell: its distinct vertices, in `points`
+  std::vector<std::uint32_t> points;      ///< as `vertices` names them
+  std::vector<std::uint32_t> neighbors;   ///< per face
   std::vector<double> crossingPoints;
   std::vector<double> volumes, areas;
 };
@@ -64,7 +66,7 @@ public:
 
   /// A cell inside the box, written where `at` says: its faces are the rings as they are, each
   /// traced straight into the output (the volume's and area's sums beside the ring's steps, which
-  /// wait on each other).
+  /// wait on each other); its points, each once, are its star's tetrahedra's centres.
   template <bool Polyhedra>
   void emitWhole(
     std::uint32_t p, std::size_t cell, std::size_t face, std::size_t vertex, VoronoiCells& out);
@@ -133,6 +135,7 @@ private:
   /// A clipped cell's local vertex of each star tetrahedron, and its crossing of each local
   /// vertex (kNone where it has none yet).
   std::vector<std::uint32_t> localOf_, crossingOf_;
+  std::vector<bool> listed_; ///< per local vertex of a clipped cell: among its points yet
   std::vector<std::uint32_t> loops_, faceStart_;
   std::vector<std::array<double, 3>> fromGenerator_; ///< per star tetrahedron: its centre - p
   std::vector<std::uint32_t> pointOf_;               ///< per star tetrahedron: its centre's point

@@ -162,8 +162,8 @@ struct CellPlaces
 };
 
 /// The sizes of the cells (those of the clipped ones from their stretches; a whole cell with a
-/// star of n tetrahedra has 2 + n/2 faces, those of its link, a sphere, and 3n face vertices),
-/// summed into places, and the output's arrays made to hold them.
+/// star of n tetrahedra has 2 + n/2 faces, those of its link, a sphere, 3n face vertices and n
+/// points), summed into places, and the output's arrays made to hold them.
 CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& stars,
   const IdArray& pointOf, const std::vector<Stretch>& parts, VoronoiCells& cells)
 {
@@ -172,9 +172,13 @@ CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& st
   at.vertex.resize(n + 1);
   at.crossing.resize(n + 1);
   cells.cellFaces.resize(n + 1);
+  const bool polyhedra = !pointOf.empty();
+  cells.cellPointStart.resize(polyhedra ? n + 1 : 0);
   // Each cell's sizes after its place, then their running sums. The crossings are numbered after
   // the centres that the cells own.
   cells.cellFaces[0] = at.vertex[0] = 0;
+  if (polyhedra)
+    cells.cellPointStart[0] = 0;
   at.crossing[0] = n && !pointOf.empty() ? pointOf[stars.ownStart[vertices[n - 1] + 1]] : 0;
   team.forRanges(n, "voronoi places", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c)
@@ -184,6 +188,8 @@ CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& st
         cells.cellFaces[c + 1] = 2 + star / 2;
         at.vertex[c + 1] = 3 * star;
         at.crossing[c + 1] = 0;
+        if (polyhedra)
+          cells.cellPointStart[c + 1] = star;
       }
   });
   team.run(
@@ -197,6 +203,8 @@ CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& st
         cells.cellFaces[c + 1] = s.faceCounts[j];
         at.vertex[c + 1] = std::accumulate(face, face + s.faceCounts[j], std::size_t(0));
         at.crossing[c + 1] = s.crossings[j];
+        if (polyhedra)
+          cells.cellPointStart[c + 1] = s.pointCounts[j];
         face += s.faceCounts[j];
       }
     },
@@ -204,10 +212,12 @@ CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& st
   team.accumulate(cells.cellFaces, "voronoi places");
   team.accumulate(at.vertex, "voronoi places");
   team.accumulate(at.crossing, "voronoi places");
+  if (polyhedra)
+    team.accumulate(cells.cellPointStart, "voronoi places");
   cells.faceNeighbors.resize(cells.cellFaces[n]);
   cells.volumes.resize(n);
   cells.areas.resize(n);
-  if (pointOf.empty()) // no polyhedra
+  if (!polyhedra)
   {
     cells.faceStart.clear();
     return at;
@@ -218,6 +228,7 @@ CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& st
   cells.faceStart.resize(cells.cellFaces[n] + 1);
   cells.faceStart[cells.cellFaces[n]] = at.vertex[n];
   cells.faceVertices.resize(at.vertex[n]);
+  cells.cellPoints.resize(cells.cellPointStart[n]);
   cells.points.resize(3 * points);
   return at;
 }
@@ -231,10 +242,18 @@ void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces
     parts.size(),
     [&](std::size_t k) {
       const Stretch& s = parts[k];
-      std::size_t face = 0, vertex = 0;
+      std::size_t face = 0, vertex = 0, point = 0;
       for (std::size_t j = 0; j < s.cells.size(); ++j)
       {
         const std::size_t c = s.cells[j];
+        // A vertex as the stretch names it: a tetrahedron (its centre) or one of c's crossings.
+        const auto outputId = [&](std::uint32_t id) {
+          return id & kOwnVertex ? static_cast<std::uint32_t>(at.crossing[c] + (id & ~kOwnVertex))
+                                 : pointOf[id];
+        };
+        if (!pointOf.empty())
+          for (std::size_t i = 0; i < s.pointCounts[j]; ++i, ++point)
+            cells.cellPoints[cells.cellPointStart[c] + i] = outputId(s.points[point]);
         std::size_t outFace = cells.cellFaces[c], outVertex = at.vertex[c];
         for (std::uint32_t f = 0; f < s.faceCounts[j]; ++f, ++face, ++outFace)
         {
@@ -243,12 +262,7 @@ void copyClipped(ThreadTeam& team, std::vector<Stretch>& parts, const CellPlaces
             continue;
           cells.faceStart[outFace] = outVertex;
           for (std::uint32_t i = 0; i < s.faceSizes[face]; ++i, ++vertex)
-          {
-            const std::uint32_t id = s.vertices[vertex];
-            cells.faceVertices[outVertex++] = id & kOwnVertex
-              ? static_cast<std::uint32_t>(at.crossing[c] + (id & ~kOwnVertex))
-              : pointOf[id];
-          }
+            cells.faceVertices[outVertex++] = outputId(s.vertices[vertex]);
         }
         cells.volumes[c] = s.volumes[j];
         cells.areas[c] = s.areas[j];
@@ -408,6 +422,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
   VoronoiCells cells;
   cells.cellFaces.assign(1, 0);
   cells.faceStart.assign(1, 0);
+  cells.cellPointStart.assign(1, 0);
   cells.stats.inputPoints = count;
   ThreadTeam team(boundedThreads(options.threads));
   const Bounds bounds = finiteBounds(team, "voronoi curve", xyz, count);
@@ -437,6 +452,7 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   VoronoiCells cells;
   cells.cellFaces.assign(1, 0);
   cells.faceStart.assign(1, 0);
+  cells.cellPointStart.assign(1, 0);
   const Status before = mesh.status();
   if (before == Status::Empty || before == Status::Aborted) // no finite point, whatever the box
   {
