@@ -6,6 +6,7 @@
 #include "ExactValidator.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
+#include "fd3/Workers.h"
 #include "insertion/ParallelInsertion.h"
 #include "system/Threads.h"
 
@@ -14,7 +15,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <mutex>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -183,6 +186,42 @@ TEST(Threads, EveryPartRunsOnceOnItsOwnThreadForEveryCount)
     std::sort(ids.begin(), ids.end());
     EXPECT_EQ(std::unique(ids.begin(), ids.end()), ids.end()) << "two parts shared a thread";
     EXPECT_EQ(record.threadSeconds.size(), parts);
+  }
+}
+
+// The callers' loops (fd3::Workers): every index of [0, count) once, in contiguous ranges, on
+// several threads where there is enough work, and a range's exception rethrown on the caller.
+TEST(Threads, WorkersCoverEveryIndexOnceAndRethrow)
+{
+  for (const int threads : {1, 3, 64})
+  {
+    fd3::Workers workers(threads);
+    EXPECT_EQ(workers.size(), threads);
+    for (const std::size_t count : {0, 1, 4095, 100000})
+    {
+      SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(count));
+      std::vector<std::atomic<int>> visits(count);
+      std::vector<std::thread::id> ids;
+      std::mutex idsMutex;
+      workers.forRanges(count, [&](std::size_t begin, std::size_t end) {
+        ASSERT_LE(begin, end);
+        for (std::size_t i = begin; i < end; ++i)
+          ++visits[i];
+        const std::lock_guard<std::mutex> lock(idsMutex);
+        ids.push_back(std::this_thread::get_id());
+      });
+      EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](const auto& n) { return n == 1; }));
+      std::sort(ids.begin(), ids.end());
+      EXPECT_EQ(std::unique(ids.begin(), ids.end()), ids.end()) << "two ranges shared a thread";
+      if (count == 100000)
+        EXPECT_EQ(ids.size(), std::size_t(std::min(threads, 24)));
+    }
+    EXPECT_THROW(workers.forRanges(100000,
+                   [](std::size_t, std::size_t end) {
+                     if (end == 100000)
+                       throw std::runtime_error("the last range failed");
+                   }),
+      std::runtime_error);
   }
 }
 
