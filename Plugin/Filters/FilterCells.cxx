@@ -6,11 +6,11 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellType.h"
+#include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
-#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkTypeInt32Array.h"
@@ -19,6 +19,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Voronoi.h"
+#include "fd3/Workers.h"
 
 #include <limits>
 #include <map>
@@ -28,15 +29,6 @@
 namespace
 {
 using fd3vtk::CellBlock;
-
-/// The distinct point ids of cell c's faces, sorted, into `ids`.
-void CellPoints(const fd3::VoronoiCells& cells, std::size_t c, std::vector<vtkIdType>& ids)
-{
-  ids.assign(cells.faceVertices.begin() + cells.faceStart[cells.cellFaces[c]],
-    cells.faceVertices.begin() + cells.faceStart[cells.cellFaces[c + 1]]);
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-}
 
 /// The output cells, block after block, written straight into the cell array's offsets and
 /// connectivity (no per-cell calls); 32-bit storage whenever the ids fit, which halves its memory.
@@ -204,67 +196,87 @@ void SetVertexCells(vtkUnstructuredGrid* output, vtkIdType count)
   output->SetCells(VTK_VERTEX, vertices);
 }
 
-void SetPolyhedra(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells)
+void SetPolyhedra(vtkUnstructuredGrid* output, fd3::VoronoiCells& cells, fd3::Workers& workers)
 {
-  // Each cell's distinct points, then its face stream (faces, then each face's size and ids).
-  const auto n = static_cast<vtkIdType>(cells.numberOfCells());
-  std::vector<vtkIdType> pointsAt(n + 1, 0), streamAt(n + 1, 0);
-  vtkSMPThreadLocal<std::vector<vtkIdType>> scratch;
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    std::vector<vtkIdType>& ids = scratch.Local();
-    for (vtkIdType c = begin; c < end; ++c)
-    {
-      CellPoints(cells, static_cast<std::size_t>(c), ids);
-      const std::size_t faces = cells.numberOfFaces(static_cast<std::size_t>(c));
-      pointsAt[c + 1] = static_cast<vtkIdType>(ids.size());
-      streamAt[c + 1] = faces == 0
-        ? 0
-        : static_cast<vtkIdType>(1 + faces + cells.faceStart[cells.cellFaces[c + 1]] -
-            cells.faceStart[cells.cellFaces[c]]);
-    }
-  });
-  for (vtkIdType c = 0; c < n; ++c)
+  const std::size_t n = cells.numberOfCells();
+  // Where each cell's face stream starts (its face count, then each face's size and ids).
+  std::vector<vtkIdType, fd3::BulkAllocator<vtkIdType>> streamAt(n + 1);
+  streamAt[0] = 0;
+  for (std::size_t c = 0; c < n; ++c)
   {
-    pointsAt[c + 1] += pointsAt[c];
-    streamAt[c + 1] += streamAt[c];
+    const std::size_t faces = cells.numberOfFaces(c);
+    const std::size_t ids =
+      cells.faceStart[cells.cellFaces[c + 1]] - cells.faceStart[cells.cellFaces[c]];
+    streamAt[c + 1] = streamAt[c] + (faces == 0 ? 0 : static_cast<vtkIdType>(1 + faces + ids));
   }
-  vtkNew<vtkIdTypeArray> offsets, connectivity, faceLocations, faces;
+  vtkNew<vtkIdTypeArray> faceLocations, faces;
   vtkNew<vtkUnsignedCharArray> types;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(pointsAt[n]);
-  faceLocations->SetNumberOfValues(n);
+  faceLocations->SetNumberOfValues(static_cast<vtkIdType>(n));
   faces->SetNumberOfValues(streamAt[n]);
-  types->SetNumberOfValues(n);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    std::vector<vtkIdType>& ids = scratch.Local();
-    for (vtkIdType c = begin; c < end; ++c)
+  types->SetNumberOfValues(static_cast<vtkIdType>(n));
+  vtkIdType* location = faceLocations->GetPointer(0);
+  vtkIdType* stream = faces->GetPointer(0);
+  unsigned char* type = types->GetPointer(0);
+  workers.forRanges(n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
     {
-      CellPoints(cells, static_cast<std::size_t>(c), ids);
-      offsets->SetValue(c, pointsAt[c]);
-      std::copy(ids.begin(), ids.end(), connectivity->GetPointer(pointsAt[c]));
       const std::size_t first = cells.cellFaces[c], last = cells.cellFaces[c + 1];
-      types->SetValue(c, first == last ? VTK_EMPTY_CELL : VTK_POLYHEDRON);
-      faceLocations->SetValue(c, first == last ? -1 : streamAt[c]);
+      type[c] = first == last ? VTK_EMPTY_CELL : VTK_POLYHEDRON;
+      location[c] = first == last ? -1 : streamAt[c];
       if (first == last)
       {
         continue;
       }
-      vtkIdType* stream = faces->GetPointer(streamAt[c]);
-      *stream++ = static_cast<vtkIdType>(last - first);
+      vtkIdType* at = stream + streamAt[c];
+      *at++ = static_cast<vtkIdType>(last - first);
       for (std::size_t f = first; f < last; ++f)
       {
-        *stream++ = static_cast<vtkIdType>(cells.faceStart[f + 1] - cells.faceStart[f]);
-        for (std::size_t k = cells.faceStart[f]; k < cells.faceStart[f + 1]; ++k)
-        {
-          *stream++ = cells.faceVertices[k];
-        }
+        const std::uint32_t* ids = cells.faceVertices.data() + cells.faceStart[f];
+        const std::size_t size = cells.faceStart[f + 1] - cells.faceStart[f];
+        *at++ = static_cast<vtkIdType>(size);
+        at = std::copy(ids, ids + size, at);
       }
     }
   });
-  offsets->SetValue(n, pointsAt[n]);
+  // Each cell's points, each once, as the kernel lists them: its own ids handed over where they fit
+  // 32 bits (as the tetrahedra are), beside offsets of the same width.
   vtkNew<vtkCellArray> polyhedra;
-  polyhedra->SetData(offsets, connectivity);
+  const fd3::VoronoiCells::Offsets& pointStart = cells.cellPointStart;
+  if (cells.cellPoints.size() < static_cast<std::size_t>(std::numeric_limits<vtkTypeInt32>::max()))
+  {
+    vtkNew<vtkTypeInt32Array> offsets, connectivity;
+    offsets->SetNumberOfValues(static_cast<vtkIdType>(n + 1));
+    vtkTypeInt32* offset = offsets->GetPointer(0);
+    workers.forRanges(n + 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c)
+      {
+        offset[c] = static_cast<vtkTypeInt32>(pointStart[c]);
+      }
+    });
+    HandedOver::Into(connectivity.Get(), std::move(cells.cellPoints));
+    polyhedra->SetData(offsets, connectivity);
+  }
+  else
+  {
+    vtkNew<vtkTypeInt64Array> offsets, connectivity;
+    offsets->SetNumberOfValues(static_cast<vtkIdType>(n + 1));
+    connectivity->SetNumberOfValues(static_cast<vtkIdType>(cells.cellPoints.size()));
+    std::copy(pointStart.begin(), pointStart.end(), offsets->GetPointer(0));
+    std::copy(cells.cellPoints.begin(), cells.cellPoints.end(), connectivity->GetPointer(0));
+    fd3::IdArray().swap(cells.cellPoints);
+    polyhedra->SetData(offsets, connectivity);
+  }
   output->SetCells(types, polyhedra, faceLocations, faces);
+}
+
+vtkSmartPointer<vtkPoints> PointsOf(fd3::VoronoiCells::Doubles xyz)
+{
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  HandedOver::Into(coordinates.Get(), std::move(xyz));
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetData(coordinates);
+  return points;
 }
 
 void SetPointsWithoutCells(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData)

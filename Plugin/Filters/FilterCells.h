@@ -9,6 +9,7 @@
 #define FilterCells_h
 
 #include "FastDelaunay3DFiltersModule.h" // For export macro
+#include "vtkSmartPointer.h"
 #include "vtkType.h"
 
 #include "fd3/Delaunay.h"
@@ -24,7 +25,8 @@ class vtkUnstructuredGrid;
 namespace fd3
 {
 struct VoronoiCells;
-}
+class Workers;
+} // namespace fd3
 
 namespace fd3vtk
 {
@@ -51,9 +53,15 @@ FASTDELAUNAY3DFILTERS_EXPORT void SetTetrahedra(vtkUnstructuredGrid* output, fd3
 FASTDELAUNAY3DFILTERS_EXPORT void SetVertexCells(vtkUnstructuredGrid* output, vtkIdType count);
 
 /// The cells' polyhedra: cell c is a VTK_POLYHEDRON on cells.points (VTK_EMPTY_CELL where it has
-/// no face), its face stream as VTK stores it and its distinct points as connectivity.
+/// no face), its face stream as VTK stores it and its points (cells.cellPoints, handed over: empty
+/// on return) as connectivity. Written on `workers`' threads.
 FASTDELAUNAY3DFILTERS_EXPORT void SetPolyhedra(
-  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells);
+  vtkUnstructuredGrid* output, fd3::VoronoiCells& cells, fd3::Workers& workers);
+
+/// Points whose coordinates are `xyz` itself (x, y, z each), the kernel's memory handed over to
+/// VTK without a copy.
+FASTDELAUNAY3DFILTERS_EXPORT vtkSmartPointer<vtkPoints> PointsOf(
+  std::vector<double, fd3::BulkAllocator<double>> xyz);
 
 /// The points and point data with an empty cell array: the output where no cell exists (fewer
 /// than 4 distinct points, all coplanar, a failure), as vtkDelaunay3D's; the cell array keeps it a

@@ -30,8 +30,10 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Voronoi.h"
+#include "fd3/Workers.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <sstream>
@@ -102,7 +104,10 @@ int vtkFastVoronoi3D::RequestData(
   fd3::VoronoiCells cells;
   try
   {
+    const auto kernelStart = std::chrono::steady_clock::now();
     cells = fd3::voronoiCells(xyz, static_cast<std::size_t>(numberOfPoints), this->KernelOptions());
+    this->KernelSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -120,13 +125,17 @@ int vtkFastVoronoi3D::RequestData(
   {
     return 1;
   }
-  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, xyz);
+  const auto conversionStart = std::chrono::steady_clock::now();
+  fd3::Workers workers(fd3vtk::ThreadCount(this->NumberOfThreads));
+  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, xyz, workers);
   this->UpdateProgress(0.9);
-  AddCellData(output, cells, input->GetPointData());
+  AddCellData(output, cells, input->GetPointData(), workers);
   if (this->GenerateFaces)
   {
     SetFaces(faces, cells, vertices, [](std::uint32_t id) { return vtkIdType(id); });
   }
+  this->ConversionSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
   return 1;
 }
@@ -175,53 +184,48 @@ bool vtkFastVoronoi3D::ReportOnInput(
   return true;
 }
 
-vtkSmartPointer<vtkPoints> vtkFastVoronoi3D::SetGeometry(
-  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz) const
+vtkSmartPointer<vtkPoints> vtkFastVoronoi3D::SetGeometry(vtkUnstructuredGrid* output,
+  fd3::VoronoiCells& cells, const double* xyz, fd3::Workers& workers) const
 {
   vtkSmartPointer<vtkPoints> vertices;
   if (this->GeneratePolyhedra || this->GenerateFaces)
   {
-    vtkNew<vtkDoubleArray> coordinates;
-    coordinates->SetNumberOfComponents(3);
-    coordinates->SetNumberOfTuples(static_cast<vtkIdType>(cells.points.size() / 3));
-    std::copy(cells.points.begin(), cells.points.end(), coordinates->GetPointer(0));
-    vertices = vtkSmartPointer<vtkPoints>::New();
-    vertices->SetData(coordinates);
+    vertices = fd3vtk::PointsOf(std::move(cells.points));
   }
   if (this->GeneratePolyhedra)
   {
     output->SetPoints(vertices);
-    fd3vtk::SetPolyhedra(output, cells);
+    fd3vtk::SetPolyhedra(output, cells, workers);
   }
   else
   {
-    SetGenerators(output, cells, xyz);
+    SetGenerators(output, cells, xyz, workers);
   }
   return vertices;
 }
 
-void vtkFastVoronoi3D::SetGenerators(
-  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz)
+void vtkFastVoronoi3D::SetGenerators(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells,
+  const double* xyz, fd3::Workers& workers)
 {
-  const auto n = static_cast<vtkIdType>(cells.numberOfCells());
+  const std::size_t n = cells.numberOfCells();
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(n);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end; ++c)
+  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  double* out = coordinates->GetPointer(0);
+  workers.forRanges(n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
     {
-      const double* p = xyz + 3 * std::size_t(cells.generators[static_cast<std::size_t>(c)]);
-      coordinates->SetTypedTuple(c, p);
+      std::copy_n(xyz + 3 * std::size_t(cells.generators[c]), 3, out + 3 * c);
     }
   });
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   output->SetPoints(points);
-  fd3vtk::SetVertexCells(output, n);
+  fd3vtk::SetVertexCells(output, static_cast<vtkIdType>(n));
 }
 
-void vtkFastVoronoi3D::AddCellData(
-  vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData)
+void vtkFastVoronoi3D::AddCellData(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells,
+  vtkPointData* pointData, fd3::Workers& workers)
 {
   const auto n = static_cast<vtkIdType>(cells.numberOfCells());
   vtkCellData* cellData = output->GetCellData();
@@ -243,10 +247,10 @@ void vtkFastVoronoi3D::AddCellData(
   auto area = NamedArray<vtkDoubleArray>("SurfaceArea", n);
   auto faces = NamedArray<vtkIntArray>("NumberOfFaces", n);
   auto neighbors = NamedArray<vtkIntArray>("NumberOfNeighbors", n);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType c = begin; c < end; ++c)
+  workers.forRanges(cells.numberOfCells(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t cell = begin; cell < end; ++cell)
     {
-      const auto cell = static_cast<std::size_t>(c);
+      const auto c = static_cast<vtkIdType>(cell);
       generatorId->SetValue(c, cells.generators[cell]);
       volume->SetValue(c, cells.volumes[cell]);
       area->SetValue(c, cells.areas[cell]);
@@ -358,4 +362,6 @@ void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Number Of Generators: " << this->NumberOfGenerators << "\n";
   os << indent << "Number Of Duplicate Points: " << this->NumberOfDuplicatePoints << "\n";
   os << indent << "Number Of Invalid Points: " << this->NumberOfInvalidPoints << "\n";
+  os << indent << "Kernel Seconds: " << this->KernelSeconds << "\n";
+  os << indent << "Conversion Seconds: " << this->ConversionSeconds << "\n";
 }

@@ -55,6 +55,7 @@ enum class Status;
 struct Bounds;
 struct VoronoiCells;
 struct VoronoiOptions;
+class Workers;
 } // namespace fd3
 
 class FASTDELAUNAY3DFILTERS_EXPORT vtkFastVoronoi3D : public vtkUnstructuredGridAlgorithm
@@ -133,6 +134,15 @@ public:
   vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
   ///@}
 
+  ///@{
+  /**
+   * Wall-clock seconds of the last run: the kernel's cells (tetrahedralization included; under
+   * MPI this rank's, with the exchanges), and the writing of the outputs' arrays from them.
+   */
+  vtkGetMacro(KernelSeconds, double);
+  vtkGetMacro(ConversionSeconds, double);
+  ///@}
+
 protected:
   vtkFastVoronoi3D();
   ~vtkFastVoronoi3D() override = default;
@@ -149,17 +159,18 @@ protected:
   /// kernel, `box`, the box the cells were clipped to); false when there are no cells to output.
   bool ReportOnInput(fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints);
   /// The first output's points and cells, polyhedra or generators as GeneratePolyhedra says
-  /// (`xyz`: the points the kernel was given); returns the polyhedra's points, which the faces
-  /// are on (null where the kernel made no polyhedra).
-  vtkSmartPointer<vtkPoints> SetGeometry(
-    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz) const;
+  /// (`xyz`: the points the kernel was given), written on `workers`; returns the polyhedra's
+  /// points, which the faces are on (null where the kernel made no polyhedra). The cells' points
+  /// and cellPoints are handed over to the output.
+  vtkSmartPointer<vtkPoints> SetGeometry(vtkUnstructuredGrid* output, fd3::VoronoiCells& cells,
+    const double* xyz, fd3::Workers& workers) const;
   /// A VTK_VERTEX cell at each cell's generator.
-  static void SetGenerators(
-    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, const double* xyz);
+  static void SetGenerators(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells,
+    const double* xyz, fd3::Workers& workers);
   /// GeneratorId, Volume, SurfaceArea, NumberOfFaces, NumberOfNeighbors and the input's point
   /// data on the cells.
-  static void AddCellData(
-    vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells, vtkPointData* pointData);
+  static void AddCellData(vtkUnstructuredGrid* output, const fd3::VoronoiCells& cells,
+    vtkPointData* pointData, fd3::Workers& workers);
   /// Every face once into `faces`, on the cells' `points`; `inputId` maps the kernel's point ids
   /// (a generator's, a face's neighbour's) to input ids.
   static void SetFaces(vtkPolyData* faces, const fd3::VoronoiCells& cells, vtkPoints* points,
@@ -175,6 +186,8 @@ protected:
   vtkIdType NumberOfGenerators = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
   vtkIdType NumberOfInvalidPoints = 0;
+  double KernelSeconds = 0.0;
+  double ConversionSeconds = 0.0;
 
 private:
   vtkFastVoronoi3D(const vtkFastVoronoi3D&) = delete;

@@ -20,9 +20,11 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Voronoi.h"
+#include "fd3/Workers.h"
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <exception>
 #include <string>
 
@@ -108,6 +110,7 @@ int vtkPFastVoronoi3D::RequestData(
   const bool root = this->Controller->GetLocalProcessId() == 0;
 
   // The points spread by space, each rank's mesh, and the halo that completes its points' cells.
+  const auto kernelStart = std::chrono::steady_clock::now();
   fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
   const bool redistributed = run.Redistribute(input, inputPoints);
   if (redistributed && run.InputPoints == 0)
@@ -150,6 +153,8 @@ int vtkPFastVoronoi3D::RequestData(
   {
     return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
   }
+  this->KernelSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
   const std::size_t ghosts = run.Xyz.size() / 3 - run.OwnCount();
   const std::vector<vtkIdType> inputIds =
     this->GenerateFaces ? run.InputIds() : std::vector<vtkIdType>();
@@ -177,14 +182,18 @@ int vtkPFastVoronoi3D::RequestData(
   {
     return 1;
   }
-  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, run.Xyz.data());
+  const auto conversionStart = std::chrono::steady_clock::now();
+  fd3::Workers workers(options.threads);
+  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, run.Xyz.data(), workers);
   this->UpdateProgress(0.9);
-  AddCellData(output, cells, run.OwnData());
+  AddCellData(output, cells, run.OwnData(), workers);
   SetGeneratorIds(output);
   if (this->GenerateFaces)
   {
     SetFaces(faces, cells, vertices, [&](std::uint32_t id) { return inputIds[id]; });
   }
+  this->ConversionSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
   return 1;
 }
