@@ -126,7 +126,7 @@ Measurement runScipy(const fd3test::Points& p, const std::string& script)
 }
 } // namespace
 
-int voronoiMain(int argc, char* argv[])
+int voronoiMain(int argc, char* argv[], const VoronoiFilterRun& filter)
 {
   RunSettings settings;
   settings.kinds = {"cube", "clusters", "molshell"};
@@ -137,20 +137,22 @@ int voronoiMain(int argc, char* argv[])
     return 2;
   const std::string script = std::string(FD3_BENCHMARK_SOURCE_DIR) + "/scipy_voronoi.py";
   std::ostringstream md, csv;
-  md
-    << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
-    << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
-    << "the points' bounding box with volumes, areas and neighbours, and their polyhedra for "
-    << "the Core rows but the figures ones and for Voro++ polyhedra (vertices and faces copied "
-    << "out of each Voro++ cell); scipy: "
-    << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
-    << "Volume: the cells' total over the box's. Model (Core): the run on a core per thread, "
-    << "from each thread's CPU time (Scaling.cxx), and its serial seconds; real only where each "
-    << "thread has a core.\n\n"
-    << "| points | n | method | seconds | model s | serial s | peak MiB | B/point | volume / box | "
-       "Voro++ / this | Voro++ polyhedra / this |\n"
-    << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  csv << "kind,n,method,seconds,model_seconds,serial_seconds,peak_mib,volume_fraction\n";
+  md << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
+     << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
+     << "the points' bounding box with volumes, areas and neighbours, and their polyhedra for "
+     << "the Core rows but the figures ones and for Voro++ polyhedra (vertices and faces copied "
+     << "out of each Voro++ cell); scipy: "
+     << "scipy.spatial.Voronoi (Qhull's unbounded diagram, no clipping, volumes or areas). "
+     << "Volume: the cells' total over the box's. Model (Core): the run on a core per thread, "
+     << "from each thread's CPU time (Scaling.cxx), and its serial seconds; real only where each "
+     << "thread has a core. filter: vtkFastVoronoi3D on a vtkPolyData of the points (its default "
+     << "properties, NumberOfThreads the count after the dash), and the share of its time that "
+     << "writing VTK's arrays takes (conversion).\n\n"
+     << "| points | n | method | seconds | model s | serial s | conversion | peak MiB | B/point | "
+        "volume / box | Voro++ / this | Voro++ polyhedra / this |\n"
+     << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  csv << "kind,n,method,seconds,model_seconds,serial_seconds,conversion_seconds,peak_mib,"
+         "volume_fraction\n";
   for (const std::string& kind : settings.kinds)
     for (const std::size_t size : settings.sizes)
     {
@@ -160,8 +162,14 @@ int voronoiMain(int argc, char* argv[])
       std::vector<std::pair<std::string, Measurement>> rows;
       for (const bool polyhedra : {true, false})
         for (const int t : settings.threads)
-          rows.push_back({"Core-" + std::to_string(t) + (polyhedra ? "" : " figures"),
-            measure([&] { return runCore(p, t, polyhedra); }, 1e9)});
+        {
+          const std::string suffix = std::to_string(t) + (polyhedra ? "" : " figures");
+          rows.push_back(
+            {"Core-" + suffix, measure([&] { return runCore(p, t, polyhedra); }, 1e9)});
+          if (filter)
+            rows.push_back(
+              {"filter-" + suffix, measure([&] { return filter(p, t, polyhedra); }, 1e9)});
+        }
 #ifdef FD3_BENCHMARK_WITH_VOROPP
       rows.push_back({"Voro++", measure([&] { return runVoropp(p, false); }, settings.limit)});
       rows.push_back(
@@ -191,15 +199,19 @@ int voronoiMain(int argc, char* argv[])
         const bool modelled = m.figures.size() > 3;
         const std::string model = modelled ? std::to_string(m.figures[2]).substr(0, 6) : "-";
         const std::string serial = modelled ? std::to_string(m.figures[3]).substr(0, 5) : "-";
+        char conversion[32] = "-";
+        if (m.conversionSeconds > 0)
+          std::snprintf(conversion, sizeof conversion, "%.3f s (%.0f%%)", m.conversionSeconds,
+            100 * m.conversionSeconds / m.seconds);
         std::snprintf(line, sizeof line,
-          "| %s | %zu | %s | %.3f | %s | %s | %.0f | %.0f | %s | %s | %s |\n", kind.c_str(), n,
-          name.c_str(), m.seconds, model.c_str(), serial.c_str(), m.peakMiB,
+          "| %s | %zu | %s | %.3f | %s | %s | %s | %.0f | %.0f | %s | %s | %s |\n", kind.c_str(), n,
+          name.c_str(), m.seconds, model.c_str(), serial.c_str(), conversion, m.peakMiB,
           m.peakMiB * 1048576.0 / double(n), fraction > 0 ? std::to_string(fraction).c_str() : "-",
           ratio(voropp, m.seconds).c_str(), ratio(voroppPolyhedra, m.seconds).c_str());
         md << line;
         csv << kind << ',' << n << ',' << name << ',' << m.seconds << ','
             << (modelled ? m.figures[2] : 0) << ',' << (modelled ? m.figures[3] : 0) << ','
-            << m.peakMiB << ',' << fraction << '\n';
+            << m.conversionSeconds << ',' << m.peakMiB << ',' << fraction << '\n';
         std::cerr << kind << " " << n << " " << name << ": " << m.seconds << " s\n";
       }
     }
