@@ -8,6 +8,7 @@
 #                       vtkDelaunay3D, CGAL and TetGen (sizes default 10000,100000,1000000) into
 #                       output/benchmark.{md,csv,png}, the paper's Table 1 into output/table1.md,
 #                       the Voronoi cells against Voro++ and scipy into output/voronoi.{md,csv},
+#                       Fast Voronoi 3D under pvpython into output/pvpython-voronoi.md,
 #                       and the threads' scaling model (1 to 64 threads, default 4000000 points)
 #                       into output/scaling.{md,csv}
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
@@ -74,6 +75,9 @@ case "${1:-build}" in
     build/bin/Benchmark --table1 --markdown output/table1.md
     build/bin/Benchmark --voronoi --sizes "${2:-100000,1000000}" --threads 1,2 \
       --kinds cube,clusters,molshell,lattice --markdown output/voronoi.md --csv output/voronoi.csv
+    PYTHONPATH="$PWD/build/lib/python3.11/site-packages" "${xvfb[@]}" pvpython \
+      Testing/Benchmark/pvpython_voronoi.py "$plugin" "$(echo "${2:-1000000}" | tr ',' '\n' | tail -1)" \
+      3 1 build/bin/Benchmark | tee output/pvpython-voronoi.md
     build/bin/Benchmark --scaling --sizes "${3:-4000000}" --threads 1,2,4,8,16,32,64 \
       --kinds cube,ball,clusters,torus,cylinder,noisyshell,scans,terrain,molshell \
       --markdown output/scaling.md --csv output/scaling.csv

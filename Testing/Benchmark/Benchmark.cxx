@@ -14,7 +14,8 @@
 //   Benchmark --table1 [--markdown FILE]     the paper's Table 1 for this kernel
 //   Benchmark --scaling [--kinds ...] [--sizes N] [--threads 1,2,4,...] [--csv FILE]
 //             [--markdown FILE]                the scaling model of Core's threads (Scaling.cxx)
-//   Benchmark --voronoi [--kinds ...] [--sizes N] [--threads 1,2] [--csv FILE] [--markdown FILE]
+//   Benchmark --voronoi [--kinds ...] [--sizes N] [--threads 1,2] [--methods Core,filter,...]
+//             [--csv FILE] [--markdown FILE]
 //                                            Voronoi cells: Core, Voro++, scipy (VoronoiBench.cxx)
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the

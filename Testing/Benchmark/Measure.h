@@ -196,12 +196,13 @@ struct RunSettings
   std::vector<std::string> kinds;
   std::vector<std::size_t> sizes;
   std::vector<int> threads;
-  double limit = 1e9; ///< seconds for one run
+  std::vector<std::string> methods; ///< the ones to run; empty for all
+  double limit = 1e9;               ///< seconds for one run
   std::string csvFile, markdownFile;
 };
 
-/// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--limit S] [--csv F] [--markdown F]
-/// into `settings`, skipping the mode's own `flag`; false (with a message) on any other option.
+/// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--methods M,..] [--limit S] [--csv F]
+/// [--markdown F] into `settings`, skipping the mode's own `flag`; false (with a message) on any other option.
 inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettings& settings)
 {
   for (int i = 1; i < argc; i += 2)
@@ -211,6 +212,8 @@ inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettin
       --i;
     else if (key == "--kinds")
       settings.kinds = split(value);
+    else if (key == "--methods")
+      settings.methods = split(value);
     else if (key == "--sizes" || key == "--threads")
     {
       std::vector<std::size_t> numbers;

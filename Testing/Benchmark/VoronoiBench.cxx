@@ -15,6 +15,7 @@
 #include <voro++/voro++.hh>
 #endif
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -136,6 +137,10 @@ int voronoiMain(int argc, char* argv[], const VoronoiFilterRun& filter)
   if (!parseRunSettings(argc, argv, "--voronoi", settings))
     return 2;
   const std::string script = std::string(FD3_BENCHMARK_SOURCE_DIR) + "/scipy_voronoi.py";
+  const auto wanted = [&](const char* method) {
+    return settings.methods.empty() ||
+      std::find(settings.methods.begin(), settings.methods.end(), method) != settings.methods.end();
+  };
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". Voronoi cells of the same points, one run per row, "
      << "each in a child process (peak: its memory above its input). Core and Voro++: cells in "
@@ -164,18 +169,23 @@ int voronoiMain(int argc, char* argv[], const VoronoiFilterRun& filter)
         for (const int t : settings.threads)
         {
           const std::string suffix = std::to_string(t) + (polyhedra ? "" : " figures");
-          rows.push_back(
-            {"Core-" + suffix, measure([&] { return runCore(p, t, polyhedra); }, 1e9)});
-          if (filter)
+          if (wanted("Core"))
+            rows.push_back(
+              {"Core-" + suffix, measure([&] { return runCore(p, t, polyhedra); }, 1e9)});
+          if (filter && wanted("filter"))
             rows.push_back(
               {"filter-" + suffix, measure([&] { return filter(p, t, polyhedra); }, 1e9)});
         }
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-      rows.push_back({"Voro++", measure([&] { return runVoropp(p, false); }, settings.limit)});
-      rows.push_back(
-        {"Voro++ polyhedra", measure([&] { return runVoropp(p, true); }, settings.limit)});
+      if (wanted("Voro++"))
+      {
+        rows.push_back({"Voro++", measure([&] { return runVoropp(p, false); }, settings.limit)});
+        rows.push_back(
+          {"Voro++ polyhedra", measure([&] { return runVoropp(p, true); }, settings.limit)});
+      }
 #endif
-      rows.push_back({"scipy", runScipy(p, script)});
+      if (wanted("scipy"))
+        rows.push_back({"scipy", runScipy(p, script)});
       double voropp = 0, voroppPolyhedra = 0;
       for (const auto& [name, m] : rows)
       {

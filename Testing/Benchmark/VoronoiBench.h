@@ -16,8 +16,8 @@ using VoronoiFilterRun =
   std::function<Measurement(const fd3test::Points& points, int threads, bool polyhedra)>;
 
 /// The command line of the Voronoi benchmark, as `Benchmark --voronoi` takes it:
-///   [--kinds K1,K2] [--sizes N1,N2] [--threads 1,2,...] [--limit SECONDS] [--csv FILE]
-///   [--markdown FILE]
+///   [--kinds K1,K2] [--sizes N1,N2] [--threads 1,2,...] [--methods Core,filter,Voro++,scipy]
+///   [--limit SECONDS] [--csv FILE] [--markdown FILE]
 /// ("--voronoi" itself is skipped; --limit bounds each Voro++ run); 2 on an unknown option.
 /// With `filter`, its runs join Core's, on each thread count, with and without polyhedra.
 int voronoiMain(int argc, char* argv[], const VoronoiFilterRun& filter = nullptr);
