@@ -373,11 +373,41 @@ Points ellipsoidSurface(std::size_t n, std::uint64_t seed)
   return p;
 }
 
+// Uniform by area: directions uniform on the sphere, each kept with a probability proportional to
+// the area element of its image on the ellipsoid.
+Points ellipsoid(std::size_t n, const std::array<double, 3>& axes, bool latLong, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double a = axes[0], b = axes[1], c = axes[2];
+  const double largest = std::max({b * c, a * c, a * b});
+  Points p;
+  p.reserve(3 * n);
+  while (p.size() < 3 * n)
+  {
+    if (latLong)
+    {
+      const double colatitude = M_PI * unit(rng), longitude = 2 * M_PI * unit(rng);
+      p.insert(p.end(),
+        {a * std::sin(colatitude) * std::cos(longitude),
+          b * std::sin(colatitude) * std::sin(longitude), c * std::cos(colatitude)});
+      continue;
+    }
+    const std::array<double, 3> d = randomDirection(rng);
+    const double area = std::sqrt(
+      b * c * d[0] * b * c * d[0] + a * c * d[1] * a * c * d[1] + a * b * d[2] * a * b * d[2]);
+    if (unit(rng) * largest <= area)
+      p.insert(p.end(), {a * d[0], b * d[1], c * d[2]});
+  }
+  return p;
+}
+
 const std::vector<std::string>& pointSetNames()
 {
   static const std::vector<std::string> names = {"cube", "ball", "sphere", "lattice", "clusters",
     "slab", "torus", "cylinder", "noisyshell", "scans", "terrain", "molshell", "boxboundary",
-    "revolution", "extrusion", "planes", "latlong", "ellipsoid"};
+    "revolution", "extrusion", "planes", "latlong", "ellipsoid", "prolate", "prolate-latlong",
+    "oblate", "oblate-latlong", "triaxial", "triaxial-latlong"};
   return names;
 }
 
@@ -415,6 +445,15 @@ Points generate(const std::string& kind, std::size_t n, std::uint64_t seed)
     return latitudeLongitude(n);
   if (kind == "ellipsoid")
     return ellipsoidSurface(n, seed);
+  // Smooth closed surfaces of several aspect ratios, each sampled by area and by latitude and
+  // longitude: a cigar (4:1:1, its poles at the ends of the long axis), a lentil (8:8:1, poles
+  // at the flat faces' centres) and a pebble (1:0.6:0.3).
+  if (kind == "prolate" || kind == "prolate-latlong")
+    return ellipsoid(n, {0.25, 0.25, 1}, kind != "prolate", seed);
+  if (kind == "oblate" || kind == "oblate-latlong")
+    return ellipsoid(n, {1, 1, 0.125}, kind != "oblate", seed);
+  if (kind == "triaxial" || kind == "triaxial-latlong")
+    return ellipsoid(n, {1, 0.6, 0.3}, kind != "triaxial", seed);
   if (kind == "terrain")
     return lidarTerrain(n, seed);
   if (kind == "molshell")

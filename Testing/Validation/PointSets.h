@@ -2,6 +2,7 @@
 #ifndef fd3_PointSets_h
 #define fd3_PointSets_h
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -63,6 +64,11 @@ Points latitudeLongitude(std::size_t n);
 /// A smooth convex surface: random points on the ellipsoid of semi-axes 1, 0.7, 0.4 (rounded to
 /// doubles, so a few lie just inside the hull).
 Points ellipsoidSurface(std::size_t n, std::uint64_t seed);
+/// Random points on the ellipsoid of semi-axes `axes`: uniform by area, or, `latLong`, uniform in
+/// latitude and longitude about the z axis, which crowds them at the two poles as a parametrised
+/// surface's mesh does (density 1 / sin of the colatitude).
+Points ellipsoid(
+  std::size_t n, const std::array<double, 3>& axes, bool latLong, std::uint64_t seed);
 
 /// For every point, the id of the first point at its position: exact duplicates map to one id, so
 /// that simplices compare equal whichever copy they use.
