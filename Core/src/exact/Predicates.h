@@ -498,6 +498,16 @@ public:
       return det < 0;
     return predicates_.insideBeyondFirstFilter(a, b, c, d, e_);
   }
+  /// Whether the first filter alone proves e inside the circumsphere: false may be a tie or a
+  /// test the filter left open.
+  bool provenInside(const double* a, const double* b, const double* c, const double* d) const
+  {
+    double lifts[4];
+    const double det = inSphereDeterminant(apex_, a, b, c, d, lifts);
+    const bool decided =
+      liftsFirst_ ? predicates_.liftsFilterProves(det, lifts) : std::fabs(det) > staticBound_;
+    return decided && det < 0;
+  }
 
 private:
   Predicates& predicates_;

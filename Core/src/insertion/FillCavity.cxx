@@ -97,6 +97,7 @@ bool Inserter::createAndLink(VertId v)
   Cavity::InteriorFace* interiorFaces = cavity_.interiorFaces.data();
   std::uint32_t count = 0;
   bool linked = fits;
+  TetId start = created[0]; // the new point's tetrahedron
   for (std::size_t i = 0; i < facets; ++i)
   {
     const BoundaryFacet b = boundary[i];
@@ -127,6 +128,14 @@ bool Inserter::createAndLink(VertId v)
       linked = false; // not a sphere after all: the numbers would leave the table
       continue;
     }
+    if (nv[3] == kInfinite)
+    {
+      // On the hull, a walk's start had better be a ghost: where points come from outside the
+      // hull (a convex surface's samples), the first test then finds the next one in conflict.
+      for (int j = 0; j < 3; ++j)
+        localVertices[local[j]].tet = n;
+      start = n;
+    }
     for (int j = 0; j < 3; ++j)
     {
       const std::uint32_t from = local[j], to = local[j == 2 ? 0 : j + 1];
@@ -138,7 +147,7 @@ bool Inserter::createAndLink(VertId v)
   // Each vertex gets one of its new tetrahedra in place of its number.
   for (std::uint32_t k = 0; k < count; ++k)
     setVertexTet<A>(localVertices[k].vertex, localVertices[k].tet);
-  setVertexTet<A>(v, created[0]);
+  setVertexTet<A>(v, start);
   ghostTet_ = kNoTet;
   if (!linked)
     return false;

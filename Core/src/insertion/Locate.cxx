@@ -2,7 +2,7 @@
 // grown. The paper walks to the base, the tetrahedron that contains the point, because an inexact
 // insphere test could make a cavity grown from elsewhere disconnected. Our predicates are exact, so
 // on a Delaunay mesh the conflict zone is connected and contains the base: the walk stops at the
-// first tetrahedron that it meets in conflict, as far as the float filter of insphere can tell
+// first tetrahedron that it meets in conflict, as far as the first float filter of insphere tells
 // (near-ties are left to the walk: the base is in conflict anyway). On surface samples, where thin
 // tetrahedra fan out around every vertex, that is most often the start itself, which shortens
 // the walks there several times. A volume threshold leaves the mesh short of Delaunay, so the
@@ -26,6 +26,30 @@ constexpr std::size_t kOrderedSteps = 1000;
 // Steps after which the walk gives up and scans the mesh instead (scanForBase()): far beyond any
 // walk of a valid mesh, a bound on the walk whatever happens.
 constexpr std::size_t kMaxSteps = 100000;
+
+// The faces of a tetrahedron of vertices q, by decreasing distance from p to the vertex each
+// leaves behind: a sorting network of five compare-exchanges without a branch, where a sort's
+// branches were coin tosses to the predictor on every step of every walk.
+void orderByDistance(const double* const q[4], const double* p, int order[4])
+{
+  double d[4];
+  for (int k = 0; k < 4; ++k)
+    d[k] = distance2(q[k], p);
+  const auto exchange = [&](int i, int j) {
+    const bool swap = d[i] < d[j];
+    const double di = swap ? d[j] : d[i], dj = swap ? d[i] : d[j];
+    const int oi = swap ? order[j] : order[i], oj = swap ? order[i] : order[j];
+    d[i] = di;
+    d[j] = dj;
+    order[i] = oi;
+    order[j] = oj;
+  };
+  exchange(0, 1);
+  exchange(2, 3);
+  exchange(0, 2);
+  exchange(1, 3);
+  exchange(1, 2);
+}
 } // namespace
 
 // The start: a tetrahedron of the inserted vertex nearest to the point among two candidates, the
@@ -85,6 +109,7 @@ TetId Inserter::regionStart(VertId v) const
 TetId Inserter::walk(TetId t, VertId v)
 {
   const double* p = point(v);
+  const InSphereProbe probe(predicates_, p);
   const bool toFirstConflict = mesh_.options.volumeThreshold <= 0 && !lookForDuplicates_;
   int entryFace = -1;
   std::size_t steps = 0;
@@ -119,16 +144,11 @@ TetId Inserter::walk(TetId t, VertId v)
     VertId tv[4];
     tets_.vertices(t, tv);
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
-    if (toFirstConflict && predicates_.inSphereFiltered(q[0], q[1], q[2], q[3], p) > 0)
+    if (toFirstConflict && probe.provenInside(q[0], q[1], q[2], q[3]))
       break;
     int order[4] = {0, 1, 2, 3};
     if (steps < kOrderedSteps)
-    {
-      double d[4];
-      for (int k = 0; k < 4; ++k)
-        d[k] = distance2(q[k], p);
-      std::sort(order, order + 4, [&d](int a, int b) { return d[a] > d[b]; });
-    }
+      orderByDistance(q, p, order);
     else
     {
       const int first = static_cast<int>(nextRandom() & 3u);
