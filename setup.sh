@@ -9,6 +9,8 @@
 #                       output/benchmark.{md,csv,png}, the paper's Table 1 into output/table1.md,
 #                       the Voronoi cells against Voro++ and scipy into output/voronoi.{md,csv},
 #                       Fast Voronoi 3D under pvpython into output/pvpython-voronoi.md,
+#                       instructions and cache misses per point for Core and CGAL (cachegrind)
+#                       into output/work-per-point.md,
 #                       and the threads' scaling model (1 to 64 threads, default 4000000 points)
 #                       into output/scaling.{md,csv}
 #   ./setup.sh test     ... then run the whole test suite (ctest under xvfb-run)
@@ -31,7 +33,8 @@ packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conver
   cmake ninja-build g++ pkg-config clang clang-format libclang-rt-14-dev voro++-dev)
 # The benchmark alone compares against CGAL and TetGen (never dependencies of Core or Plugin; both
 # are GPL-family licensed and only linked into the benchmark program) and plots.
-[ "${1:-}" = benchmark ] && packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy)
+[ "${1:-}" = benchmark ] &&
+  packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy valgrind)
 # Debian's VTK 9.1 finds TBB (its SMP backend) when a project finds it.
 [ "${1:-}" = vtk ] && packages+=(libtbb-dev)
 missing=()
@@ -63,7 +66,7 @@ case "${1:-build}" in
   demo) "${xvfb[@]}" pvbatch Testing/Python/demo.py "$plugin" Data/points.vtp output ;;
   benchmark)
     cmake -S . -B build >/dev/null # picks CGAL up if it was just installed
-    cmake --build build --target Benchmark -j2
+    cmake --build build --target Benchmark WorkPerPoint -j2
     mkdir -p output
     build/bin/Benchmark --sizes "${2:-10000,100000,1000000}" --markdown output/benchmark.md \
       --csv output/benchmark.csv --methods Core,vtkFastDelaunay3D,vtkDelaunay3D,CGAL,TetGen,Core-2,CGAL-2
@@ -73,6 +76,8 @@ case "${1:-build}" in
         "$(echo "${2:-1000000}" | tr ',' '\n' | tail -1)" 2>&1 | grep '^mpi_benchmark'
     done | tee output/mpi-benchmark.txt
     build/bin/Benchmark --table1 --markdown output/table1.md
+    python3 Testing/Benchmark/work_per_point.py build/bin/WorkPerPoint 100000,1000000 cube \
+      | tee output/work-per-point.md
     build/bin/Benchmark --voronoi --sizes "${2:-100000,1000000}" --threads 1,2 \
       --kinds cube,clusters,molshell,lattice --markdown output/voronoi.md --csv output/voronoi.csv
     PYTHONPATH="$PWD/build/lib/python3.11/site-packages" "${xvfb[@]}" pvpython \
