@@ -27,14 +27,15 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 # ParaView's SDK (never libvtk9-dev: it conflicts with python3-paraview), the libraries its CMake
-# package needs but does not pull in, an X server for rendering tests, and the test tools.
+# package needs but does not pull in, an X server for rendering tests, and the test tools, with
+# the tests' references Voro++ and CGAL (GPL-family licensed: linked into test and benchmark
+# programs only, never into Core or Plugin).
 packages=(paraview paraview-dev python3-paraview libopenmpi-dev libdouble-conversion-dev libglew-dev
   python3-dev xvfb xauth libgl1-mesa-dri openmpi-bin libgtest-dev libgmock-dev libgmp-dev
-  cmake ninja-build g++ pkg-config clang clang-format libclang-rt-14-dev voro++-dev)
-# The benchmark alone compares against CGAL and TetGen (never dependencies of Core or Plugin; both
-# are GPL-family licensed and only linked into the benchmark program) and plots.
+  cmake ninja-build g++ pkg-config clang clang-format libclang-rt-14-dev voro++-dev libcgal-dev)
+# The benchmark also compares against TetGen and CGAL's parallel build (TBB), and plots.
 [ "${1:-}" = benchmark ] &&
-  packages+=(libcgal-dev libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy valgrind)
+  packages+=(libtbb-dev libtet1.5-dev python3-matplotlib python3-scipy valgrind)
 # Debian's VTK 9.1 finds TBB (its SMP backend) when a project finds it.
 [ "${1:-}" = vtk ] && packages+=(libtbb-dev)
 missing=()

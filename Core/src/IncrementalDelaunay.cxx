@@ -13,6 +13,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <thread>
+#include <unordered_map>
 #include <utility>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -145,6 +146,57 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
   out.tetrahedra = std::move(records);
 }
 
+/// The weights of points at one position (plan.duplicates' groups): only the heaviest can be a
+/// vertex, so it takes the group's place in the order (the smallest id among equals). The others
+/// of its weight stay its duplicates; the lighter ones are hidden, appended to `hidden`.
+void keepHeaviestAtEachPosition(
+  const double* weights, InsertionPlan& plan, std::vector<std::uint32_t>& hidden)
+{
+  std::unordered_map<std::uint32_t, std::uint32_t> heaviest; // by original
+  for (const auto& [copy, original] : plan.duplicates)
+  {
+    auto [entry, first] = heaviest.try_emplace(original, original);
+    if (weights[copy] > weights[entry->second] ||
+      (weights[copy] == weights[entry->second] && copy < entry->second))
+      entry->second = copy;
+  }
+  if (heaviest.empty())
+    return;
+  for (std::uint32_t& id : plan.order)
+    if (const auto found = heaviest.find(id); found != heaviest.end())
+      id = found->second;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;
+  auto place = [&](std::uint32_t member, std::uint32_t kept) {
+    if (member == kept)
+      return;
+    if (weights[member] == weights[kept])
+      duplicates.emplace_back(member, kept);
+    else
+      hidden.push_back(member);
+  };
+  for (const auto& [original, kept] : heaviest)
+    place(original, kept);
+  for (const auto& [copy, original] : plan.duplicates)
+    place(copy, heaviest[original]);
+  plan.duplicates = std::move(duplicates);
+}
+
+/// Whether every weight maps into the frame exactly: times the square of its power-of-two scale,
+/// with no overflow or underflow.
+bool weightsFitFrame(const Frame& frame, const double* weights, const IdArray& ids)
+{
+  if (frame.identity)
+    return true;
+  const int twice = 2 * std::ilogb(frame.scale);
+  for (const std::uint32_t id : ids)
+  {
+    const double mapped = std::ldexp(weights[id], twice);
+    if (!std::isfinite(mapped) || std::ldexp(mapped, -twice) != weights[id])
+      return false;
+  }
+  return true;
+}
+
 int threadCount(const Options& options)
 {
   if (options.volumeThreshold > 0)
@@ -177,6 +229,12 @@ struct IncrementalDelaunay::Impl
   Coordinates held;
   std::size_t heldFrom = 0;
   std::vector<std::pair<std::uint32_t, std::array<double, 3>>> aside;
+  // Weighted points (triangulate() only): the weights by point id, and whether they differ (else
+  // the mesh is the Delaunay one); the points hidden before insertion, lighter than another at
+  // their position.
+  const double* weights = nullptr;
+  bool weighted = false;
+  std::vector<std::uint32_t> hiddenCopies;
 
   void insertFirst(const double* xyz, std::size_t count);
   void insertMore(const double* xyz, std::size_t count);
@@ -211,6 +269,14 @@ IdArray IncrementalDelaunay::Impl::finitePoints(const double* xyz, std::size_t c
     throw std::length_error("fd3::triangulate: more than 2^30 points");
   IdArray ids;
   box = finiteBounds(*team, "sort", xyz, count, &ids);
+  if (weights)
+  {
+    ids.erase(std::remove_if(ids.begin(), ids.end(),
+                [&](std::uint32_t id) { return !std::isfinite(weights[id]); }),
+      ids.end());
+    weighted = std::any_of(ids.begin(), ids.end(),
+      [&](std::uint32_t id) { return weights[id] != weights[ids.front()]; });
+  }
   stats.inputPoints += count;
   stats.nonFinitePoints += count - ids.size();
   return ids;
@@ -268,9 +334,16 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   }
   if (!frameGiven)
     frame = frameWithin(xyz, count, box, team->stretches("sort"));
+  if (weighted && !weightsFitFrame(frame, weights, ids))
+    frame = identityFrame(box);
   Keys key = keys(xyz, count, ids);
   InsertionPlan plan =
     planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
+  if (weighted)
+  {
+    keepHeaviestAtEachPosition(weights, plan, hiddenCopies);
+    stats.hiddenPoints = hiddenCopies.size();
+  }
   stats.duplicatesMerged = plan.duplicates.size();
   duplicates = std::move(plan.duplicates);
   skipped = skipClosePoints(xyz, plan, options.tolerance);
@@ -282,6 +355,14 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   }
   status = Status::Ok;
   VertexArray records = vertices(xyz, plan.order, 0, room);
+  std::vector<double> vertexWeights;
+  if (weighted)
+  {
+    vertexWeights.resize(plan.order.size());
+    const int twice = frame.identity ? 0 : 2 * std::ilogb(frame.scale);
+    for (std::size_t i = 0; i < plan.order.size(); ++i)
+      vertexWeights[i] = std::ldexp(weights[plan.order[i]], twice);
+  }
   team->release(plan.order, "sort");
   team->release(key, "sort");
   if (takesPoints)
@@ -293,7 +374,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   malloc_trim(0);
 #endif
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
-    toFrame(frame, frame.bounds), options, *team, frame.identity);
+    toFrame(frame, frame.bounds), options, *team, frame.identity, std::move(vertexWeights));
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }
@@ -389,6 +470,7 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
   }
   const std::size_t slots = triangulator->slots();
   const std::size_t vertexCount = triangulator->vertices().size();
+  const std::vector<VertId> hiddenVertices = triangulator->hidden(); // the inserters' lists
   IdArray records;
   std::vector<std::uint32_t> copiedIds; // the mesh goes on: its vertices stay
   const std::uint32_t* pointOf = nullptr;
@@ -420,6 +502,15 @@ Triangulation IncrementalDelaunay::Impl::output(bool release, Coordinates* xyz)
     out.representative[pointOf[copy]] = pointOf[original];
   for (const auto& [copy, original] : duplicates)
     out.representative[copy] = out.representative[original];
+  if (weighted)
+  {
+    out.hidden = hiddenCopies;
+    for (const VertId v : hiddenVertices)
+      out.hidden.push_back(pointOf[v]);
+    std::sort(out.hidden.begin(), out.hidden.end());
+    for (const std::uint32_t id : hiddenCopies)
+      out.representative[id] = id;
+  }
   if (release)
   {
     triangulator->releasePages();
@@ -507,11 +598,14 @@ IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count,
 }
 
 IncrementalDelaunay::IncrementalDelaunay(
-  const double* xyz, std::size_t count, const Options& options)
+  const double* xyz, const double* weights, std::size_t count, const Options& options)
   : impl_(std::make_unique<Impl>())
 {
   impl_->options = options;
   impl_->frameGiven = false;
+  impl_->weights = weights;
+  if (weights)
+    impl_->options.volumeThreshold = 0; // the regular tetrahedralization, exactly
   impl_->insertFirst(xyz, count);
 }
 
@@ -664,8 +758,14 @@ std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
 
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options)
 {
+  return triangulate(xyz, nullptr, count, options);
+}
+
+Triangulation triangulate(
+  const double* xyz, const double* weights, std::size_t count, const Options& options)
+{
   const auto start = Clock::now();
-  IncrementalDelaunay mesh(xyz, count, options);
+  IncrementalDelaunay mesh(xyz, weights, count, options);
   Triangulation out = mesh.release();
   out.stats.secondsTotal = secondsSince(start);
   return out;

@@ -130,6 +130,34 @@ int exactInSphere(
   return -sign(det);
 }
 
+int exactPowerTest(const double* const p[4], const double* e, const double w[4], double we)
+{
+  // exactInSphere()'s rows with each lift lowered by w - we: rational, no filter.
+  mpq_class R[4][4];
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+      R[i][k] = mpq_class(p[i][k]) - mpq_class(e[k]);
+    R[i][3] =
+      R[i][0] * R[i][0] + R[i][1] * R[i][1] + R[i][2] * R[i][2] - mpq_class(w[i]) + mpq_class(we);
+  }
+  mpq_class det = 0;
+  for (int i = 0; i < 4; ++i)
+  {
+    const mpq_class* m[3];
+    int k = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != i)
+        m[k++] = R[j];
+    const mpq_class minor = det3(m[0], m[1], m[2]);
+    if (i % 2 == 0)
+      det -= R[i][3] * minor;
+    else
+      det += R[i][3] * minor;
+  }
+  return -sign(det);
+}
+
 std::string ValidityReport::summary() const
 {
   std::ostringstream s;
@@ -239,8 +267,21 @@ private:
     if (!options_.requireDelaunay)
       return;
     const std::uint32_t* v = tet(a.tet);
-    if (exactInSphere(p(v[0]), p(v[1]), p(v[2]), p(v[3]), p(beyond)) > 0)
+    if (options_.weights)
+    {
+      if (powerTest(v, beyond) > 0)
+        fail("interior face of tet " + std::to_string(a.tet) + " is not locally regular");
+    }
+    else if (exactInSphere(p(v[0]), p(v[1]), p(v[2]), p(v[3]), p(beyond)) > 0)
       fail("interior face of tet " + std::to_string(a.tet) + " is not locally Delaunay");
+  }
+
+  int powerTest(const std::uint32_t* v, std::uint32_t e) const
+  {
+    const double* q[4] = {p(v[0]), p(v[1]), p(v[2]), p(v[3])};
+    const double* w = options_.weights;
+    const double weights[4] = {w[v[0]], w[v[1]], w[v[2]], w[v[3]]};
+    return exactPowerTest(q, p(e), weights, w[e]);
   }
 
   // The boundary must be a closed, connected 2-manifold of genus 0 whose every edge is convex:
@@ -289,22 +330,126 @@ private:
       fail("hull is not a sphere (Euler characteristic " + std::to_string(euler) + ")");
   }
 
+  bool finite(std::size_t i) const
+  {
+    return std::isfinite(p(i)[0]) && std::isfinite(p(i)[1]) && std::isfinite(p(i)[2]) &&
+      (!options_.weights || std::isfinite(options_.weights[i]));
+  }
+
   void checkVertices()
   {
-    std::map<std::array<double, 3>, std::uint32_t> distinct;
+    using Position = std::array<double, 3>;
+    std::map<Position, std::uint32_t> distinct;
     for (std::size_t i = 0; i < count_; ++i)
-      if (std::isfinite(p(i)[0]) && std::isfinite(p(i)[1]) && std::isfinite(p(i)[2]))
-        distinct.emplace(std::array<double, 3>{p(i)[0], p(i)[1], p(i)[2]}, std::uint32_t(i));
+      if (finite(i))
+        distinct.emplace(Position{p(i)[0], p(i)[1], p(i)[2]}, std::uint32_t(i));
     report_.distinctPoints = distinct.size();
     std::set<std::uint32_t> used(tets_, tets_ + 4 * tetCount_);
     report_.usedVertices = used.size();
-    std::set<std::array<double, 3>> usedCoordinates;
+    std::map<Position, std::uint32_t> usedCoordinates;
     for (std::uint32_t id : used)
-      if (!usedCoordinates.insert({p(id)[0], p(id)[1], p(id)[2]}).second)
+      if (!usedCoordinates.emplace(Position{p(id)[0], p(id)[1], p(id)[2]}, id).second)
         fail("two vertices at the same position");
-    if (usedCoordinates.size() != distinct.size())
-      fail(std::to_string(distinct.size() - usedCoordinates.size()) + " distinct points unused");
+    std::set<Position> hiddenPositions;
+    for (const std::uint32_t id : options_.hidden)
+    {
+      if (id >= count_ || !finite(id) || used.count(id))
+      {
+        fail("point " + std::to_string(id) + " is listed hidden but is a vertex or not finite");
+        continue;
+      }
+      const Position at{p(id)[0], p(id)[1], p(id)[2]};
+      hiddenPositions.insert(at);
+      const auto vertex = usedCoordinates.find(at);
+      if (vertex != usedCoordinates.end() ? options_.weights[id] > options_.weights[vertex->second]
+                                          : !hiddenInTetrahedron(id))
+        fail("point " + std::to_string(id) + " is listed hidden but is not");
+    }
+    std::size_t unused = 0;
+    for (const auto& [at, id] : distinct)
+      unused += !usedCoordinates.count(at) && !hiddenPositions.count(at);
+    if (unused)
+      fail(std::to_string(unused) + " distinct points unused");
   }
+
+  /// Whether a tetrahedron contains point h (closed) and h does not conflict with it. Which
+  /// tetrahedra may contain it comes from a grid of their bounding boxes, made on first use.
+  bool hiddenInTetrahedron(std::uint32_t h)
+  {
+    if (cells_.empty())
+      bucketTetrahedra();
+    const std::size_t cell = cellOf(p(h));
+    for (const std::uint32_t t : cells_[cell])
+    {
+      const std::uint32_t* w = tet(t);
+      bool inside = true;
+      for (int i = 0; i < 4 && inside; ++i)
+      {
+        const double* q[4] = {p(w[0]), p(w[1]), p(w[2]), p(w[3])};
+        q[i] = p(h);
+        inside = exactOrient3d(q[0], q[1], q[2], q[3]) >= 0;
+      }
+      if (inside)
+        return powerTest(w, h) <= 0;
+    }
+    return false; // outside the hull, where no point is hidden
+  }
+
+  std::size_t cellOf(const double* x) const
+  {
+    std::size_t index = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double u = (x[k] - lo_[k]) / (hi_[k] - lo_[k]) * double(side_);
+      const std::size_t c = u >= double(side_) ? side_ - 1 : (u > 0 ? std::size_t(u) : 0);
+      index = index * side_ + c;
+    }
+    return index;
+  }
+
+  void bucketTetrahedra()
+  {
+    side_ = std::max<std::size_t>(1, std::size_t(std::cbrt(double(tetCount_) / 8)));
+    for (int k = 0; k < 3; ++k)
+    {
+      lo_[k] = INFINITY;
+      hi_[k] = -INFINITY;
+    }
+    for (std::size_t i = 0; i < 4 * tetCount_; ++i)
+      for (int k = 0; k < 3; ++k)
+      {
+        lo_[k] = std::min(lo_[k], p(tets_[i])[k]);
+        hi_[k] = std::max(hi_[k], p(tets_[i])[k]);
+      }
+    for (int k = 0; k < 3; ++k)
+      if (!(hi_[k] > lo_[k]))
+        hi_[k] = lo_[k] + 1;
+    cells_.assign(side_ * side_ * side_, {});
+    for (std::size_t t = 0; t < tetCount_; ++t)
+    {
+      std::size_t from[3], to[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        double a = INFINITY, b = -INFINITY;
+        for (int i = 0; i < 4; ++i)
+        {
+          a = std::min(a, p(tet(t)[i])[k]);
+          b = std::max(b, p(tet(t)[i])[k]);
+        }
+        double lowCorner[3] = {lo_[0], lo_[1], lo_[2]}, highCorner[3] = {lo_[0], lo_[1], lo_[2]};
+        lowCorner[k] = a;
+        highCorner[k] = b;
+        from[k] = cellOf(lowCorner) / stride(k) % side_;
+        to[k] = cellOf(highCorner) / stride(k) % side_;
+      }
+      for (std::size_t x = from[0]; x <= to[0]; ++x)
+        for (std::size_t y = from[1]; y <= to[1]; ++y)
+          for (std::size_t z = from[2]; z <= to[2]; ++z)
+            cells_[(x * side_ + y) * side_ + z].push_back(std::uint32_t(t));
+    }
+  }
+
+  std::size_t stride(int k) const { return k == 0 ? side_ * side_ : (k == 1 ? side_ : 1); }
 
   // Local checks cannot see a triangulation that wraps twice around an edge; counting the
   // tetrahedra that contain an interior point of one of them can.
@@ -344,6 +489,9 @@ private:
   std::size_t tetCount_;
   const ValidityOptions& options_;
   ValidityReport& report_;
+  std::vector<std::vector<std::uint32_t>> cells_; // hiddenInTetrahedron()'s grid
+  std::size_t side_ = 0;
+  double lo_[3], hi_[3];
 };
 } // namespace
 

@@ -27,7 +27,14 @@ struct ValidityReport
 
 struct ValidityOptions
 {
-  bool requireDelaunay = true; ///< every interior face locally Delaunay
+  bool requireDelaunay = true; ///< every interior face locally Delaunay (or regular)
+  /// Weighted points (a regular tetrahedralization): the weight of each point, its power distance
+  /// to x being |x - p|^2 - w. Interior faces must then be locally regular, and each point of
+  /// `hidden` hidden: no vertex, and of non-negative power distance to the orthogonal sphere of a
+  /// tetrahedron that contains it (or lighter than the vertex at its position). Every other
+  /// distinct finite point must be a vertex, except the copies of a hidden point.
+  const double* weights = nullptr;
+  std::vector<std::uint32_t> hidden;
 };
 
 /// Checks that `tets` (4 point ids each) is a triangulation of the convex hull of the distinct
@@ -59,6 +66,9 @@ int exactOrient3d(const double* a, const double* b, const double* c, const doubl
 /// > 0 iff e is strictly inside the circumsphere of the positively oriented tetrahedron abcd.
 int exactInSphere(
   const double* a, const double* b, const double* c, const double* d, const double* e);
+/// > 0 iff e (weight we) has a negative power distance to the orthogonal sphere of the positively
+/// oriented tetrahedron p[0..3] (weights w[0..3]), exactly.
+int exactPowerTest(const double* const p[4], const double* e, const double w[4], double we);
 
 } // namespace fd3test
 

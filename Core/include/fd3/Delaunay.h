@@ -100,8 +100,11 @@ struct Statistics
   std::size_t duplicatesMerged = 0;   ///< exact copies of an inserted point: left unused
   std::size_t closePointsSkipped = 0; ///< within Options::tolerance of an inserted point: unused
   std::size_t insertedPoints = 0;     ///< vertices of the triangulation
-  std::size_t tetrahedra = 0;         ///< finite tetrahedra in the output
-  std::size_t walkSteps = 0;          ///< tetrahedra visited by all walks (the paper's "Path")
+  /// Weighted points that are no vertex of the regular tetrahedralization (Triangulation::hidden):
+  /// an empty power cell, not a lost point.
+  std::size_t hiddenPoints = 0;
+  std::size_t tetrahedra = 0; ///< finite tetrahedra in the output
+  std::size_t walkSteps = 0;  ///< tetrahedra visited by all walks (the paper's "Path")
   std::size_t maxWalkSteps = 0;
   std::size_t cavityTetrahedra = 0; ///< tetrahedra deleted by all insertions
   /// Insertions put off because they reached into another thread's region: each point is
@@ -119,13 +122,13 @@ struct Statistics
 
   /// The counts and the times, each field listed once: add() sums them, and the MPI filter sums
   /// the counts and takes the slowest rank's times.
-  static constexpr std::array<std::size_t Statistics::*, 13> counts()
+  static constexpr std::array<std::size_t Statistics::*, 14> counts()
   {
     return {&Statistics::inputPoints, &Statistics::nonFinitePoints, &Statistics::duplicatesMerged,
-      &Statistics::closePointsSkipped, &Statistics::insertedPoints, &Statistics::tetrahedra,
-      &Statistics::walkSteps, &Statistics::cavityTetrahedra, &Statistics::deferredInsertions,
-      &Statistics::exactOrient, &Statistics::exactInSphere, &Statistics::symbolicTies,
-      &Statistics::integerExact};
+      &Statistics::closePointsSkipped, &Statistics::insertedPoints, &Statistics::hiddenPoints,
+      &Statistics::tetrahedra, &Statistics::walkSteps, &Statistics::cavityTetrahedra,
+      &Statistics::deferredInsertions, &Statistics::exactOrient, &Statistics::exactInSphere,
+      &Statistics::symbolicTies, &Statistics::integerExact};
   }
   static constexpr std::array<double Statistics::*, 6> seconds()
   {
@@ -189,9 +192,12 @@ struct Triangulation
   /// Empty unless Options::computeNeighbors.
   IdArray neighbors;
   /// For each input point: the input id of the vertex it was merged into (exact duplicate) or
-  /// skipped for (closer than the tolerance); itself when it is a vertex; kNoPoint when not finite.
-  /// Empty when the status is not Ok.
+  /// skipped for (closer than the tolerance); itself when it is a vertex or hidden; kNoPoint when
+  /// not finite. Empty when the status is not Ok.
   IdArray representative;
+  /// Weighted points only: the input ids, ascending, of the hidden points, those whose power cell
+  /// is empty, so that no tetrahedron has them (a point repeating one merges into it).
+  std::vector<std::uint32_t> hidden;
   Statistics stats;
   /// With Status::CheckFailed: what Options::checkMesh found, a line per violation.
   std::string checkReport;
@@ -234,6 +240,18 @@ std::vector<double> densities(
 /// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the result
 /// is a Delaunay triangulation of the distinct finite input points whose boundary is their convex hull.
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options = Options());
+
+/// The regular (weighted Delaunay) tetrahedralization of `count` weighted points: point i at
+/// xyz[3i..3i+2] with weight weights[i], its power distance to x being |x - p|^2 - weights[i] (a
+/// ball of radius r has weight r^2). It is the Delaunay tetrahedralization where every weight is the
+/// same (then computed as such, bit for bit), and any weight, negative too, is allowed. A point of
+/// non-finite weight is left out as a non-finite point. A point whose power cell is empty is hidden:
+/// no vertex, listed in Triangulation::hidden; of points at one position, only the heaviest can be
+/// a vertex. Exact, as triangulate() is, with ties broken by the same symbolic perturbation of the
+/// lifted coordinate |p|^2 - w. Options::volumeThreshold does not apply (the result is exactly
+/// regular), and the insertion runs on one thread, whatever Options::threads says.
+Triangulation triangulate(
+  const double* xyz, const double* weights, std::size_t count, const Options& options = Options());
 
 const char* toString(Status status);
 

@@ -127,9 +127,12 @@ public:
   std::vector<std::vector<std::uint32_t>> haloVertices(const std::vector<Bounds>& boxes) const;
 
 private:
-  friend Triangulation triangulate(const double* xyz, std::size_t count, const Options& options);
-  /// triangulate()'s mesh: used once, in the frame of its own points, made from their bounds.
-  IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options);
+  friend Triangulation triangulate(
+    const double* xyz, const double* weights, std::size_t count, const Options& options);
+  /// triangulate()'s mesh: used once, in the frame of its own points, made from their bounds;
+  /// weighted where `weights` is given.
+  IncrementalDelaunay(
+    const double* xyz, const double* weights, std::size_t count, const Options& options);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -64,22 +64,18 @@ template <int N>
 class IntegerRows
 {
 public:
-  /// Rows x[i] - y, for N points x and the point y.
-  IntegerRows(const double* const x[N], const double* y)
+  /// Rows x[i] - y, for N points x and the point y, counting a power of two no higher than
+  /// 2^`highestScale`.
+  IntegerRows(const double* const x[N], const double* y, int highestScale = INT_MAX)
   {
-    int lowest = INT_MAX;
-    auto exponentOf = [](double v) {
-      int e;
-      std::frexp(v, &e);
-      return e - 53;
-    };
+    int lowest = highestScale;
     for (int k = 0; k < 3; ++k)
     {
       if (y[k] != 0)
-        lowest = std::min(lowest, exponentOf(y[k]));
+        lowest = std::min(lowest, unitExponent(y[k]));
       for (int i = 0; i < N; ++i)
         if (x[i][k] != 0)
-          lowest = std::min(lowest, exponentOf(x[i][k]));
+          lowest = std::min(lowest, unitExponent(x[i][k]));
     }
     lowest_ = lowest == INT_MAX ? 0 : lowest;
     Integer origin;
@@ -96,6 +92,28 @@ public:
 
   /// The power of two that the rows' integers count in: row entry = integer * 2^scale().
   int scale() const { return lowest_; }
+
+  /// The exponent of v's last significant place: v is an integer times 2^unitExponent(v).
+  static int unitExponent(double v)
+  {
+    int e;
+    std::frexp(v, &e);
+    return e - 53;
+  }
+
+  /// v / 2^unit, an integer when unit <= unitExponent(v) (or v = 0).
+  static void set(Integer& out, double v, int unit)
+  {
+    if (v == 0)
+    {
+      mpz_set_ui(out.get(), 0);
+      return;
+    }
+    int e;
+    const double m = std::frexp(v, &e);
+    mpz_set_d(out.get(), std::ldexp(m, 53)); // an integer below 2^53: exact
+    mpz_mul_2exp(out.get(), out.get(), static_cast<mp_bitcnt_t>(e - 53 - unit));
+  }
 
   /// det[row i; row j; row k] = row i . (row j x row k).
   void minor3(int i, int j, int k, Integer& out)
@@ -139,19 +157,6 @@ public:
   }
 
 private:
-  static void set(Integer& out, double v, int lowest)
-  {
-    if (v == 0)
-    {
-      mpz_set_ui(out.get(), 0);
-      return;
-    }
-    int e;
-    const double m = std::frexp(v, &e);
-    mpz_set_d(out.get(), std::ldexp(m, 53)); // an integer below 2^53: exact
-    mpz_mul_2exp(out.get(), out.get(), static_cast<mp_bitcnt_t>(e - 53 - lowest));
-  }
-
   Integer row_[N][3];
   Integer t_;
   int lowest_ = 0;
@@ -574,6 +579,72 @@ int Predicates::inSphereExact(
   const Expansion det = x.add(x.subtract(x.multiply(lift[1], m1), x.multiply(lift[0], m0)),
     x.subtract(x.multiply(lift[3], m3), x.multiply(lift[2], m2)));
   return -det.sign();
+}
+
+int Predicates::powerTest(const double* const p[4], const double* pe, const double w[4], double we)
+{
+  double d[4][3], lift[4], largest[3] = {0, 0, 0}, largestWeight = 0;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      d[r][k] = p[r][k] - pe[k];
+      largest[k] = std::max(largest[k], std::fabs(d[r][k]));
+    }
+    const double dw = w[r] - we;
+    largestWeight = std::max(largestWeight, std::fabs(dw));
+    lift[r] = (d[r][0] * d[r][0] + d[r][1] * d[r][1] + d[r][2] * d[r][2]) - dw;
+  }
+  auto minor3 = [&](int i, int j, int k) {
+    return d[i][0] * (d[j][1] * d[k][2] - d[j][2] * d[k][1]) +
+      d[i][1] * (d[j][2] * d[k][0] - d[j][0] * d[k][2]) +
+      d[i][2] * (d[j][0] * d[k][1] - d[j][1] * d[k][0]);
+  };
+  // Laplace expansion along the lift column of det[(x - e, lift)], as in inSphereExact().
+  const double det = (lift[1] * minor3(0, 2, 3) - lift[0] * minor3(1, 2, 3)) +
+    (lift[3] * minor3(0, 1, 2) - lift[2] * minor3(0, 1, 3));
+  const double m = std::max({largest[0], largest[1], largest[2]});
+  const double scale = largest[0] * largest[1] * largest[2] * (3 * m * m + largestWeight);
+  const double bound = filter::kPowerSemiStatic * scale;
+  // An overflow leaves det or the bound infinite or NaN: no comparison then holds.
+  if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kInSphereRange, largest))
+    return -signOf(det);
+  return powerTestExact(p, pe, w, we);
+}
+
+// Over integers: the coordinates count a power of two 2^s low enough that the weights, which are
+// squared lengths, are integers times 2^(2s).
+int Predicates::powerTestExact(
+  const double* const p[4], const double* pe, const double w[4], double we)
+{
+  ++exactInSphereCalls;
+  ++integerExactCalls;
+  int weightUnit = we != 0 ? IntegerRows<4>::unitExponent(we) : INT_MAX;
+  for (int r = 0; r < 4; ++r)
+    if (w[r] != 0)
+      weightUnit = std::min(weightUnit, IntegerRows<4>::unitExponent(w[r]));
+  // floor(weightUnit / 2), also for negative units.
+  const int highestScale =
+    weightUnit == INT_MAX ? INT_MAX : (weightUnit >= 0 ? weightUnit / 2 : -((1 - weightUnit) / 2));
+  IntegerRows<4> q(p, pe, highestScale);
+  const int weightScale = 2 * q.scale();
+  Integer det, lift, minor, weight, weightE;
+  IntegerRows<4>::set(weightE, we, weightScale);
+  const int others[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  const int sign[4] = {-1, 1, -1, 1};
+  for (int r = 0; r < 4; ++r)
+  {
+    q.lift(r, lift);
+    IntegerRows<4>::set(weight, w[r], weightScale);
+    mpz_sub(lift.get(), lift.get(), weight.get());
+    mpz_add(lift.get(), lift.get(), weightE.get());
+    q.minor3(others[r][0], others[r][1], others[r][2], minor);
+    if (sign[r] > 0)
+      mpz_addmul(det.get(), lift.get(), minor.get());
+    else
+      mpz_submul(det.get(), lift.get(), minor.get());
+  }
+  return -mpz_sgn(det.get());
 }
 
 // Four of the five points in a plane x_k = v: expanding the homogeneous 5x5 form of the

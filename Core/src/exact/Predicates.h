@@ -66,6 +66,12 @@ constexpr double kEpsilon = DBL_EPSILON / 2; // unit roundoff 2^-53
 // of that product of maxima.
 constexpr double kOrientSemiStatic = 1.02 * 6 * (7.0 + 56.0 * kEpsilon) * kEpsilon;
 constexpr double kInSphereSemiStatic = 1.02 * 72 * (16.0 + 224.0 * kEpsilon) * kEpsilon;
+// The power test (Predicates::powerTest()): each lift |x - e|^2 - (w_x - w_e) is at most
+// 3 m^2 + max |w_x - w_e| and each 3x3 permanent at most 6 mx my mz, so the permanent of the
+// determinant is at most 24 mx my mz (3 m^2 + max |dw|). Counted to first order, the evaluation's
+// error is below 17 u times the permanent (a 3x3 minor 8 u, a lift 6 u, their product u more, the
+// sum 2 u); 24 u leaves room for the higher orders, 5% for the rounding of the bound.
+constexpr double kPowerSemiStatic = 1.05 * 24 * 24 * kEpsilon;
 // 2D incircle on the permanent itself, computed from the same rounded differences (5% for the
 // rounding of the permanent).
 constexpr double kInCircle = 1.05 * (10.0 + 96.0 * kEpsilon) * kEpsilon;
@@ -125,6 +131,21 @@ public:
   /// cospherical input pulls every tetrahedron towards it: a fan of about 2 tetrahedra per point
   /// instead of a dense tangle.
   int inSphereSoS(const double* const p[4], const double* pe);
+  /// The power test, inSphere() for weighted points (power distance |x - p|^2 - w): > 0 iff pe,
+  /// of weight we, has a negative power distance to the orthogonal sphere of the positive
+  /// tetrahedron p[0..3] of weights w[0..3], i.e. conflicts with it in the regular
+  /// tetrahedralization; 0 on a tie. The determinant is insphere's with each lifted coordinate
+  /// |p|^2 lowered by p's weight: a float evaluation under a semi-static bound, else exact over
+  /// integers of unbounded size (weights of any finite magnitude).
+  int powerTest(const double* const p[4], const double* pe, const double w[4], double we);
+  /// powerTest() with ties broken by inSphereSoS()'s perturbation. It lowers the lifted
+  /// coordinates, which the weights only shift, so its terms, and the order it breaks ties in, are
+  /// the unweighted ones.
+  int powerTestSoS(const double* const p[4], const double* pe, const double w[4], double we)
+  {
+    const int s = powerTest(p, pe, w, we);
+    return s != 0 ? s : symbolicInSphere(p, pe);
+  }
   /// inSphereSoS(p, pe) > 0, all the cavity search asks: where the static filter decides, which
   /// it does for nearly every test, one comparison after the determinant (InSphereProbe).
   bool insideSoS(const double* const p[4], const double* pe);
@@ -192,6 +213,7 @@ private:
   int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
+  int powerTestExact(const double* const p[4], const double* pe, const double w[4], double we);
   static constexpr int kUndecided = 2;
   /// inSphereExact() of the tetrahedron five[0..3] and five[4] where four of the five share one
   /// coordinate exactly (a face of a structured grid, a layer, a ring): its sign from the fifth

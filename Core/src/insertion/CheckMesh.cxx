@@ -1,7 +1,8 @@
 // The kernel's built-in check (Options::checkMesh, on in debug builds): every invariant that
-// TetMesh.h states, the per-vertex entry points, and the local Delaunay property, decided with the
-// kernel's own exact predicates. The tests' independent oracle is Testing/Validation; this check
-// looks inside the mesh, where a broken invariant shows before it corrupts an output.
+// TetMesh.h states, the per-vertex entry points, and the local Delaunay (for weighted points,
+// regular) property, decided with the kernel's own exact predicates. The tests' independent oracle
+// is Testing/Validation; this check looks inside the mesh, where a broken invariant shows before
+// it corrupts an output.
 #include "insertion/Triangulator.h"
 
 #include <algorithm>
@@ -46,7 +47,8 @@ class MeshCheck
 {
 public:
   explicit MeshCheck(const Triangulator& triangulator)
-    : triangulator_(triangulator), tets_(triangulator.mesh_.tets), slots_(tets_.slots()),
+    : triangulator_(triangulator), tets_(triangulator.mesh_.tets),
+      weights_(triangulator.mesh_.weights), slots_(tets_.slots()),
       predicates_(triangulator.inserters_[0]->predicates()) // a copy: it leaves the counters alone
   {}
 
@@ -148,11 +150,20 @@ private:
     {
       const FaceCode back = tets_.neighbor(t, f);
       const VertId opposite = tets_.vertex(tetOf(back), faceOf(back));
-      if (opposite != kInfinite &&
-        predicates_.inSphere(
-          point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3]), point(opposite)) > 0)
-        report_.add("Delaunay") << "tet " << t << " face " << f << " is not locally Delaunay\n";
+      if (opposite != kInfinite && conflict(tv, opposite) > 0)
+        report_.add("Delaunay") << "tet " << t << " face " << f << " is not locally "
+                                << (weights_.empty() ? "Delaunay\n" : "regular\n");
     }
+  }
+
+  /// insphere, or for weighted points the power test, of u against the tetrahedron tv.
+  int conflict(const VertId tv[4], VertId u)
+  {
+    const double* p[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
+    if (weights_.empty())
+      return predicates_.inSphere(p[0], p[1], p[2], p[3], point(u));
+    const double w[4] = {weights_[tv[0]], weights_[tv[1]], weights_[tv[2]], weights_[tv[3]]};
+    return predicates_.powerTest(p, point(u), w, weights_[u]);
   }
 
   /// Every vertex's entry tetrahedron is live and has it; as many vertices as were inserted.
@@ -179,6 +190,7 @@ private:
 
   const Triangulator& triangulator_;
   const TetMesh& tets_;
+  const std::vector<double>& weights_;
   const std::size_t slots_;
   Predicates predicates_;
   Report report_;

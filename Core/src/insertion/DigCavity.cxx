@@ -1,7 +1,8 @@
 // Growing the cavity (the paper's core): from a tetrahedron in conflict, through adjacency, every
 // tetrahedron whose circumsphere contains the new point (exact insphere, ties broken
-// symbolically). With exact predicates the conflict zone is connected, so growing it from any of
-// its tetrahedra finds all of it.
+// symbolically), or, for weighted points, to whose orthogonal sphere the new point has a negative
+// power distance (exact power test). With exact predicates the conflict zone is connected, so
+// growing it from any of its tetrahedra finds all of it.
 #include "insertion/Inserter.h"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ bool Inserter::ghostInConflict(TetId ghost, VertId v)
     return false;
   }
   tets_.vertices(behind, tv);
-  return inSphereSoS(tv, v) > 0;
+  return conflictSoS(tv, v) > 0;
 }
 
 void Inserter::undoCavity()
@@ -72,7 +73,7 @@ std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
 // tetrahedron at hand). Behind a mispredicted branch, the processor threw away the next tests it
 // had started while the determinant was computed. The records, the vertices and the lists are
 // reached through locals, which the compiler keeps in registers across the stores.
-template <Inserter::Access A>
+template <Inserter::Access A, bool Weighted>
 bool Inserter::digCavity(TetId base, VertId v)
 {
   const TetRecords tets = tets_.records();
@@ -110,6 +111,8 @@ bool Inserter::digCavity(TetId base, VertId v)
         if constexpr (A == Access::Locking)
           given |= lockLost_;
       }
+      else if constexpr (Weighted)
+        inside = conflictSoS(nv, v) > 0;
       else
         inside = probe.inside(
           vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz);
@@ -178,8 +181,11 @@ bool Inserter::digCavity(TetId base, VertId v)
   return true;
 }
 
-template bool Inserter::digCavity<Inserter::Access::Free>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Region>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Locking>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Free, false>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Region, false>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Locking, false>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Free, true>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Region, true>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Locking, true>(TetId, VertId);
 
 } // namespace fd3

@@ -216,6 +216,13 @@ Inserter::Outcome Inserter::insertAs(VertId v)
         releaseHeld();
       return Outcome::Duplicate;
     }
+  if (mesh_.weighted() && base != kNoTet && !baseInConflict(base, v))
+  {
+    hide(v);
+    if (owners_)
+      releaseHeld();
+    return Outcome::Hidden;
+  }
   if (base == kNoTet || !digCavity<A>(base, v))
   {
     // The base is unchanged and near the next point: the last tetrahedron created may lie many
@@ -225,9 +232,13 @@ Inserter::Outcome Inserter::insertAs(VertId v)
     return deferred();
   }
   correctCavity(v);
+  if (mesh_.weighted())
+    collectCavityVertices(v);
   clock.lap(stats_.secondsCavity);
   if (!fillCavity<A>(v))
     return deferred();
+  if (mesh_.weighted())
+    hideEnclosedVertices();
   clock.lap(stats_.secondsFill);
   // Past about one test in nine that the static filter leaves to the lifts' filter (a cavity and
   // its boundary hold about 2.2 tests per deleted tetrahedron), its mispredicted branch costs more

@@ -46,11 +46,16 @@ using VertexArray = std::vector<Vertex, BulkAllocator<Vertex>>;
 struct Mesh
 {
   VertexArray vertices; ///< by insertion rank
+  /// The vertices' weights, by insertion rank, in the frame's units (squared lengths); empty for
+  /// a Delaunay (unweighted) mesh. A weighted mesh is the regular tetrahedralization, whose
+  /// hidden points are not vertices: their Vertex::tet is kNoTet.
+  std::vector<double> weights;
   TetMesh tets;
   BackgroundGrid grid;
   Options options; ///< in normalized units
 
   const double* point(VertId v) const { return vertices[v].xyz; }
+  bool weighted() const { return !weights.empty(); }
 };
 
 /// Which thread holds each tetrahedron during a locking pass: 0 for none, else the holder's
@@ -108,7 +113,8 @@ public:
   {
     Inserted,
     Deferred, ///< the insertion would change the mesh outside the region, or it is full: nothing done
-    Duplicate ///< v repeats a vertex of the mesh (only looked for after lookForDuplicates())
+    Duplicate, ///< v repeats a vertex of the mesh (only looked for after lookForDuplicates())
+    Hidden     ///< weighted: v conflicts with no tetrahedron, so it is no vertex (hidden())
   };
   /// Inserts vertex v, a point of the region.
   Outcome insert(VertId v)
@@ -127,6 +133,9 @@ public:
   void lookForDuplicates() { lookForDuplicates_ = true; }
   /// (repeating vertex, vertex it repeats), in the order met.
   const std::vector<std::pair<VertId, VertId>>& duplicates() const { return duplicates_; }
+  /// Weighted: the vertices this inserter found hidden, new points and vertices that a heavier
+  /// point's insertion took out of the mesh, in the order found.
+  const std::vector<VertId>& hidden() const { return hidden_; }
 
   /// A tetrahedron in conflict with vertex v, reading only (for the start of a parallel pass).
   TetId locateForStart(VertId v) { return locate(v); }
@@ -204,11 +213,17 @@ private:
   Outcome insertAs(VertId v);
 
   // DigCavity.cxx
-  int inSphereSoS(const VertId tet[4], VertId e)
+  /// Whether e conflicts with the finite tetrahedron `tet`, ties broken symbolically: e in its
+  /// circumsphere or, weighted, of negative power distance to its orthogonal sphere.
+  int conflictSoS(const VertId tet[4], VertId e)
   {
     const Vertex* v = mesh_.vertices.data();
     const double* p[4] = {v[tet[0]].xyz, v[tet[1]].xyz, v[tet[2]].xyz, v[tet[3]].xyz};
-    return predicates_.inSphereSoS(p, v[e].xyz);
+    if (!mesh_.weighted())
+      return predicates_.inSphereSoS(p, v[e].xyz);
+    const double* w = mesh_.weights.data();
+    const double weights[4] = {w[tet[0]], w[tet[1]], w[tet[2]], w[tet[3]]};
+    return predicates_.powerTestSoS(p, v[e].xyz, weights, w[e]);
   }
   bool isBeyondHullFace(TetId ghost, VertId v);
   /// Whether v lies in t's circumsphere. Inline: it runs tens of times per insertion, and a call
@@ -219,6 +234,8 @@ private:
     tets_.vertices(t, tv);
     if (tv[3] == kInfinite)
       return ghostInConflict(t, v);
+    if (mesh_.weighted())
+      return conflictSoS(tv, v) > 0;
     const Vertex* p = mesh_.vertices.data();
     const double* q[4] = {p[tv[0]].xyz, p[tv[1]].xyz, p[tv[2]].xyz, p[tv[3]].xyz};
     return predicates_.insideSoS(q, p[v].xyz);
@@ -227,8 +244,23 @@ private:
   void undoCavity();
   /// Room for `count` entries or more in each of the cavity's lists; returns the room.
   std::size_t makeRoomInCavityLists(std::size_t count);
-  template <Access A>
+  template <Access A, bool Weighted>
   bool digCavity(TetId base, VertId v);
+  template <Access A>
+  bool digCavity(TetId base, VertId v)
+  {
+    return mesh_.weighted() ? digCavity<A, true>(base, v) : digCavity<A, false>(base, v);
+  }
+  // Weighted (HiddenPoints.cxx)
+  /// Whether the base that the walk found for v, which contains v's point or is a ghost whose
+  /// hull face v lies beyond, conflicts with v: if not, v is hidden, since every tetrahedron in
+  /// conflict with a point is connected to the one that contains it.
+  bool baseInConflict(TetId base, VertId v);
+  /// The vertices of the cavity's tetrahedra, each once, before the fill: those the fill leaves
+  /// on no tetrahedron are hidden by v (hideEnclosedVertices()).
+  void collectCavityVertices(VertId v);
+  void hideEnclosedVertices();
+  void hide(VertId u);
   // CorrectCavity.cxx
   void correctCavity(VertId v);
   bool holdsPoint(TetId t, VertId v);
@@ -257,6 +289,8 @@ private:
   bool restricted_ = false;
   bool lookForDuplicates_ = false;
   std::vector<std::pair<VertId, VertId>> duplicates_;
+  std::vector<VertId> hidden_;
+  std::vector<VertId> cavityVertices_; // weighted only
   // The start of the next walk: the last inserted vertex (unrestricted), or, restricted, a
   // tetrahedron of the region near the last point: the last one created, or the base found for a
   // point that was put off (both the inserter's, unlike a vertex's tetrahedron).
@@ -264,7 +298,7 @@ private:
   TetId regionStart_ = 0;
   TetId ghostTet_ = kNoTet; // the ghost vertex's stand-in for Vertex::tet, during fills only
   std::uint64_t rng_;
-  std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
+  std::vector<std::uint32_t> vertexStamp_; // with a volume threshold or weights
   std::uint32_t stamp_ = 0;
   // A locking pass's: the table, this inserter's number in it, and what it holds for the insertion
   // under way.

@@ -6,7 +6,8 @@
 // (near-ties are left to the walk: the base is in conflict anyway). On surface samples, where thin
 // tetrahedra fan out around every vertex, that is most often the start itself, which shortens
 // the walks there several times. A volume threshold leaves the mesh short of Delaunay, so the
-// walk then goes on to the base, which the core correction needs.
+// walk then goes on to the base, which the core correction needs. So it does on weighted points,
+// where no tetrahedron may be in conflict: the base tells whether the point is hidden.
 #include "insertion/Inserter.h"
 
 #include "fd3/Measures.h"
@@ -63,7 +64,11 @@ TetId Inserter::startTet(VertId v) const
   VertId start = lastInserted_;
   if (mesh_.grid.enabled())
   {
-    const VertId near = mesh_.grid.nearestInserted(point(v), kMaxOnionLayers);
+    // A weighted mesh's grid may name a vertex hidden since.
+    const VertId near = mesh_.weighted()
+      ? mesh_.grid.nearestInserted(point(v), kMaxOnionLayers,
+          [this](VertId u) { return relaxedLoad(mesh_.vertices[u].tet) != kNoTet; })
+      : mesh_.grid.nearestInserted(point(v), kMaxOnionLayers);
     if (near != BackgroundGrid::kEmpty &&
       distance2(point(near), point(v)) < distance2(point(start), point(v)))
       start = near;
@@ -110,7 +115,8 @@ TetId Inserter::walk(TetId t, VertId v)
 {
   const double* p = point(v);
   const InSphereProbe probe(predicates_, p);
-  const bool toFirstConflict = mesh_.options.volumeThreshold <= 0 && !lookForDuplicates_;
+  const bool toFirstConflict =
+    mesh_.options.volumeThreshold <= 0 && !lookForDuplicates_ && !mesh_.weighted();
   int entryFace = -1;
   std::size_t steps = 0;
   for (;;)

@@ -9,10 +9,11 @@
 namespace fd3
 {
 Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Bounds& bounds,
-  const Options& options, ThreadTeam& team, bool anyMagnitude)
+  const Options& options, ThreadTeam& team, bool anyMagnitude, std::vector<double> weights)
   : team_(team), tuning_(options.randomSeed)
 {
   mesh_.vertices = std::move(vertices);
+  mesh_.weights = std::move(weights);
   mesh_.options = options;
   const std::size_t n = vertexCount();
   mesh_.tets.reserve(7 * n + 64); // uniform points make 6.7 per vertex; insertAll() corrects it
@@ -86,7 +87,8 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
   const std::vector<std::size_t>& roundStarts, bool reserveEarly,
   const std::function<bool(double)>& progress)
 {
-  const bool parallel = inserters_.size() > 1 && mesh_.options.volumeThreshold <= 0;
+  const bool parallel =
+    inserters_.size() > 1 && mesh_.options.volumeThreshold <= 0 && !mesh_.weighted();
   // Once a few rounds are in (random samples of the whole set), the tetrahedra per vertex tell
   // the final count, and memory for all is reserved (only what is written becomes resident).
   const std::size_t reserveAt = std::max<std::size_t>(end / 32, 4096);
@@ -187,6 +189,14 @@ std::vector<std::pair<VertId, VertId>> Triangulator::duplicates() const
   std::vector<std::pair<VertId, VertId>> all;
   for (const auto& inserter : inserters_)
     all.insert(all.end(), inserter->duplicates().begin(), inserter->duplicates().end());
+  return all;
+}
+
+std::vector<VertId> Triangulator::hidden() const
+{
+  std::vector<VertId> all;
+  for (const auto& inserter : inserters_)
+    all.insert(all.end(), inserter->hidden().begin(), inserter->hidden().end());
   return all;
 }
 

@@ -29,8 +29,10 @@ public:
   /// too) and sets the predicates' static bounds. An inserter is made ready for each thread of
   /// `team`, which records every parallel pass.
   /// `anyMagnitude`: the points are not scaled into [-1, 1] (Predicates::allowAnyMagnitude()).
+  /// `weights`, by vertex, in the frame's units, makes the mesh the regular tetrahedralization
+  /// (Mesh::weights), inserted on one thread.
   Triangulator(VertexArray vertices, const Bounds& box, const Bounds& bounds,
-    const Options& options, ThreadTeam& team, bool anyMagnitude);
+    const Options& options, ThreadTeam& team, bool anyMagnitude, std::vector<double> weights = {});
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
@@ -51,6 +53,8 @@ public:
   Statistics statistics() const;
   /// (added vertex, vertex of the mesh it repeats) of every insertMore().
   std::vector<std::pair<VertId, VertId>> duplicates() const;
+  /// Weighted: the vertices hidden, new points and vertices taken out, in no particular order.
+  std::vector<VertId> hidden() const;
   /// Counters of every inserter's predicates, summed.
   void addPredicateCounts(Statistics& stats) const;
 

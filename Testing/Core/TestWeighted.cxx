@@ -1,0 +1,258 @@
+// Weighted points: the power test against rationals, and the regular tetrahedralization checked
+// by the independent exact validator (locally regular faces, hidden points truly hidden).
+#include "CoreTestUtilities.h"
+#include "ExactValidator.h"
+#include "PointSets.h"
+#include "exact/Predicates.h"
+#include "fd3/Delaunay.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace
+{
+using fd3test::Points;
+
+/// The regular tetrahedralization of p with weights w, checked by the validator and by its own
+/// figures: every finite point a vertex, hidden, or an equal-weight copy.
+fd3::Triangulation triangulateWeighted(const Points& p, const std::vector<double>& w,
+  const fd3::Options& options = {}, const std::string& what = "")
+{
+  const std::size_t n = p.size() / 3;
+  fd3::Triangulation result = fd3::triangulate(p.data(), w.data(), n, options);
+  EXPECT_EQ(result.status, fd3::Status::Ok) << what << ": " << fd3::toString(result.status);
+  fd3test::ValidityOptions check;
+  check.weights = w.data();
+  check.hidden = result.hidden;
+  const fd3test::ValidityReport report =
+    fd3test::checkTriangulation(p.data(), n, result.tetrahedra, check);
+  EXPECT_TRUE(report.valid()) << what << ": " << report.summary();
+  const fd3::Statistics& s = result.stats;
+  EXPECT_EQ(s.insertedPoints, report.usedVertices) << what;
+  EXPECT_EQ(s.hiddenPoints, result.hidden.size()) << what;
+  EXPECT_EQ(s.insertedPoints + s.hiddenPoints + s.duplicatesMerged + s.nonFinitePoints, n) << what;
+  for (const std::uint32_t h : result.hidden)
+    EXPECT_EQ(result.representative[h], h) << what;
+  return result;
+}
+
+std::vector<double> randomWeights(std::size_t n, double lo, double hi, std::uint64_t seed)
+{
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> radius(lo, hi);
+  std::vector<double> w(n);
+  for (double& x : w)
+  {
+    const double r = radius(random);
+    x = r * r;
+  }
+  return w;
+}
+
+TEST(Weighted, PowerTestMatchesRationals)
+{
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const bool anyMagnitude : {false, true})
+    for (const double weightScale : {0.0, 1e-3, 1.0, 1e200, 1e-200})
+      for (int trial = 0; trial < 400; ++trial)
+      {
+        fd3::Predicates predicates;
+        if (anyMagnitude)
+          predicates.allowAnyMagnitude();
+        double p[4][3], e[3], w[4];
+        for (auto& q : p)
+          for (double& x : q)
+            x = u(random);
+        if (predicates.orient3d(p[0], p[1], p[2], p[3]) < 0)
+          std::swap(p[0], p[1]);
+        for (double& x : w)
+          x = weightScale * u(random);
+        // Half the trials near a tie: e on the orthogonal sphere of the four, as nearly as
+        // doubles allow; the other half anywhere.
+        double we = weightScale * u(random);
+        for (double& x : e)
+          x = u(random);
+        if (trial % 2 == 0 && weightScale < 1e100)
+        {
+          // The power distance of e to the orthosphere is pd = |e|^2 - we - h(e), h the affine
+          // interpolant of the lifts |p|^2 - w; we += pd puts e on it.
+          double lift[4];
+          for (int i = 0; i < 4; ++i)
+            lift[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2] - w[i];
+          const double* q[4] = {p[0], p[1], p[2], p[3]};
+          double barycentric[4],
+            volume = fd3test::exactOrient3d(q[0], q[1], q[2], q[3]) > 0 ? 1 : 0;
+          ASSERT_EQ(volume, 1);
+          auto six = [](const double* a, const double* b, const double* c, const double* d) {
+            const double u1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+            const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            const double z[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+            return u1[0] * (v[1] * z[2] - v[2] * z[1]) - u1[1] * (v[0] * z[2] - v[2] * z[0]) +
+              u1[2] * (v[0] * z[1] - v[1] * z[0]);
+          };
+          const double total = six(p[0], p[1], p[2], p[3]);
+          double h = 0;
+          for (int i = 0; i < 4; ++i)
+          {
+            const double* r[4] = {p[0], p[1], p[2], p[3]};
+            r[i] = e;
+            barycentric[i] = six(r[0], r[1], r[2], r[3]) / total;
+            h += barycentric[i] * lift[i];
+          }
+          we = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] - h;
+        }
+        const double* q[4] = {p[0], p[1], p[2], p[3]};
+        EXPECT_EQ(predicates.powerTest(q, e, w, we), fd3test::exactPowerTest(q, e, w, we))
+          << "weights ~" << weightScale << (anyMagnitude ? ", any magnitude" : "");
+      }
+}
+
+TEST(Weighted, EqualWeightsPowerTestIsInSphere)
+{
+  const Points lattice = fd3test::lattice(3); // cospherical quadruples by the dozen
+  fd3::Predicates predicates;
+  const double w[4] = {0.5, 0.5, 0.5, 0.5};
+  std::size_t ties = 0;
+  for (std::size_t a = 0; a + 4 < lattice.size() / 3; a += 3)
+  {
+    const double* q[4] = {&lattice[3 * a], &lattice[3 * a + 3], &lattice[3 * a + 9],
+      &lattice[3 * a + 27 < lattice.size() ? 3 * a + 27 : 0]};
+    if (predicates.orient3d(q[0], q[1], q[2], q[3]) <= 0)
+      continue;
+    for (std::size_t e = 0; e < lattice.size() / 3; ++e)
+    {
+      const int s = predicates.powerTest(q, &lattice[3 * e], w, 0.5);
+      EXPECT_EQ(s, predicates.inSphere(q[0], q[1], q[2], q[3], &lattice[3 * e]));
+      EXPECT_EQ(predicates.powerTestSoS(q, &lattice[3 * e], w, 0.5),
+        predicates.inSphereSoS(q, &lattice[3 * e]));
+      ties += s == 0;
+    }
+  }
+  EXPECT_GT(ties, 0u);
+}
+
+TEST(Weighted, UniformPointsWithRandomRadiiAreRegular)
+{
+  for (const int threads : {1, 3})
+  {
+    const Points p = fd3test::uniformCube(4000, 11);
+    const std::vector<double> w = randomWeights(4000, 0.001, 0.08, 12);
+    fd3::Options options;
+    options.threads = threads;
+    const fd3::Triangulation t = triangulateWeighted(p, w, options, "uniform");
+    EXPECT_GT(t.hidden.size(), 10u); // balls this large hide some centres
+  }
+}
+
+TEST(Weighted, EqualWeightsGiveTheDelaunayTetrahedraBitForBit)
+{
+  const Points p = fd3test::uniformBall(3000, 5);
+  const std::vector<double> w(3000, 0.37);
+  const fd3::Triangulation weighted = fd3::triangulate(p.data(), w.data(), 3000);
+  const fd3::Triangulation plain = fd3::triangulate(p.data(), 3000);
+  ASSERT_EQ(weighted.status, fd3::Status::Ok);
+  EXPECT_TRUE(weighted.tetrahedra == plain.tetrahedra);
+  EXPECT_TRUE(weighted.neighbors == plain.neighbors);
+  EXPECT_TRUE(weighted.hidden.empty());
+}
+
+TEST(Weighted, LatticeWithEqualAndAlternatingWeights)
+{
+  const Points p = fd3test::lattice(6);
+  const std::size_t n = p.size() / 3;
+  std::vector<double> alternating(n), equal(n, 0.1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const auto parity = static_cast<long>(p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) % 2;
+    alternating[i] = parity ? 0.25 : 0.0;
+  }
+  triangulateWeighted(p, equal, {}, "lattice, equal weights");
+  const fd3::Triangulation t = triangulateWeighted(p, alternating, {}, "lattice, alternating");
+  EXPECT_GT(t.stats.symbolicTies, 0u);
+}
+
+// Small balls deep inside large ones: a quarter of the points, nearly all of them hidden.
+TEST(Weighted, PackingWithAQuarterHidden)
+{
+  const std::size_t large = 3000, small = 1000;
+  Points p = fd3test::uniformCube(large, 21);
+  std::vector<double> w(large, 0.1 * 0.1);
+  std::mt19937_64 random(22);
+  std::uniform_real_distribution<double> offset(-0.005, 0.005);
+  std::uniform_int_distribution<std::size_t> pick(0, large - 1);
+  for (std::size_t i = 0; i < small; ++i)
+  {
+    const std::size_t c = pick(random);
+    for (int k = 0; k < 3; ++k)
+      p.push_back(p[3 * c + k] + offset(random));
+    w.push_back(0.001 * 0.001);
+  }
+  const fd3::Triangulation t = triangulateWeighted(p, w, {}, "packing");
+  EXPECT_GE(t.hidden.size(), small * 9 / 10);
+}
+
+// Inserted in input order, a heavy point last takes vertices out of the mesh.
+TEST(Weighted, HeavyPointHidesEarlierVertices)
+{
+  Points p = fd3test::uniformCube(200, 31);
+  std::vector<double> w(200, 0.0);
+  p.insert(p.end(), {0.5, 0.5, 0.5});
+  w.push_back(0.3 * 0.3);
+  fd3::Options options;
+  options.order = fd3::InsertionOrder::Input;
+  const fd3::Triangulation t = triangulateWeighted(p, w, options, "heavy last");
+  EXPECT_GT(t.hidden.size(), 5u);
+  EXPECT_FALSE(std::binary_search(t.hidden.begin(), t.hidden.end(), 200u));
+}
+
+TEST(Weighted, CopiesAtOnePositionKeepTheHeaviest)
+{
+  Points p = fd3test::uniformCube(100, 41);
+  std::vector<double> w = randomWeights(100, 0.0, 0.01, 42);
+  // Point 7 repeated twice lighter and once heavier, point 8 once with its own weight.
+  for (const double factor : {0.5, 0.25, 2.0})
+  {
+    p.insert(p.end(), {p[21], p[22], p[23]});
+    w.push_back(w[7] * factor);
+  }
+  p.insert(p.end(), {p[24], p[25], p[26]});
+  w.push_back(w[8]);
+  const fd3::Triangulation t = triangulateWeighted(p, w, {}, "copies");
+  EXPECT_TRUE(std::binary_search(t.hidden.begin(), t.hidden.end(), 7u));
+  EXPECT_TRUE(std::binary_search(t.hidden.begin(), t.hidden.end(), 100u));
+  EXPECT_TRUE(std::binary_search(t.hidden.begin(), t.hidden.end(), 101u));
+  EXPECT_EQ(t.representative[103], 8u);
+  EXPECT_EQ(t.stats.duplicatesMerged, 1u);
+}
+
+TEST(Weighted, NonFiniteWeightsAreLeftOut)
+{
+  Points p = fd3test::uniformCube(300, 51);
+  std::vector<double> w = randomWeights(300, 0.0, 0.02, 52);
+  w[3] = NAN;
+  w[4] = INFINITY;
+  const fd3::Triangulation t = triangulateWeighted(p, w, {}, "non-finite weights");
+  EXPECT_EQ(t.stats.nonFinitePoints, 2u);
+  EXPECT_EQ(t.representative[3], fd3::kNoPoint);
+}
+
+// Weights far from the squared coordinates' magnitudes leave the scaled frame for exact integers.
+TEST(Weighted, WeightsOfAnyMagnitude)
+{
+  const Points p = fd3test::uniformCube(500, 61);
+  for (const double scale : {1e-300, 1e-30, 1e30, 1e300})
+  {
+    std::vector<double> w = randomWeights(500, 0.0, 0.05, 62);
+    for (std::size_t i = 0; i < w.size(); i += 50)
+      w[i] *= scale;
+    triangulateWeighted(p, w, {}, "weights scaled by " + std::to_string(scale));
+  }
+  triangulateWeighted(
+    fd3test::scaled(p, 1e-150), randomWeights(500, 0.0, 1e-151, 63), {}, "tiny coordinates");
+}
+} // namespace
