@@ -242,10 +242,25 @@ void Predicates::adaptTo(
   const bool staticSafe =
     orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
   tuning_ = Tuning();
+  tuning_.extents[0] = ex;
+  tuning_.extents[1] = ey;
+  tuning_.extents[2] = ez;
   tuning_.boxOrient = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
   tuning_.boxInSphere =
     staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
   include(xyz, count, stride);
+}
+
+void Predicates::adaptToWeights(double lowest, double highest)
+{
+  const double* e = tuning_.extents;
+  const double m = std::max({e[0], e[1], e[2]}), spread = highest - lowest;
+  const double scale = e[0] * e[1] * e[2] * (3 * m * m + spread);
+  // The extents bound every difference of coordinates, the spread every difference of weights;
+  // 1% for the rounding of both. Products of the normal range keep the relative bounds.
+  const bool safe = !tuning_.anyMagnitude && scale > filter::kUnderflowGuard && scale < 0x1p900 &&
+    std::isfinite(spread);
+  tuning_.powerStatic = safe ? filter::kPowerSemiStatic * scale * 1.01 : HUGE_VAL;
 }
 
 void Predicates::include(const double* xyz, std::size_t count, std::size_t stride)
@@ -284,7 +299,7 @@ void Predicates::applyGrid()
   {
     t.inverseGridUnit = 0.0;
     t.floatExactOrient = t.floatExactInSphere = false;
-    t.orientStatic = t.inSphereStatic = HUGE_VAL;
+    t.orientStatic = t.inSphereStatic = t.powerStatic = HUGE_VAL;
     return;
   }
   const bool onGrid = t.lowest != Tuning::kNoGrid && t.lowest <= t.highest;

@@ -155,6 +155,11 @@ public:
     const double* a, const double* b, const double* c, const double* d, const double* e);
   /// The static bound of insphere: a float determinant beyond it has the exact sign.
   double inSphereStaticBound() const { return tuning_.inSphereStatic; }
+  /// The power test's static bound (PowerProbe), for weights within [lowest, highest], in the
+  /// points' box of adaptTo(): filter::kPowerSemiStatic at the box's extents and the weights'
+  /// spread. Infinite (no static decision) for any magnitude or a spread beyond the normal range.
+  void adaptToWeights(double lowest, double highest);
+  double powerStaticBound() const { return tuning_.powerStatic; }
   /// The lifts' filter (filter::kInSphereLift) on a determinant and its lifts.
   bool liftsFilterProves(double det, const double lifts[4]) const;
 
@@ -248,6 +253,8 @@ private:
     // float evaluation is exact. floatExact* tells that a determinant within them is exactly 0.
     double orientStatic = HUGE_VAL;
     double inSphereStatic = HUGE_VAL;
+    double powerStatic = HUGE_VAL;                      // adaptToWeights()
+    double extents[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}; // the box's, from adaptTo()
     bool floatExactOrient = false;
     bool floatExactInSphere = false;
     bool anyMagnitude = false; // allowAnyMagnitude()
@@ -283,8 +290,10 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
 /// det[(x-e, |x-e|^2) for x = a,b,c,d]: positive means inside for the negative orientation, i.e.
 /// outside for VTK's positive one. In the order of operations that the error bounds of
 /// inSphereFiltered() assume. `lifts`, when given, receives the four |x-e|^2 as computed.
+/// `lowered`, when given, lowers them by its four values first (the power test's weight
+/// differences w_x - w_e), which filter::kPowerSemiStatic bounds.
 inline double inSphereDeterminantPlain(const double* a, const double* b, const double* c,
-  const double* d, const double* e, double* lifts = nullptr)
+  const double* d, const double* e, double* lifts = nullptr, const double* lowered = nullptr)
 {
   const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
   const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
@@ -296,10 +305,17 @@ inline double inSphereDeterminantPlain(const double* a, const double* b, const d
   const double bcd = bez * cd - cez * bd + dez * bc;
   const double cda = cez * da + dez * ac + aez * cd;
   const double dab = dez * ab + aez * bd + bez * da;
-  const double alift = aex * aex + aey * aey + aez * aez;
-  const double blift = bex * bex + bey * bey + bez * bez;
-  const double clift = cex * cex + cey * cey + cez * cez;
-  const double dlift = dex * dex + dey * dey + dez * dez;
+  double alift = aex * aex + aey * aey + aez * aez;
+  double blift = bex * bex + bey * bey + bez * bez;
+  double clift = cex * cex + cey * cey + cez * cez;
+  double dlift = dex * dex + dey * dey + dez * dez;
+  if (lowered)
+  {
+    alift -= lowered[0];
+    blift -= lowered[1];
+    clift -= lowered[2];
+    dlift -= lowered[3];
+  }
   if (lifts)
   {
     lifts[0] = alift;
@@ -359,7 +375,7 @@ inline __m256d swapHalves(__m256d v)
 /// where a minor comes out negated (both exact the same), so every form gives the same double
 /// (TestPredicates checks it).
 inline double inSphereDeterminant(const InSphereApex& e, const double* a, const double* b,
-  const double* c, const double* d, double* lifts = nullptr)
+  const double* c, const double* d, double* lifts = nullptr, const double* lowered = nullptr)
 {
 #if defined(__AVX__)
   using namespace lanes;
@@ -379,8 +395,10 @@ inline double inSphereDeterminant(const InSphereApex& e, const double* a, const 
     _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(z, rotate(m)), _mm256_mul_pd(rotate(z), n)),
       _mm256_mul_pd(swapHalves(z), m));
   // (alift, blift, clift, dlift)
-  const __m256d l =
+  __m256d l =
     _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+  if (lowered)
+    l = _mm256_sub_pd(l, _mm256_loadu_pd(lowered));
   if (lifts)
     _mm256_storeu_pd(lifts, l);
   // (dlift * abc, alift * bcd, blift * cda, clift * dab), then
@@ -413,10 +431,15 @@ inline double inSphereDeterminant(const InSphereApex& e, const double* a, const 
     _mm_add_pd(_mm_add_pd(_mm_mul_pd(zcd, _mm_shuffle_pd(bcda, abcd, 1)), _mm_mul_pd(zda, acbd)),
       _mm_mul_pd(zab, _mm_unpackhi_pd(abcd, bcda)));
   // (alift, blift) and (clift, dlift).
-  const __m128d lab =
+  __m128d lab =
     _mm_add_pd(_mm_add_pd(_mm_mul_pd(xab, xab), _mm_mul_pd(yab, yab)), _mm_mul_pd(zab, zab));
-  const __m128d lcd =
+  __m128d lcd =
     _mm_add_pd(_mm_add_pd(_mm_mul_pd(xcd, xcd), _mm_mul_pd(ycd, ycd)), _mm_mul_pd(zcd, zcd));
+  if (lowered)
+  {
+    lab = _mm_sub_pd(lab, _mm_loadu_pd(lowered));
+    lcd = _mm_sub_pd(lcd, _mm_loadu_pd(lowered + 2));
+  }
   if (lifts)
   {
     _mm_storeu_pd(lifts, lab);
@@ -427,7 +450,7 @@ inline double inSphereDeterminant(const InSphereApex& e, const double* a, const 
     _mm_mul_pd(_mm_unpacklo_pd(lcd, lab), _mm_shuffle_pd(t2, t1, 3)));
   return _mm_cvtsd_f64(_mm_add_sd(halves, _mm_unpackhi_pd(halves, halves)));
 #else
-  return inSphereDeterminantPlain(a, b, c, d, e.point, lifts);
+  return inSphereDeterminantPlain(a, b, c, d, e.point, lifts, lowered);
 #endif
 }
 
@@ -537,6 +560,40 @@ private:
   InSphereApex apex_;
   double staticBound_;
   bool liftsFirst_;
+};
+
+/// The cavity search's power tests of one weighted insertion (InSphereProbe's weighted form): does
+/// the new point e, of weight we, conflict with each tetrahedron (Predicates::powerTestSoS())?
+/// The static filter decides nearly every test in the lanes of inSphereDeterminant().
+class PowerProbe
+{
+public:
+  PowerProbe(Predicates& predicates, const double* e, double we)
+    : predicates_(predicates), e_(e), we_(we), apex_(e), staticBound_(predicates.powerStaticBound())
+  {}
+  /// Whether e conflicts with the positive tetrahedron p of weights w, ties broken symbolically.
+  bool inside(const double* const p[4], const double w[4]) const
+  {
+    const double lowered[4] = {w[0] - we_, w[1] - we_, w[2] - we_, w[3] - we_};
+    const double det = inSphereDeterminant(apex_, p[0], p[1], p[2], p[3], nullptr, lowered);
+    if (det > staticBound_ || -det > staticBound_)
+      return det < 0;
+    return predicates_.powerTestSoS(p, e_, w, we_) > 0;
+  }
+  /// Whether the static filter alone proves that e conflicts with p: false may be a tie or a test
+  /// the filter left open.
+  bool provenInside(const double* const p[4], const double w[4]) const
+  {
+    const double lowered[4] = {w[0] - we_, w[1] - we_, w[2] - we_, w[3] - we_};
+    return -inSphereDeterminant(apex_, p[0], p[1], p[2], p[3], nullptr, lowered) > staticBound_;
+  }
+
+private:
+  Predicates& predicates_;
+  const double* e_;
+  double we_;
+  InSphereApex apex_;
+  double staticBound_;
 };
 
 inline bool Predicates::insideSoS(const double* const p[4], const double* pe)

@@ -78,7 +78,8 @@ bool Inserter::digCavity(TetId base, VertId v)
 {
   const TetRecords tets = tets_.records();
   const Vertex* const vertices = mesh_.vertices.data();
-  const InSphereProbe probe(predicates_, vertices[v].xyz);
+  const auto probe = conflictProbe<Weighted>(v);
+  const double* const weights = mesh_.weights.data();
   cavity_.clear();
   std::size_t room = makeRoomInCavityLists(64);
   FaceCode* deleted = cavity_.deleted.data();
@@ -112,7 +113,12 @@ bool Inserter::digCavity(TetId base, VertId v)
           given |= lockLost_;
       }
       else if constexpr (Weighted)
-        inside = conflictSoS(nv, v) > 0;
+      {
+        const double* q[4] = {
+          vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz};
+        const double w[4] = {weights[nv[0]], weights[nv[1]], weights[nv[2]], weights[nv[3]]};
+        inside = probe.inside(q, w);
+      }
       else
         inside = probe.inside(
           vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz);

@@ -17,31 +17,24 @@ bool Inserter::baseInConflict(TetId base, VertId v)
   return conflictSoS(tv, v) > 0;
 }
 
-void Inserter::collectCavityVertices(VertId v)
+// Every vertex of every deleted tetrahedron, repeats too: their records are in cache from the
+// cavity's tests, where a mark per vertex to list each once would be another array to miss in.
+void Inserter::collectCavityVertices()
 {
-  if (vertexStamp_.size() < mesh_.vertices.size())
-    vertexStamp_.resize(mesh_.vertices.size(), 0);
-  ++stamp_;
-  vertexStamp_[v] = stamp_;
   cavityVertices_.clear();
   for (const FaceCode c : cavity_.deleted)
     for (int i = 0; i < 4; ++i)
-    {
-      const VertId u = tets_.vertex(tetOf(c), i);
-      if (u != kInfinite && vertexStamp_[u] != stamp_)
-      {
-        vertexStamp_[u] = stamp_;
+      if (const VertId u = tets_.vertex(tetOf(c), i); u != kInfinite)
         cavityVertices_.push_back(u);
-      }
-    }
 }
 
 // The fill gave every vertex of the cavity's boundary one of the new tetrahedra; a vertex of the
-// cavity still on one of the deleted ones is on no tetrahedron left.
+// cavity still on one of the deleted ones is on no tetrahedron left (and hidden once: hide()
+// leaves it on none).
 void Inserter::hideEnclosedVertices()
 {
   for (const VertId u : cavityVertices_)
-    if (tets_.isDead(relaxedLoad(mesh_.vertices[u].tet)))
+    if (const TetId t = relaxedLoad(mesh_.vertices[u].tet); t != kNoTet && tets_.isDead(t))
     {
       hide(u);
       --stats_.insertedPoints; // inserted by this inserter or another: the sum is right

@@ -233,7 +233,7 @@ Inserter::Outcome Inserter::insertAs(VertId v)
   }
   correctCavity(v);
   if (mesh_.weighted())
-    collectCavityVertices(v);
+    collectCavityVertices();
   clock.lap(stats_.secondsCavity);
   if (!fillCavity<A>(v))
     return deferred();

@@ -204,7 +204,20 @@ private:
   // Locate.cxx
   TetId startTet(VertId v) const;
   TetId regionStart(VertId v) const;
+  template <bool Weighted>
   TetId walk(TetId from, VertId v);
+  /// Whether the probe's first filter proves v in conflict with the finite tetrahedron tv (of
+  /// points q).
+  bool provenInConflict(const InSphereProbe& probe, const double* const q[4], const VertId*)
+  {
+    return probe.provenInside(q[0], q[1], q[2], q[3]);
+  }
+  bool provenInConflict(const PowerProbe& probe, const double* const q[4], const VertId tv[4])
+  {
+    const double* w = mesh_.weights.data();
+    const double weights[4] = {w[tv[0]], w[tv[1]], w[tv[2]], w[tv[3]]};
+    return probe.provenInside(q, weights);
+  }
   TetId scanForBase(VertId v, bool toFirstConflict);
   TetId locate(VertId v);
   /// The vertex of base (which contains v's point) that v repeats, or kNoVertex.
@@ -224,6 +237,15 @@ private:
     const double* w = mesh_.weights.data();
     const double weights[4] = {w[tet[0]], w[tet[1]], w[tet[2]], w[tet[3]]};
     return predicates_.powerTestSoS(p, v[e].xyz, weights, w[e]);
+  }
+  /// The cavity search's conflict tests for v: InSphereProbe, or weighted, PowerProbe.
+  template <bool Weighted>
+  auto conflictProbe(VertId v)
+  {
+    if constexpr (Weighted)
+      return PowerProbe(predicates_, point(v), mesh_.weights[v]);
+    else
+      return InSphereProbe(predicates_, point(v));
   }
   bool isBeyondHullFace(TetId ghost, VertId v);
   /// Whether v lies in t's circumsphere. Inline: it runs tens of times per insertion, and a call
@@ -256,9 +278,9 @@ private:
   /// hull face v lies beyond, conflicts with v: if not, v is hidden, since every tetrahedron in
   /// conflict with a point is connected to the one that contains it.
   bool baseInConflict(TetId base, VertId v);
-  /// The vertices of the cavity's tetrahedra, each once, before the fill: those the fill leaves
-  /// on no tetrahedron are hidden by v (hideEnclosedVertices()).
-  void collectCavityVertices(VertId v);
+  /// The vertices of the cavity's tetrahedra, before the fill: those the fill leaves on no
+  /// tetrahedron are hidden by v (hideEnclosedVertices()).
+  void collectCavityVertices();
   void hideEnclosedVertices();
   void hide(VertId u);
   // CorrectCavity.cxx
@@ -298,7 +320,7 @@ private:
   TetId regionStart_ = 0;
   TetId ghostTet_ = kNoTet; // the ghost vertex's stand-in for Vertex::tet, during fills only
   std::uint64_t rng_;
-  std::vector<std::uint32_t> vertexStamp_; // with a volume threshold or weights
+  std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
   std::uint32_t stamp_ = 0;
   // A locking pass's: the table, this inserter's number in it, and what it holds for the insertion
   // under way.

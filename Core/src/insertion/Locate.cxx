@@ -6,8 +6,9 @@
 // (near-ties are left to the walk: the base is in conflict anyway). On surface samples, where thin
 // tetrahedra fan out around every vertex, that is most often the start itself, which shortens
 // the walks there several times. A volume threshold leaves the mesh short of Delaunay, so the
-// walk then goes on to the base, which the core correction needs. So it does on weighted points,
-// where no tetrahedron may be in conflict: the base tells whether the point is hidden.
+// walk then goes on to the base, which the core correction needs. On weighted points the conflict
+// zone, where there is one, is connected and contains the base too, so the walk stops as early;
+// where there is none, it ends at the base, which tells that the point is hidden.
 #include "insertion/Inserter.h"
 
 #include "fd3/Measures.h"
@@ -111,12 +112,12 @@ TetId Inserter::regionStart(VertId v) const
 // walk with kNoTet (it was read safely: it shares a face with one that is). The faces are tried in order of decreasing distance from the
 // point to the vertex they leave behind, so the tetrahedra close in on the point: on surface
 // samples, whose thin tetrahedra fan out, a random first face made walks many times longer.
+template <bool Weighted>
 TetId Inserter::walk(TetId t, VertId v)
 {
   const double* p = point(v);
-  const InSphereProbe probe(predicates_, p);
-  const bool toFirstConflict =
-    mesh_.options.volumeThreshold <= 0 && !lookForDuplicates_ && !mesh_.weighted();
+  const auto probe = conflictProbe<Weighted>(v);
+  const bool toFirstConflict = mesh_.options.volumeThreshold <= 0 && !lookForDuplicates_;
   int entryFace = -1;
   std::size_t steps = 0;
   for (;;)
@@ -150,7 +151,7 @@ TetId Inserter::walk(TetId t, VertId v)
     VertId tv[4];
     tets_.vertices(t, tv);
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
-    if (toFirstConflict && probe.provenInside(q[0], q[1], q[2], q[3]))
+    if (toFirstConflict && provenInConflict(probe, q, tv))
       break;
     int order[4] = {0, 1, 2, 3};
     if (steps < kOrderedSteps)
@@ -203,7 +204,7 @@ TetId Inserter::scanForBase(VertId v, bool toFirstConflict)
 
 TetId Inserter::locate(VertId v)
 {
-  return walk(startTet(v), v);
+  return mesh_.weighted() ? walk<true>(startTet(v), v) : walk<false>(startTet(v), v);
 }
 
 // A point repeating a vertex w lies in a closed tetrahedron only if w is one of its vertices (the

@@ -21,6 +21,11 @@ Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Bounds
   tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), bounds);
   if (anyMagnitude)
     tuning_.allowAnyMagnitude();
+  if (mesh_.weighted())
+  {
+    const auto [lowest, highest] = std::minmax_element(mesh_.weights.begin(), mesh_.weights.end());
+    tuning_.adaptToWeights(*lowest, *highest);
+  }
   for (int t = 0; t < team.size(); ++t)
   {
     pools_.push_back(std::make_unique<SlotPool>());
