@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -254,5 +255,69 @@ TEST(Weighted, WeightsOfAnyMagnitude)
   }
   triangulateWeighted(
     fd3test::scaled(p, 1e-150), randomWeights(500, 0.0, 1e-151, 63), {}, "tiny coordinates");
+}
+} // namespace
+
+namespace
+{
+/// The complex's simplices as sorted id lists, for comparing two complexes.
+std::vector<std::vector<std::uint32_t>> simplicesOf(
+  const fd3::AlphaComplex& complex, const fd3::Triangulation& t)
+{
+  std::vector<std::vector<std::uint32_t>> all;
+  auto add = [&](const std::uint32_t* ids, int n) {
+    std::vector<std::uint32_t> s(ids, ids + n);
+    std::sort(s.begin(), s.end());
+    all.push_back(s);
+  };
+  for (const std::uint32_t tet : complex.tetrahedra)
+    add(&t.tetrahedra[4 * std::size_t(tet)], 4);
+  for (std::size_t i = 0; i < complex.triangles.size(); i += 3)
+    add(&complex.triangles[i], 3);
+  for (std::size_t i = 0; i < complex.lines.size(); i += 2)
+    add(&complex.lines[i], 2);
+  for (const std::uint32_t v : complex.vertices)
+    add(&v, 1);
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+// Zero weights give the circumspheres, and a weight W taken from every point raises every squared
+// orthoradius by W: the same complex at alpha^2 + W. Hidden points are in none of it.
+TEST(Weighted, AlphaComplexOfOrthogonalSpheres)
+{
+  const std::size_t n = 3000;
+  const Points p = fd3test::uniformCube(n, 71);
+  std::vector<double> w = randomWeights(n, 0.0, 0.06, 72);
+  fd3::Options options;
+  options.computeNeighbors = true;
+  const fd3::Triangulation t = fd3::triangulate(p.data(), w.data(), n, options);
+  ASSERT_FALSE(t.hidden.empty());
+  const double alpha = 0.05;
+  const fd3::AlphaComplex complex = fd3::alphaComplex(p.data(), w.data(), n, t, alpha);
+  EXPECT_FALSE(complex.tetrahedra.empty());
+  EXPECT_LT(complex.tetrahedra.size(), t.numberOfTetrahedra());
+  const auto simplices = simplicesOf(complex, t);
+  for (const auto& s : simplices)
+    for (const std::uint32_t id : s)
+      EXPECT_FALSE(std::binary_search(t.hidden.begin(), t.hidden.end(), id));
+  std::vector<double> shifted(w);
+  for (double& x : shifted)
+    x -= 0.25;
+  const fd3::Triangulation same = fd3::triangulate(p.data(), shifted.data(), n, options);
+  EXPECT_EQ(
+    fd3test::canonicalTetrahedra(same.tetrahedra), fd3test::canonicalTetrahedra(t.tetrahedra));
+  const auto shiftedSimplices = simplicesOf(
+    fd3::alphaComplex(p.data(), shifted.data(), n, same, std::sqrt(alpha * alpha + 0.25)), same);
+  std::vector<std::vector<std::uint32_t>> differ;
+  std::set_symmetric_difference(simplices.begin(), simplices.end(), shiftedSimplices.begin(),
+    shiftedSimplices.end(), std::back_inserter(differ));
+  EXPECT_TRUE(differ.empty()) << differ.size() << " of " << simplices.size() << " differ, first "
+                              << differ.front().size() << " ids";
+
+  const fd3::Triangulation plain = fd3::triangulate(p.data(), n, options);
+  const std::vector<double> zero(n, 0.0);
+  EXPECT_EQ(simplicesOf(fd3::alphaComplex(p.data(), zero.data(), n, plain, alpha), plain),
+    simplicesOf(fd3::alphaComplex(p.data(), n, plain, alpha), plain));
 }
 } // namespace

@@ -223,6 +223,12 @@ struct AlphaComplex
 /// (0: all hardware threads; bounded as Options::threads), with the same result for any count.
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const Triangulation& triangulation,
   double alpha, int threads = 1);
+/// The weighted alpha complex of a regular tetrahedralization (triangulate() with weights): the
+/// same, with each simplex's squared circumradius replaced by the squared radius of its smallest
+/// orthogonal sphere (negative where the balls overlap enough), compared with alpha^2 as in CGAL's
+/// weighted Alpha_shape_3 (whose alpha is that square). Hidden points are in none of it.
+AlphaComplex alphaComplex(const double* xyz, const double* weights, std::size_t count,
+  const Triangulation& triangulation, double alpha, int threads = 1);
 
 /// The Delaunay tessellation field estimate of the points' density (Schaap and van de Weygaert,
 /// 2000), per input point: 4 m / V, where m counts the input points at its vertex (it, and those

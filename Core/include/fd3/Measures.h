@@ -94,6 +94,80 @@ inline double triangleCircumradius2(const double* a, const double* b, const doub
   return twiceArea2 > 0 ? ab * bc * ca / (4 * twiceArea2) : INFINITY;
 }
 
+// Weighted points (power distance |x - p|^2 - w): the squared radius of the smallest sphere
+// orthogonal to every weighted vertex of a simplex, the weighted alpha shape's measure. It is the
+// circumradius squared where the weights are 0, and negative where the balls overlap enough. Each
+// centre, relative to the first vertex, solves 2 d.c = |d|^2 - (w_d - w_0) for every edge d from
+// it, in the simplex's affine hull: the circumcentre's formula with the weights in the lifts.
+
+/// Of tetrahedron p (infinite when flat).
+inline double tetrahedronOrthoradius2(const double* const p[4], const double w[4])
+{
+  double d[3][3], lift[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+      d[i][k] = p[i + 1][k] - p[0][k];
+    lift[i] = d[i][0] * d[i][0] + d[i][1] * d[i][1] + d[i][2] * d[i][2] - (w[i + 1] - w[0]);
+  }
+  double cross[3][3]; // d1 x d2, d2 x d0, d0 x d1
+  for (int i = 0; i < 3; ++i)
+  {
+    const double* u = d[(i + 1) % 3];
+    const double* v = d[(i + 2) % 3];
+    cross[i][0] = u[1] * v[2] - u[2] * v[1];
+    cross[i][1] = u[2] * v[0] - u[0] * v[2];
+    cross[i][2] = u[0] * v[1] - u[1] * v[0];
+  }
+  const double six = d[0][0] * cross[0][0] + d[0][1] * cross[0][1] + d[0][2] * cross[0][2];
+  if (six == 0)
+    return INFINITY;
+  double r2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double c =
+      (lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k]) / (2 * six);
+    r2 += c * c;
+  }
+  return r2 - w[0];
+}
+
+/// Of triangle p (infinite when degenerate).
+inline double triangleOrthoradius2(const double* const p[3], const double w[3])
+{
+  const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+  const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  const double n[3] = {
+    u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  if (n2 == 0)
+    return INFINITY;
+  const double lu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2] - (w[1] - w[0]);
+  const double lv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - (w[2] - w[0]);
+  // (lu (v x n) + lv (n x u)) / (2 |n|^2): u.c = lu / 2, v.c = lv / 2, and c in the plane.
+  const double vn[3] = {
+    v[1] * n[2] - v[2] * n[1], v[2] * n[0] - v[0] * n[2], v[0] * n[1] - v[1] * n[0]};
+  const double nu[3] = {
+    n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]};
+  double r2 = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double c = (lu * vn[k] + lv * nu[k]) / (2 * n2);
+    r2 += c * c;
+  }
+  return r2 - w[0];
+}
+
+/// Of edge ab (infinite when a == b).
+inline double edgeOrthoradius2(const double* a, const double* b, double wa, double wb)
+{
+  const double length2 = distance2(a, b);
+  if (length2 == 0)
+    return INFINITY;
+  const double t = (length2 - (wb - wa)) / (2 * length2); // the centre is a + t (b - a)
+  return t * t * length2 - wa;
+}
+
 /// Circumradius over shortest edge: sqrt(3/8) ~ 0.612 for the regular tetrahedron, large for
 /// slivers and needles.
 inline double radiusEdgeRatio(const double* a, const double* b, const double* c, const double* d)

@@ -1,5 +1,7 @@
 // Alpha shapes as vtkDelaunay3D defines them, over an exact Delaunay tetrahedralization: kept
-// tetrahedra first, then the lower-dimensional simplices that no kept simplex already covers.
+// tetrahedra first, then the lower-dimensional simplices that no kept simplex already covers. On
+// a regular tetrahedralization the radii are those of the smallest orthogonal spheres (weighted
+// alpha shapes), and hidden points are in none of it.
 // Unlike vtkDelaunay3D, whose bounding octahedron makes the hull faces it reports depend on cell
 // numbering, every hull face is a candidate triangle here: the hull is exact.
 //
@@ -26,9 +28,9 @@ constexpr int kEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
 class AlphaBuilder
 {
 public:
-  AlphaBuilder(const double* xyz, std::size_t count, const Triangulation& triangulation,
-    double alpha, ThreadTeam& team)
-    : xyz_(xyz), count_(count), t_(triangulation), alpha2_(alpha * alpha),
+  AlphaBuilder(const double* xyz, const double* weights, std::size_t count,
+    const Triangulation& triangulation, double alpha, ThreadTeam& team)
+    : xyz_(xyz), weights_(weights), count_(count), t_(triangulation), alpha2_(alpha * alpha),
       tets_(triangulation.numberOfTetrahedra()), team_(team), kept_(tets_),
       used_(new std::atomic<std::uint8_t>[count]())
   {}
@@ -38,9 +40,10 @@ public:
     AlphaComplex complex;
     team_.forRanges(tets_, "alpha", [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t)
-        kept_[t] = tetrahedronCircumradius2(
-                     p(vertex(t, 0)), p(vertex(t, 1)), p(vertex(t, 2)), p(vertex(t, 3))) <= alpha2_;
+        kept_[t] = tetrahedronRadius2(t) <= alpha2_;
     });
+    for (const std::uint32_t id : t_.hidden) // no vertex: no simplex of the complex
+      used_[id].store(1, std::memory_order_relaxed);
     complex.tetrahedra = collect<IdArray>(tets_, [&](std::size_t t, auto& out) {
       if (!kept_[t])
         return;
@@ -70,6 +73,30 @@ public:
 private:
   const double* p(std::uint32_t id) const { return xyz_ + 3 * std::size_t(id); }
   std::uint32_t vertex(std::size_t t, int i) const { return t_.tetrahedra[4 * t + i]; }
+
+  // Squared radii: circumradii, or for weighted points the smallest orthogonal spheres'.
+  double tetrahedronRadius2(std::size_t t) const
+  {
+    const double* q[4] = {p(vertex(t, 0)), p(vertex(t, 1)), p(vertex(t, 2)), p(vertex(t, 3))};
+    if (!weights_)
+      return tetrahedronCircumradius2(q[0], q[1], q[2], q[3]);
+    const double w[4] = {weights_[vertex(t, 0)], weights_[vertex(t, 1)], weights_[vertex(t, 2)],
+      weights_[vertex(t, 3)]};
+    return tetrahedronOrthoradius2(q, w);
+  }
+  double triangleRadius2(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
+  {
+    if (!weights_)
+      return triangleCircumradius2(p(a), p(b), p(c));
+    const double* q[3] = {p(a), p(b), p(c)};
+    const double w[3] = {weights_[a], weights_[b], weights_[c]};
+    return triangleOrthoradius2(q, w);
+  }
+  double edgeRadius2(std::uint32_t a, std::uint32_t b) const
+  {
+    return weights_ ? edgeOrthoradius2(p(a), p(b), weights_[a], weights_[b])
+                    : distance2(p(a), p(b)) * 0.25;
+  }
   std::uint32_t markUsed(std::uint32_t id)
   {
     used_[id].store(1, std::memory_order_relaxed);
@@ -106,8 +133,7 @@ private:
   bool isTriangle(std::size_t t, int f) const
   {
     const int* q = kFaceVertices[f];
-    return triangleCircumradius2(p(vertex(t, q[0])), p(vertex(t, q[1])), p(vertex(t, q[2]))) <=
-      alpha2_;
+    return triangleRadius2(vertex(t, q[0]), vertex(t, q[1]), vertex(t, q[2])) <= alpha2_;
   }
 
   /// Whether the edge of t (not kept) on its vertices i and j is a line of the complex and t lists
@@ -116,7 +142,7 @@ private:
   /// opens it, the other way.
   bool listsEdge(std::size_t t, int i, int j) const
   {
-    if (distance2(p(vertex(t, i)), p(vertex(t, j))) * 0.25 > alpha2_)
+    if (edgeRadius2(vertex(t, i), vertex(t, j)) > alpha2_)
       return false;
     const std::uint32_t a = vertex(t, i), b = vertex(t, j);
     // The two faces of t on the edge are those opposite its two other vertices.
@@ -156,6 +182,7 @@ private:
   }
 
   const double* xyz_;
+  const double* weights_; // null: unweighted
   std::size_t count_;
   const Triangulation& t_;
   double alpha2_;
@@ -169,8 +196,14 @@ private:
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const Triangulation& triangulation,
   double alpha, int threads)
 {
+  return alphaComplex(xyz, nullptr, count, triangulation, alpha, threads);
+}
+
+AlphaComplex alphaComplex(const double* xyz, const double* weights, std::size_t count,
+  const Triangulation& triangulation, double alpha, int threads)
+{
   ThreadTeam team(boundedThreads(threads));
-  return AlphaBuilder(xyz, count, triangulation, alpha, team).build();
+  return AlphaBuilder(xyz, weights, count, triangulation, alpha, team).build();
 }
 
 } // namespace fd3
