@@ -13,6 +13,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -155,7 +156,7 @@ std::string LeftOutPoints(const fd3::Statistics& stats)
   if (stats.nonFinitePoints > 0)
   {
     causes << separator << stats.nonFinitePoints
-           << " with NaN or infinite coordinates (no position to triangulate)";
+           << " with NaN or infinite coordinates or weight (no position or power to triangulate)";
   }
   return causes.str();
 }
@@ -341,10 +342,17 @@ int vtkFastDelaunay3D::RequestData(
   }
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
+  std::vector<double> weights;
+  if (!this->PointWeights(inputVector, numberOfPoints, count, weights))
+  {
+    SetPointsWithoutCells(output, points, pointData);
+    return 0;
+  }
+  const double* weightOf = weights.empty() ? nullptr : weights.data();
   fd3::Triangulation result;
   try
   {
-    result = this->Triangulate(xyz, count, numberOfPoints, bounds);
+    result = this->Triangulate(xyz, weightOf, count, numberOfPoints, bounds);
   }
   catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
   {
@@ -383,7 +391,7 @@ int vtkFastDelaunay3D::RequestData(
   {
     density = fd3::densities(xyz, count, result);
   }
-  this->SetOutputCells(output, xyz, count, result);
+  this->SetOutputCells(output, xyz, weightOf, count, result);
   this->AddCellArrays(output, xyz);
   if (this->ComputeDensity)
   {
@@ -395,8 +403,35 @@ int vtkFastDelaunay3D::RequestData(
   return 1;
 }
 
-fd3::Triangulation vtkFastDelaunay3D::Triangulate(
-  const double* xyz, std::size_t count, vtkIdType inputPoints, const fd3::Bounds& bounds)
+bool vtkFastDelaunay3D::PointWeights(vtkInformationVector** inputVector, vtkIdType inputPoints,
+  std::size_t count, std::vector<double>& weights)
+{
+  vtkDataArray* array = this->GetInputArrayToProcess(0, inputVector);
+  if (!array)
+  {
+    return true;
+  }
+  if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != inputPoints)
+  {
+    vtkErrorMacro("The weights array \"" << (array->GetName() ? array->GetName() : "")
+                                         << "\" must be a point-data array of one "
+                                         << "component; the output holds the points and no cells");
+    return false;
+  }
+  weights.assign(count, 0.0); // a bounding octahedron's points weigh nothing
+  const bool radii = this->WeightsAreRadii;
+  vtkSMPTools::For(0, inputPoints, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const double value = array->GetComponent(i, 0);
+      weights[static_cast<std::size_t>(i)] = radii ? value * value : value;
+    }
+  });
+  return true;
+}
+
+fd3::Triangulation vtkFastDelaunay3D::Triangulate(const double* xyz, const double* weights,
+  std::size_t count, vtkIdType inputPoints, const fd3::Bounds& bounds)
 {
   const fd3::Options options = this->KernelOptions(bounds.diagonal());
   const std::vector<vtkIdType> mergedInto =
@@ -405,7 +440,7 @@ fd3::Triangulation vtkFastDelaunay3D::Triangulate(
     std::count_if(mergedInto.begin(), mergedInto.end(), [](vtkIdType to) { return to >= 0; }));
   if (merged == 0)
   {
-    return fd3::triangulate(xyz, count, options);
+    return fd3::triangulate(xyz, weights, count, options);
   }
   // The kernel leaves out what it cannot place: the merged points, as NaN in a copy.
   std::vector<double> kept(xyz, xyz + 3 * count);
@@ -416,7 +451,7 @@ fd3::Triangulation vtkFastDelaunay3D::Triangulate(
       std::fill_n(&kept[3 * i], 3, std::numeric_limits<double>::quiet_NaN());
     }
   }
-  fd3::Triangulation result = fd3::triangulate(kept.data(), count, options);
+  fd3::Triangulation result = fd3::triangulate(kept.data(), weights, count, options);
   // They were merged, not invalid: counted with the skipped points, each represented by the point
   // it was merged into (which Density counts them at).
   result.stats.nonFinitePoints -= merged;
@@ -499,6 +534,7 @@ void vtkFastDelaunay3D::RecordFigures(const fd3::Statistics& stats)
   this->NumberOfDuplicatePoints = static_cast<vtkIdType>(stats.duplicatesMerged);
   this->NumberOfSkippedPoints = static_cast<vtkIdType>(stats.closePointsSkipped);
   this->NumberOfInvalidPoints = static_cast<vtkIdType>(stats.nonFinitePoints);
+  this->NumberOfHiddenPoints = static_cast<vtkIdType>(stats.hiddenPoints);
   this->NumberOfTetrahedra = static_cast<vtkIdType>(stats.tetrahedra);
   this->MeanWalkLength = stats.meanWalk();
   this->MaxWalkLength = static_cast<vtkIdType>(stats.maxWalkSteps);
@@ -535,7 +571,7 @@ bool vtkFastDelaunay3D::ReportOnInput(
 }
 
 void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double* xyz,
-  std::size_t count, fd3::Triangulation& result, const CellFilter& keep)
+  const double* weights, std::size_t count, fd3::Triangulation& result, const CellFilter& keep)
 {
   if (this->Alpha <= 0)
   {
@@ -551,7 +587,7 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
   }
   const std::uint32_t* tets = result.tetrahedra.data();
   fd3::AlphaComplex shape =
-    fd3::alphaComplex(xyz, count, result, this->Alpha, ThreadCount(this->NumberOfThreads));
+    fd3::alphaComplex(xyz, weights, count, result, this->Alpha, ThreadCount(this->NumberOfThreads));
   if (keep)
   {
     KeepCells(shape.tetrahedra, 1, [&](const std::uint32_t* t) { return keep(tets + 4 * *t, 4); });
@@ -606,7 +642,7 @@ void vtkFastDelaunay3D::AddFigures(vtkFieldData* fields) const
 {
   // The counts of left-out points always travel with the data that lacks them.
   const bool leftOut = this->NumberOfDuplicatePoints > 0 || this->NumberOfSkippedPoints > 0 ||
-    this->NumberOfInvalidPoints > 0;
+    this->NumberOfInvalidPoints > 0 || this->NumberOfHiddenPoints > 0;
   for (const Figure& figure : this->Figures())
   {
     if (this->ComputeStatistics || (leftOut && figure.CountsLeftOutPoints))
@@ -622,6 +658,7 @@ std::vector<vtkFastDelaunay3D::Figure> vtkFastDelaunay3D::Figures() const
     { "NumberOfDuplicatePoints", static_cast<double>(this->NumberOfDuplicatePoints), true },
     { "NumberOfSkippedPoints", static_cast<double>(this->NumberOfSkippedPoints), true },
     { "NumberOfInvalidPoints", static_cast<double>(this->NumberOfInvalidPoints), true },
+    { "NumberOfHiddenPoints", static_cast<double>(this->NumberOfHiddenPoints), true },
     { "NumberOfTetrahedra", static_cast<double>(this->NumberOfTetrahedra), false },
     { "MeanWalkLength", this->MeanWalkLength, false },
     { "MaxWalkLength", static_cast<double>(this->MaxWalkLength), false },
@@ -662,6 +699,7 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeDensity: " << this->ComputeDensity << "\n";
   os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";
   os << indent << "ComputeStatistics: " << this->ComputeStatistics << "\n";
+  os << indent << "WeightsAreRadii: " << this->WeightsAreRadii << "\n";
   for (const Figure& figure : this->Figures())
   {
     os << indent << figure.Name << ": " << figure.Value << "\n";

@@ -307,20 +307,41 @@ public:
 
   ///@{
   /**
+   * Weighted points. The input array to process 0 (SetInputArrayToProcess(0, 0, 0,
+   * vtkDataObject::FIELD_ASSOCIATION_POINTS, name); none by default), a point-data array of one
+   * component, gives each point a radius r, whose weight is r^2 (WeightsAreRadii, the default, as
+   * Voro++ and molecular files give them), or its weight w itself. The output is then the regular
+   * (weighted Delaunay) tetrahedralization, for the power distance |x - p|^2 - w. A point whose
+   * power cell is empty is hidden: it stays in the output on no cell, NumberOfHiddenPoints counts
+   * it, and no warning calls it lost. With Alpha, a simplex is kept when its smallest orthogonal
+   * sphere has a squared radius of at most Alpha^2 (the weighted alpha shape: radii r + probe give
+   * the molecular surface's). A point of NaN or infinite weight is left out as an invalid one.
+   * Density then estimates the density of the vertices (NaN at hidden points). Across MPI ranks
+   * (vtkPFastDelaunay3D) weights are not available yet.
+   */
+  vtkSetMacro(WeightsAreRadii, vtkTypeBool);
+  vtkGetMacro(WeightsAreRadii, vtkTypeBool);
+  vtkBooleanMacro(WeightsAreRadii, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Figures of the last execution: distinct points inserted, exact duplicates merged, points
-   * skipped for Tolerance, points with NaN/Inf coordinates, tetrahedra produced; the mean and
+   * skipped for Tolerance, points with NaN/Inf coordinates (or weight), weighted points hidden,
+   * tetrahedra produced; the mean and
    * maximum walk length (tetrahedra visited to locate a point: the paper's "Path"), the mean cavity
    * size (tetrahedra deleted per insertion: the paper's "core"); seconds spent in the kernel, and
    * per phase: sorting the points, locating them, growing the cavities, filling them, and output
    * (the kernel's extraction plus the VTK cell arrays). Locate, cavity and fill times are sampled on one
-   * insertion in 16 and scaled up. Each run resets them. The three counts of points left out are
-   * also in the output's field data whenever one of them is not 0 (all figures with
+   * insertion in 16 and scaled up. Each run resets them. The four counts of points that are no
+   * vertex are also in the output's field data whenever one of them is not 0 (all figures with
    * ComputeStatistics).
    */
   vtkGetMacro(NumberOfInsertedPoints, vtkIdType);
   vtkGetMacro(NumberOfDuplicatePoints, vtkIdType);
   vtkGetMacro(NumberOfSkippedPoints, vtkIdType);
   vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
+  vtkGetMacro(NumberOfHiddenPoints, vtkIdType);
   vtkGetMacro(NumberOfTetrahedra, vtkIdType);
   vtkGetMacro(MeanWalkLength, double);
   vtkGetMacro(MaxWalkLength, vtkIdType);
@@ -359,12 +380,14 @@ protected:
   vtkTypeBool ComputeRadiusEdgeRatio = 0;
   vtkTypeBool ComputeDensity = 0;
   vtkTypeBool ComputeStatistics = 0;
+  vtkTypeBool WeightsAreRadii = 1;
   vtkSmartPointer<vtkIncrementalPointLocator> Locator;
 
   vtkIdType NumberOfInsertedPoints = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
   vtkIdType NumberOfSkippedPoints = 0;
   vtkIdType NumberOfInvalidPoints = 0;
+  vtkIdType NumberOfHiddenPoints = 0;
   vtkIdType NumberOfTetrahedra = 0;
   double MeanWalkLength = 0.0;
   vtkIdType MaxWalkLength = 0;
@@ -380,17 +403,24 @@ protected:
   using CellFilter = std::function<bool(const std::uint32_t* ids, int size)>;
 
   fd3::Options KernelOptions(double diagonal);
+  /// The weights of the input's points (WeightsAreRadii applied), `count` of them with the
+  /// points added after the input's (weight 0), into `weights`; left empty without an array to
+  /// process. False, with an error, for an array that cannot give them.
+  bool PointWeights(vtkInformationVector** inputVector, vtkIdType inputPoints, std::size_t count,
+    std::vector<double>& weights);
   /// The kernel's tetrahedralization of the first `count` points of xyz, the input's first
-  /// `inputPoints` of them merged by the Locator where there is one.
-  fd3::Triangulation Triangulate(
-    const double* xyz, std::size_t count, vtkIdType inputPoints, const fd3::Bounds& bounds);
+  /// `inputPoints` of them merged by the Locator where there is one; regular where `weights` is
+  /// given.
+  fd3::Triangulation Triangulate(const double* xyz, const double* weights, std::size_t count,
+    vtkIdType inputPoints, const fd3::Bounds& bounds);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);
-  /// The tetrahedra, or the alpha shape's cells, of `result` (ids into xyz), those that `keep`
-  /// accepts. Without an alpha shape the output takes result.tetrahedra over (left empty).
-  void SetOutputCells(vtkUnstructuredGrid* output, const double* xyz, std::size_t count,
-    fd3::Triangulation& result, const CellFilter& keep = CellFilter());
+  /// The tetrahedra, or the alpha shape's cells, of `result` (ids into xyz; weighted where
+  /// `weights` is given), those that `keep` accepts. Without an alpha shape the output takes
+  /// result.tetrahedra over (left empty).
+  void SetOutputCells(vtkUnstructuredGrid* output, const double* xyz, const double* weights,
+    std::size_t count, fd3::Triangulation& result, const CellFilter& keep = CellFilter());
   /// The requested Circumradius, Volume and RadiusEdgeRatio cell arrays; xyz: the output points.
   void AddCellArrays(vtkUnstructuredGrid* output, const double* xyz);
   /// The Density point array, from `density` for the first output points and NaN for the rest.

@@ -59,6 +59,15 @@ int vtkPFastDelaunay3D::RequestData(
     fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision);
   vtkPointData* inputData = input ? input->GetPointData() : nullptr;
   const bool root = this->Controller->GetLocalProcessId() == 0;
+  if (this->GetInputArrayToProcess(0, inputVector))
+  {
+    // Each rank would need its halo for power distances, where a heavy point far from the
+    // boundary can reach across it.
+    vtkErrorMacro("Weighted points are not available across MPI ranks yet; the output holds the "
+                  "points and no cells");
+    fd3vtk::SetPointsWithoutCells(output, inputPoints, inputData);
+    return 0;
+  }
 
   fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
   const bool redistributed = run.Redistribute(input, inputPoints);
@@ -101,7 +110,7 @@ int vtkPFastDelaunay3D::RequestData(
     }
     if (run.Result.status == fd3::Status::Ok)
     {
-      this->SetOutputCells(output, run.Xyz.data(), run.Xyz.size() / 3, run.Result,
+      this->SetOutputCells(output, run.Xyz.data(), nullptr, run.Xyz.size() / 3, run.Result,
         [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); });
     }
     else // a rank whose points are all NaN or Inf: they stay in its output, unused
