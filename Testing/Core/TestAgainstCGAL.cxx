@@ -107,26 +107,13 @@ TEST(AgainstCGAL, PackingWithAQuarterHidden)
   EXPECT_GE(expectSameAsCGAL(p, w, "packing"), small * 9 / 10);
 }
 
-// A chain molecule: atoms a bond length apart at random angles, with the van der Waals radii of
-// C, N, O, S and H (Bondi, 1964), in angstroms.
 TEST(AgainstCGAL, MoleculeWithVanDerWaalsRadii)
 {
-  constexpr double kRadii[5] = {1.70, 1.55, 1.52, 1.80, 1.20};
-  constexpr double kBond = 1.5;
-  std::mt19937_64 random(8);
-  std::normal_distribution<double> gauss;
-  std::uniform_int_distribution<int> element(0, 4);
-  Points p = {0, 0, 0};
-  std::vector<double> w = {kRadii[0] * kRadii[0]};
-  for (int atom = 1; atom < 5000; ++atom)
-  {
-    double d[3] = {gauss(random), gauss(random), gauss(random)};
-    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int k = 0; k < 3; ++k)
-      p.push_back(p[p.size() - 3] + kBond * d[k] / length);
-    const double r = kRadii[element(random)];
-    w.push_back(r * r);
-  }
+  std::vector<double> radii;
+  const Points p = fd3test::molecule(3000, 8, radii);
+  std::vector<double> w(radii.size());
+  for (std::size_t i = 0; i < w.size(); ++i)
+    w[i] = (radii[i] + 1.4) * (radii[i] + 1.4); // a water probe's surface
   expectSameAsCGAL(p, w, "molecule");
 }
 } // namespace

@@ -235,6 +235,48 @@ Points lidarTerrain(std::size_t n, std::uint64_t seed)
   return p;
 }
 
+Points molecule(std::size_t atoms, std::uint64_t seed, std::vector<double>& radii)
+{
+  constexpr double kBond = 1.5, kClosest = 2.5;
+  // C, N, O, S, H and how many in a hundred atoms of a protein's heavy atoms and polar hydrogens.
+  constexpr double kRadius[5] = {1.70, 1.55, 1.52, 1.80, 1.20};
+  constexpr int kShare[5] = {50, 14, 15, 1, 20};
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> gauss;
+  std::uniform_int_distribution<int> percent(0, 99);
+  const double ball = std::cbrt(3 * double(atoms) / (4 * M_PI * 0.01));
+  Points p = {0, 0, 0};
+  radii.assign(1, kRadius[0]);
+  while (radii.size() < atoms)
+  {
+    const std::size_t last = radii.size() - 1;
+    double q[3];
+    for (int attempt = 0;; ++attempt)
+    {
+      double d[3] = {gauss(rng), gauss(rng), gauss(rng)};
+      const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (int k = 0; k < 3; ++k)
+        q[k] = p[3 * last + k] + kBond * d[k] / length;
+      if (q[0] * q[0] + q[1] * q[1] + q[2] * q[2] > ball * ball && attempt < 100)
+        continue;
+      bool clear = true;
+      for (std::size_t i = 0; i + 1 < last && clear; ++i)
+        clear = (q[0] - p[3 * i]) * (q[0] - p[3 * i]) +
+            (q[1] - p[3 * i + 1]) * (q[1] - p[3 * i + 1]) +
+            (q[2] - p[3 * i + 2]) * (q[2] - p[3 * i + 2]) >=
+          kClosest * kClosest;
+      if (clear || attempt >= 100)
+        break;
+    }
+    p.insert(p.end(), q, q + 3);
+    int element = 0, pick = percent(rng);
+    while (pick >= kShare[element])
+      pick -= kShare[element++];
+    radii.push_back(kRadius[element]);
+  }
+  return p;
+}
+
 Points molecularShell(std::size_t n, std::uint64_t seed)
 {
   std::mt19937_64 rng(seed);

@@ -48,6 +48,12 @@ Points joined(Points a, const Points& b);
 /// lattice (spacing 1, jitter +-0.15), so no two points are closer than 0.7.
 Points molecularShell(std::size_t n, std::uint64_t seed);
 
+/// A globular molecule's atoms (angstroms) with their van der Waals radii: a chain of bonds 1.5
+/// long at random angles, no atom closer than 2.5 to one two or more bonds back, folded into a
+/// ball that holds about 0.01 atoms per cubic angstrom; the radii are those of C, N, O, S and H
+/// (Bondi, 1964) in a protein's proportions.
+Points molecule(std::size_t atoms, std::uint64_t seed, std::vector<double>& radii);
+
 /// Structured and degenerate surface samples, as CAD and CFD meshes give them: exactly cospherical
 /// and coplanar subsets everywhere (their coordinates come from linspace-like divisions, cos and
 /// sin, so they are not on a small integer grid). The boundary nodes of a structured grid on a
