@@ -2,6 +2,7 @@
 //   TestImages <Scene> -D <Data> -V <baseline.png> -T <output dir>
 // Circumradius: the bundled cloud, whole cells on one side of a plane, shrunk, coloured by the
 //   cells' circumradius; AlphaShape: the alpha shape of points sampled on a torus;
+//   MolecularSurface: the weighted alpha shape of a molecule's atoms, radii grown by a probe;
 //   BoundingTriangulation: the tetrahedra of a small cloud with the bounding octahedron.
 #include "VtkTestUtilities.h"
 #include "vtkFastDelaunay3D.h"
@@ -10,10 +11,13 @@
 #include "vtkAlgorithmOutput.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkDataObject.h"
 #include "vtkDataSetMapper.h"
 #include "vtkExtractGeometry.h"
+#include "vtkFloatArray.h"
 #include "vtkNew.h"
 #include "vtkPlane.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
@@ -27,6 +31,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -83,6 +88,28 @@ bool BuildScene(const std::string& scene, int argc, char* argv[], vtkRenderer* r
     mapper->ScalarVisibilityOff();
     actor->GetProperty()->SetColor(0.85, 0.65, 0.35);
     camera->SetPosition(1, -3, 3);
+  }
+  else if (scene == "MolecularSurface")
+  {
+    // The weighted alpha shape of a molecule's atoms with radii grown by a water probe's 1.4:
+    // at a small Alpha, the solvent-accessible balls' union as cells.
+    std::vector<double> radii;
+    auto atoms = Cloud(fd3test::molecule(600, 3, radii));
+    vtkNew<vtkFloatArray> probed;
+    probed->SetName("ProbeRadius");
+    for (const double r : radii)
+      probed->InsertNextValue(static_cast<float>(r + 1.4));
+    atoms->GetPointData()->AddArray(probed);
+    delaunay->SetInputData(atoms);
+    delaunay->SetInputArrayToProcess(
+      0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "ProbeRadius");
+    delaunay->SetAlpha(0.5);
+    delaunay->AlphaLinesOff();
+    delaunay->AlphaVertsOff();
+    mapper->SetInputConnection(delaunay->GetOutputPort());
+    mapper->ScalarVisibilityOff();
+    actor->GetProperty()->SetColor(0.45, 0.7, 0.85);
+    camera->SetPosition(0, -3, 1);
   }
   else if (scene == "BoundingTriangulation")
   {
