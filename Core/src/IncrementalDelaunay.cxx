@@ -181,22 +181,6 @@ void keepHeaviestAtEachPosition(
   plan.duplicates = std::move(duplicates);
 }
 
-/// Whether every weight maps into the frame exactly: times the square of its power-of-two scale,
-/// with no overflow or underflow.
-bool weightsFitFrame(const Frame& frame, const double* weights, const IdArray& ids)
-{
-  if (frame.identity)
-    return true;
-  const int twice = 2 * std::ilogb(frame.scale);
-  for (const std::uint32_t id : ids)
-  {
-    const double mapped = std::ldexp(weights[id], twice);
-    if (!std::isfinite(mapped) || std::ldexp(mapped, -twice) != weights[id])
-      return false;
-  }
-  return true;
-}
-
 int threadCount(const Options& options)
 {
   if (options.volumeThreshold > 0)
@@ -229,15 +213,17 @@ struct IncrementalDelaunay::Impl
   Coordinates held;
   std::size_t heldFrom = 0;
   std::vector<std::pair<std::uint32_t, std::array<double, 3>>> aside;
-  // Weighted points (triangulate() only): the weights by point id, and whether they differ (else
-  // the mesh is the Delaunay one); the points hidden before insertion, lighter than another at
-  // their position.
+  // Weighted points: the weights of the batch at hand, by its point ids; whether the mesh is
+  // weighted (triangulate() leaves it unweighted where every weight is the same); the weights of
+  // the held points while the mesh has not started; the points hidden before insertion, lighter
+  // than another at their position.
   const double* weights = nullptr;
   bool weighted = false;
+  std::vector<double> heldWeights;
   std::vector<std::uint32_t> hiddenCopies;
 
   void insertFirst(const double* xyz, std::size_t count);
-  void insertMore(const double* xyz, std::size_t count);
+  void insertMore(const double* xyz, std::size_t count, const double* moreWeights);
   bool insertOne(const double* p, MeshChange& change);
   /// The output; with `release`, the mesh's records go into it, which ends the mesh, and with
   /// `xyz` too, the coordinates of every point go there (IncrementalDelaunay::release(xyz)).
@@ -257,6 +243,8 @@ private:
   IdArray finitePoints(const double* xyz, std::size_t count, Bounds& box);
   /// The keys of the perturbation's order for `ids`, indexed by point id (local to xyz).
   Keys keys(const double* xyz, std::size_t count, const IdArray& ids) const;
+  /// Weighted: the weights of `order` (point ids of the batch at hand) in the frame; else none.
+  std::vector<double> framedWeights(const IdArray& order) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
   VertexArray vertices(
@@ -270,13 +258,9 @@ IdArray IncrementalDelaunay::Impl::finitePoints(const double* xyz, std::size_t c
   IdArray ids;
   box = finiteBounds(*team, "sort", xyz, count, &ids);
   if (weights)
-  {
     ids.erase(std::remove_if(ids.begin(), ids.end(),
                 [&](std::uint32_t id) { return !std::isfinite(weights[id]); }),
       ids.end());
-    weighted = std::any_of(ids.begin(), ids.end(),
-      [&](std::uint32_t id) { return weights[id] != weights[ids.front()]; });
-  }
   stats.inputPoints += count;
   stats.nonFinitePoints += count - ids.size();
   return ids;
@@ -295,6 +279,17 @@ Keys IncrementalDelaunay::Impl::keys(const double* xyz, std::size_t count, const
     }
   });
   return key;
+}
+
+std::vector<double> IncrementalDelaunay::Impl::framedWeights(const IdArray& order) const
+{
+  if (!weighted)
+    return {};
+  std::vector<double> out(order.size());
+  const int twice = frame.identity ? 0 : 2 * std::ilogb(frame.scale);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    out[i] = std::ldexp(weights[order[i]], twice);
+  return out;
 }
 
 VertexArray IncrementalDelaunay::Impl::vertices(
@@ -332,13 +327,21 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     status = Status::Empty;
     return;
   }
+  weighted = weights && (frameGiven || std::any_of(ids.begin(), ids.end(), [&](std::uint32_t id) {
+    return weights[id] != weights[ids.front()];
+  }));
   if (!frameGiven)
     frame = frameWithin(xyz, count, box, team->stretches("sort"));
-  if (weighted && !weightsFitFrame(frame, weights, ids))
+  if (weighted && !weightsFitFrame(frame, weights, count))
+  {
+    if (frameGiven)
+      throw std::invalid_argument("fd3::IncrementalDelaunay: a weight beyond the frame");
     frame = identityFrame(box);
+  }
   Keys key = keys(xyz, count, ids);
   InsertionPlan plan =
     planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
+  hiddenCopies.clear();
   if (weighted)
   {
     keepHeaviestAtEachPosition(weights, plan, hiddenCopies);
@@ -355,14 +358,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   }
   status = Status::Ok;
   VertexArray records = vertices(xyz, plan.order, 0, room);
-  std::vector<double> vertexWeights;
-  if (weighted)
-  {
-    vertexWeights.resize(plan.order.size());
-    const int twice = frame.identity ? 0 : 2 * std::ilogb(frame.scale);
-    for (std::size_t i = 0; i < plan.order.size(); ++i)
-      vertexWeights[i] = std::ldexp(weights[plan.order[i]], twice);
-  }
+  std::vector<double> vertexWeights = framedWeights(plan.order);
   team->release(plan.order, "sort");
   team->release(key, "sort");
   if (takesPoints)
@@ -379,22 +375,33 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
     status = Status::Aborted;
 }
 
-void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
+void IncrementalDelaunay::Impl::insertMore(
+  const double* xyz, std::size_t count, const double* moreWeights)
 {
   for (std::size_t i = 0; i < count; ++i)
     if (isFinite(xyz + 3 * i) && !frame.bounds.contains(xyz + 3 * i))
       throw std::invalid_argument("fd3::IncrementalDelaunay::add: a point outside the frame");
+  if (!moreWeights != !(weighted || (!triangulator && weights)))
+    throw std::logic_error("fd3::IncrementalDelaunay::add: weights go with a weighted mesh only");
+  if (moreWeights && !weightsFitFrame(frame, moreWeights, count))
+    throw std::invalid_argument("fd3::IncrementalDelaunay::add: a weight beyond the frame");
   if (!triangulator)
   {
     // Not started yet: start again from every point so far, these included.
     held.insert(held.end(), xyz, xyz + 3 * count);
+    if (moreWeights)
+      heldWeights.insert(heldWeights.end(), moreWeights, moreWeights + count);
     stats = Statistics();
     skipped.clear();
+    weights = moreWeights ? heldWeights.data() : nullptr;
     insertFirst(held.data(), held.size() / 3);
     if (triangulator && !takesPoints)
       Coordinates().swap(held);
+    if (triangulator)
+      std::vector<double>().swap(heldWeights);
     return;
   }
+  weights = moreWeights;
   if (takesPoints)
     held.insert(held.end(), xyz, xyz + 3 * count);
   const auto start = Clock::now();
@@ -405,12 +412,22 @@ void IncrementalDelaunay::Impl::insertMore(const double* xyz, std::size_t count)
     Keys key = keys(xyz, count, ids);
     InsertionPlan plan =
       planInsertion(xyz, key.data(), std::move(ids), box, options.order, options.randomSeed, *team);
+    if (weighted)
+    {
+      std::vector<std::uint32_t> hidden;
+      keepHeaviestAtEachPosition(weights, plan, hidden);
+      for (const std::uint32_t id : hidden)
+        hiddenCopies.push_back(static_cast<std::uint32_t>(id + points));
+      stats.hiddenPoints += hidden.size();
+    }
     for (const auto& [copy, original] : plan.duplicates)
       duplicates.emplace_back(copy + points, original + points);
     stats.duplicatesMerged += plan.duplicates.size();
     VertexArray more = vertices(xyz, plan.order, points, 0);
+    std::vector<double> moreFramed = framedWeights(plan.order);
     stats.secondsSort += secondsSince(start);
-    if (!triangulator->insertMore(std::move(more), plan.roundStarts, options.progress))
+    if (!triangulator->insertMore(
+          std::move(more), std::move(moreFramed), plan.roundStarts, options.progress))
       status = Status::Aborted;
   }
   points += count;
@@ -586,15 +603,22 @@ void IncrementalDelaunay::Impl::writeRecordedPoints(double* xyz) const
 }
 
 IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count,
-  const Options& options, const Frame& frame, std::size_t room)
+  const Options& options, const Frame& frame, std::size_t room, const double* weights)
   : impl_(std::make_unique<Impl>())
 {
   impl_->options = options;
   impl_->frame = frame;
   impl_->room = room;
+  impl_->weights = weights;
+  if (weights)
+    impl_->options.volumeThreshold = 0; // the regular tetrahedralization, exactly
   impl_->insertFirst(xyz, count);
   if (!impl_->triangulator)
+  {
     impl_->held.assign(xyz, xyz + 3 * count); // until the mesh can start
+    if (weights)
+      impl_->heldWeights.assign(weights, weights + count);
+  }
 }
 
 IncrementalDelaunay::IncrementalDelaunay(
@@ -630,11 +654,11 @@ Status IncrementalDelaunay::status() const
   return impl_->status;
 }
 
-void IncrementalDelaunay::add(const double* xyz, std::size_t count)
+void IncrementalDelaunay::add(const double* xyz, std::size_t count, const double* weights)
 {
   if (impl_->released || impl_->status == Status::Aborted || impl_->status == Status::CheckFailed)
     throw std::logic_error("fd3::IncrementalDelaunay::add: the tetrahedralization ended");
-  impl_->insertMore(xyz, count);
+  impl_->insertMore(xyz, count, weights);
 }
 
 bool IncrementalDelaunay::addOne(const double p[3], MeshChange& change)

@@ -321,3 +321,162 @@ TEST(Weighted, AlphaComplexOfOrthogonalSpheres)
     simplicesOf(fd3::alphaComplex(p.data(), n, plain, alpha), plain));
 }
 } // namespace
+
+#ifdef FD3_TEST_WITH_VOROPP
+#include <voro++/voro++.hh>
+#endif
+#include "fd3/Voronoi.h"
+
+namespace
+{
+/// The power cells of p with weights w in `box`, checked for what holds on any input: a cell
+/// per distinct finite point, the hidden ones empty, the volumes filling the box.
+fd3::VoronoiCells powerCells(const Points& p, const std::vector<double>& w, const fd3::Bounds& box,
+  int threads, const std::string& what)
+{
+  fd3::VoronoiOptions options;
+  options.box = box;
+  options.threads = threads;
+  fd3::VoronoiCells cells = fd3::voronoiCells(p.data(), w.data(), w.size(), options);
+  EXPECT_EQ(cells.status, fd3::Status::Ok) << what;
+  const fd3::Triangulation regular = fd3::triangulate(p.data(), w.data(), w.size());
+  double sum = 0;
+  std::size_t empty = 0;
+  for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
+  {
+    sum += cells.volumes[c];
+    const bool hidden =
+      std::binary_search(regular.hidden.begin(), regular.hidden.end(), cells.generators[c]);
+    if (hidden)
+    {
+      EXPECT_EQ(cells.volumes[c], 0.0) << what;
+      EXPECT_EQ(cells.numberOfFaces(c), 0u) << what;
+    }
+    empty += hidden;
+  }
+  EXPECT_EQ(empty, regular.hidden.size()) << what;
+  const double volume = box.extent(0) * box.extent(1) * box.extent(2);
+  EXPECT_NEAR(sum, volume, 1e-12 * volume) << what;
+  return cells;
+}
+
+TEST(Weighted, PowerCellsFillTheBoxAndHiddenPointsHaveNone)
+{
+  const std::size_t n = 3000;
+  const Points p = fd3test::uniformCube(n, 91);
+  const std::vector<double> w = randomWeights(n, 0.0, 0.06, 92);
+  fd3::Bounds box;
+  for (int a = 0; a < 3; ++a)
+  {
+    box.lo[a] = 0.1;
+    box.hi[a] = 0.9;
+  }
+  const fd3::VoronoiCells one = powerCells(p, w, box, 1, "one thread");
+  const fd3::VoronoiCells three = powerCells(p, w, box, 3, "three threads");
+  EXPECT_TRUE(one.volumes == three.volumes);
+  EXPECT_TRUE(one.points == three.points);
+  // Zero weights give the Voronoi cells.
+  const std::vector<double> zero(n, 0.0);
+  fd3::VoronoiOptions options;
+  options.box = box;
+  EXPECT_TRUE(fd3::voronoiCells(p.data(), zero.data(), n, options).volumes ==
+    fd3::voronoiCells(p.data(), n, options).volumes);
+}
+
+#ifdef FD3_TEST_WITH_VOROPP
+/// Voro++'s radical (container_poly) cell volumes by input id, -1 where it makes none.
+std::vector<double> voroppRadicalVolumes(
+  const Points& p, const std::vector<double>& radii, const fd3::Bounds& b)
+{
+  const std::size_t n = radii.size();
+  const int blocks = std::max(1, int(std::cbrt(double(n) / 5)));
+  voro::container_poly box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks, blocks,
+    blocks, false, false, false, 8);
+  for (std::size_t i = 0; i < n; ++i)
+    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2], radii[i]);
+  std::vector<double> volumes(n, -1);
+  voro::c_loop_all loop(box);
+  voro::voronoicell cell;
+  if (loop.start())
+    do
+      if (box.compute_cell(cell, loop))
+        volumes[std::size_t(loop.pid())] = cell.volume();
+    while (loop.inc());
+  return volumes;
+}
+
+// Voro++ clips to its container, our cells to the box: the same box, points strictly inside.
+void expectVoroppVolumes(const Points& p, const std::vector<double>& radii, const std::string& what)
+{
+  fd3::Bounds box = fd3::finiteBounds(p.data(), radii.size());
+  for (int a = 0; a < 3; ++a)
+  {
+    const double margin = 0.01 * box.extent(a);
+    box.lo[a] -= margin;
+    box.hi[a] += margin;
+  }
+  std::vector<double> w(radii.size());
+  for (std::size_t i = 0; i < w.size(); ++i)
+    w[i] = radii[i] * radii[i];
+  const fd3::VoronoiCells cells = powerCells(p, w, box, 2, what);
+  const std::vector<double> reference = voroppRadicalVolumes(p, radii, box);
+  std::size_t compared = 0;
+  for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
+  {
+    const double expected = std::max(0.0, reference[cells.generators[c]]);
+    EXPECT_NEAR(cells.volumes[c], expected, 1e-9 * std::max(expected, 1e-12 * box.extent(0)))
+      << what << " point " << cells.generators[c];
+    compared += expected > 0;
+  }
+  EXPECT_GT(compared, radii.size() / 2) << what;
+}
+
+TEST(Weighted, PowerCellsAgainstVoroppRadicalCells)
+{
+  const Points p = fd3test::uniformCube(4000, 93);
+  std::vector<double> radii(4000);
+  std::mt19937_64 random(94);
+  std::uniform_real_distribution<double> radius(0.001, 0.05);
+  for (double& r : radii)
+    r = radius(random);
+  expectVoroppVolumes(p, radii, "uniform");
+  std::vector<double> atomRadii;
+  const Points atoms = fd3test::molecule(2000, 95, atomRadii);
+  expectVoroppVolumes(atoms, atomRadii, "molecule");
+}
+#endif
+} // namespace
+
+namespace
+{
+// A weighted mesh built in pieces (add() with weights, as the power cells add their far points)
+// has the tetrahedra and hidden points of the whole set at once; copies of a vertex that come
+// later hide it or are hidden by their weight.
+TEST(Weighted, MeshBuiltInPiecesIsTheWholeSets)
+{
+  const std::size_t n = 4000, first = 2500;
+  Points p = fd3test::uniformCube(n, 101);
+  std::vector<double> w = randomWeights(n, 0.0, 0.06, 102);
+  // Later copies of two early points: one heavier, one lighter.
+  p.insert(p.end(), {p[30], p[31], p[32], p[33], p[34], p[35]});
+  w.push_back(w[10] + 0.01);
+  w.push_back(w[11] / 2);
+  const std::size_t total = w.size();
+  const fd3::Frame frame = fd3::frameOf(p.data(), total);
+  fd3::IncrementalDelaunay mesh(p.data(), first, {}, frame, total - first, w.data());
+  EXPECT_THROW(mesh.add(p.data() + 3 * first, 1), std::logic_error);
+  mesh.add(p.data() + 3 * first, total - first, w.data() + first);
+  const fd3::Triangulation pieces = mesh.release();
+  const fd3::Triangulation whole = fd3::triangulate(p.data(), w.data(), total);
+  ASSERT_EQ(pieces.status, fd3::Status::Ok);
+  EXPECT_EQ(fd3test::canonicalTetrahedra(pieces.tetrahedra),
+    fd3test::canonicalTetrahedra(whole.tetrahedra));
+  EXPECT_EQ(pieces.hidden, whole.hidden);
+  EXPECT_TRUE(std::binary_search(pieces.hidden.begin(), pieces.hidden.end(), 10u));
+  EXPECT_TRUE(std::binary_search(pieces.hidden.begin(), pieces.hidden.end(), total - 1));
+
+  const std::vector<double> plain(p.begin(), p.begin() + 3 * first);
+  fd3::IncrementalDelaunay unweighted(plain.data(), first, {}, frame);
+  EXPECT_THROW(unweighted.add(p.data() + 3 * first, 1, w.data()), std::logic_error);
+}
+} // namespace

@@ -43,6 +43,10 @@ Frame frameFor(const Bounds& box, const bool exact[3]);
 bool fitsFrame(const Frame& frame, const double* xyz, std::size_t count);
 /// The frame that leaves points within `box` as they are (Frame::identity).
 Frame identityFrame(const Bounds& box);
+/// Whether the finite ones of `count` weights map into `frame` exactly (times the square of its
+/// scale, with no overflow or underflow), as a weighted IncrementalDelaunay needs: always in the
+/// identity frame.
+bool weightsFitFrame(const Frame& frame, const double* weights, std::size_t count);
 /// The frame of one whole point set (its finite points), the one that triangulate() uses: every
 /// piece of the set computes the same with checkShifts(), frameFor() and fitsFrame() combined
 /// over the pieces.
@@ -75,9 +79,11 @@ public:
   /// too (frameFor() over all of them); the caller keeps its points. Throws as triangulate() does.
   /// `room`: about how many points will be added; the kernel's vertex records are reserved for
   /// them (address space, which costs no memory until used), so that add() does not copy the
-  /// records of the first ones.
+  /// records of the first ones. With `weights` (one per point, and then with every add()), the
+  /// regular tetrahedralization, as triangulate() with weights makes it; every finite weight must
+  /// map into the frame exactly (weightsFitFrame()), else std::invalid_argument.
   IncrementalDelaunay(const double* xyz, std::size_t count, const Options& options,
-    const Frame& frame, std::size_t room = 0);
+    const Frame& frame, std::size_t room = 0, const double* weights = nullptr);
   /// The same on points that the mesh takes (xyz.size() / 3 of them), and those of every add():
   /// it holds them for points() and release(Coordinates&), except where its vertex records give
   /// them back bit for bit, which it then frees as soon as the records are made, so that they
@@ -91,8 +97,11 @@ public:
   Status status() const;
   /// Inserts `count` more points, within the frame's box; those that repeat a point are merged
   /// into it as in triangulate(). Throws std::logic_error after an abort, a failed check or
-  /// release(), std::invalid_argument for a point outside the frame.
-  void add(const double* xyz, std::size_t count);
+  /// release(), std::invalid_argument for a point outside the frame. A weighted mesh takes the
+  /// points' `weights` (std::logic_error without them, or with them on an unweighted one); a
+  /// point that repeats a vertex with another weight is then no duplicate: the heavier hides the
+  /// other.
+  void add(const double* xyz, std::size_t count, const double* weights = nullptr);
   /// add() of one point that reports what it changed, for a caller that keeps a mesh of its own
   /// current (vtkFastDelaunay3D's incremental API): one insertion on the calling thread, its
   /// deleted and made finite tetrahedra in `change`. The point takes the next id, as in add();

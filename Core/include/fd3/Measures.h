@@ -37,7 +37,10 @@ struct Circumcentre
 };
 
 /// The circumcentre of the tetrahedron with vertices 0, u, v, w (edge vectors from one vertex).
-inline Circumcentre circumcentreOfEdges(const double* u, const double* v, const double* w)
+/// With `lowered`, the orthocentre of weighted vertices instead (the power diagram's vertex): the
+/// weights' differences w_u - w_0, w_v - w_0, w_w - w_0 lower the squared lengths.
+inline Circumcentre circumcentreOfEdges(
+  const double* u, const double* v, const double* w, const double* lowered = nullptr)
 {
   // (|u|^2 (v x w) + |v|^2 (w x u) + |w|^2 (u x v)) / (2 u.(v x w)).
   const double vw[3] = {
@@ -46,12 +49,18 @@ inline Circumcentre circumcentreOfEdges(const double* u, const double* v, const 
     w[1] * u[2] - w[2] * u[1], w[2] * u[0] - w[0] * u[2], w[0] * u[1] - w[1] * u[0]};
   const double uv[3] = {
     u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-  const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-  const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
   Circumcentre centre;
   centre.sixVolume = u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2];
   centre.edgeProduct2 = uu * vv * ww;
+  if (lowered)
+  {
+    uu -= lowered[0];
+    vv -= lowered[1];
+    ww -= lowered[2];
+  }
   if (centre.sixVolume != 0)
   {
     const double inverse = 0.5 / centre.sixVolume; // one division, not three: the halo's pass

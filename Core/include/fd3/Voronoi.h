@@ -102,6 +102,15 @@ struct VoronoiCells
 /// The Voronoi cells of `count` points (x,y,z triples), clipped to options.box. Throws as
 /// triangulate() does.
 VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOptions& options = {});
+/// The power (Laguerre) cells of `count` weighted points, clipped to options.box: the cell of
+/// point i holds the x whose power distance |x - p_i|^2 - weights[i] is the least, its faces lie
+/// on radical planes, and its vertices are the regular tetrahedralization's orthocentres
+/// (triangulate() with weights). A cell may miss its own point. A hidden point's cell is empty:
+/// no faces, volume 0; the volumes still fill the box. A point of non-finite weight has no cell,
+/// as one of non-finite coordinates. Densities are those of the regular tetrahedralization's
+/// vertices (densities()), NaN at hidden points.
+VoronoiCells voronoiCells(
+  const double* xyz, const double* weights, std::size_t count, const VoronoiOptions& options = {});
 
 /// The cells of a piece of a distributed point set from its mesh, without tetrahedralizing its
 /// points again: the mesh took its points (the piece's own first, options.generators of them,

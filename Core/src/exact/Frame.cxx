@@ -102,6 +102,21 @@ Frame frameOf(const double* xyz, std::size_t count)
   return frameWithin(xyz, count, finiteBounds(xyz, count));
 }
 
+bool weightsFitFrame(const Frame& frame, const double* weights, std::size_t count)
+{
+  if (frame.identity)
+    return true;
+  const int twice = 2 * std::ilogb(frame.scale);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double mapped = std::ldexp(weights[i], twice);
+    if (std::isfinite(weights[i]) &&
+      (!std::isfinite(mapped) || std::ldexp(mapped, -twice) != weights[i]))
+      return false;
+  }
+  return true;
+}
+
 Frame identityFrame(const Bounds& box)
 {
   Frame frame;

@@ -176,20 +176,46 @@ void exactSixVolume(const double* a, const double* b, const double* c, const dou
   exponent = static_cast<int>(e) + 3 * rows.scale();
 }
 
-bool exactCircumcentreOffset(
-  const double* a, const double* b, const double* c, const double* d, double offset[3])
+namespace
+{
+/// The highest binary scale 2^s at which every weight is an integer times 2^(2s) (weights are
+/// squared lengths), or INT_MAX where all are 0.
+int weightScaleLimit(const double* weights, int count)
+{
+  int unit = INT_MAX;
+  for (int i = 0; i < count; ++i)
+    if (weights[i] != 0)
+      unit = std::min(unit, IntegerRows<4>::unitExponent(weights[i]));
+  // floor(unit / 2), also for negative units.
+  return unit == INT_MAX ? INT_MAX : (unit >= 0 ? unit / 2 : -((1 - unit) / 2));
+}
+} // namespace
+
+bool exactCircumcentreOffset(const double* a, const double* b, const double* c, const double* d,
+  double offset[3], const double* weights)
 {
   // With rows u, v, w = (b, c, d) - a: offset = (|u|^2 v x w + |v|^2 w x u + |w|^2 u x v) /
   // (2 u . v x w), each integer row counting 2^scale: the numerator counts 2^(4 scale) and the
-  // denominator 2^(3 scale).
+  // denominator 2^(3 scale). Weighted, each |row|^2 is lowered by its weight less a's, which
+  // counts 2^(2 scale) too.
   const double* const x[3] = {b, c, d};
-  IntegerRows<3> rows(x, a);
-  Integer det, lift[3], term, numerator;
+  IntegerRows<3> rows(x, a, weights ? weightScaleLimit(weights, 4) : INT_MAX);
+  Integer det, lift[3], term, numerator, weight, weightA;
   rows.minor3(0, 1, 2, det);
   if (mpz_sgn(det.get()) == 0)
     return false;
+  if (weights)
+    IntegerRows<3>::set(weightA, weights[0], 2 * rows.scale());
   for (int i = 0; i < 3; ++i)
+  {
     rows.lift(i, lift[i]);
+    if (weights)
+    {
+      IntegerRows<3>::set(weight, weights[i + 1], 2 * rows.scale());
+      mpz_sub(lift[i].get(), lift[i].get(), weight.get());
+      mpz_add(lift[i].get(), lift[i].get(), weightA.get());
+    }
+  }
   long denominatorExponent = 0;
   const double denominator = mpz_get_d_2exp(&denominatorExponent, det.get());
   for (int k = 0; k < 3; ++k)
@@ -634,14 +660,8 @@ int Predicates::powerTestExact(
 {
   ++exactInSphereCalls;
   ++integerExactCalls;
-  int weightUnit = we != 0 ? IntegerRows<4>::unitExponent(we) : INT_MAX;
-  for (int r = 0; r < 4; ++r)
-    if (w[r] != 0)
-      weightUnit = std::min(weightUnit, IntegerRows<4>::unitExponent(w[r]));
-  // floor(weightUnit / 2), also for negative units.
-  const int highestScale =
-    weightUnit == INT_MAX ? INT_MAX : (weightUnit >= 0 ? weightUnit / 2 : -((1 - weightUnit) / 2));
-  IntegerRows<4> q(p, pe, highestScale);
+  const double weights[5] = {w[0], w[1], w[2], w[3], we};
+  IntegerRows<4> q(p, pe, weightScaleLimit(weights, 5));
   const int weightScale = 2 * q.scale();
   Integer det, lift, minor, weight, weightE;
   IntegerRows<4>::set(weightE, we, weightScale);

@@ -37,9 +37,10 @@ void exactSixVolume(const double* a, const double* b, const double* c, const dou
 
 /// The circumcentre of tetrahedron abcd less a, computed exactly from any finite coordinates and
 /// rounded once per coordinate to within a few units in the last place; false, with `offset`
-/// unchanged, where the four points are coplanar.
-bool exactCircumcentreOffset(
-  const double* a, const double* b, const double* c, const double* d, double offset[3]);
+/// unchanged, where the four points are coplanar. With `weights` (of a, b, c, d), the orthocentre
+/// of the weighted points instead.
+bool exactCircumcentreOffset(const double* a, const double* b, const double* c, const double* d,
+  double offset[3], const double* weights = nullptr);
 
 /// A point's key in the symbolic perturbation's order, from its (normalized) coordinates alone and
 /// the seed: every run computes the same key for the same point, whatever the other points, the

@@ -209,7 +209,8 @@ Inserter::Outcome Inserter::insertAs(VertId v)
   const TetId base = locate(v);
   clock.lap(stats_.secondsLocate);
   if (lookForDuplicates_ && base != kNoTet)
-    if (const VertId repeated = repeatedVertex(base, v); repeated != kNoVertex)
+    if (const VertId repeated = repeatedVertex(base, v);
+        repeated != kNoVertex && (!mesh_.weighted() || mesh_.weights[repeated] == mesh_.weights[v]))
     {
       duplicates_.emplace_back(v, repeated);
       if (owners_)

@@ -22,10 +22,7 @@ Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Bounds
   if (anyMagnitude)
     tuning_.allowAnyMagnitude();
   if (mesh_.weighted())
-  {
-    const auto [lowest, highest] = std::minmax_element(mesh_.weights.begin(), mesh_.weights.end());
-    tuning_.adaptToWeights(*lowest, *highest);
-  }
+    adaptToWeights();
   for (int t = 0; t < team.size(); ++t)
   {
     pools_.push_back(std::make_unique<SlotPool>());
@@ -42,11 +39,16 @@ bool Triangulator::insertAll(
   return insertRounds(4, vertexCount(), roundStarts, true, progress);
 }
 
-bool Triangulator::insertMore(VertexArray more, const std::vector<std::size_t>& roundStarts,
-  const std::function<bool(double)>& progress)
+bool Triangulator::insertMore(VertexArray more, std::vector<double> weights,
+  const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress)
 {
   const std::size_t begin = vertexCount();
   tuning_.include(more[0].xyz, more.size(), sizeof(Vertex) / sizeof(double));
+  if (mesh_.weighted())
+  {
+    mesh_.weights.insert(mesh_.weights.end(), weights.begin(), weights.end());
+    adaptToWeights();
+  }
   for (auto& inserter : inserters_)
   {
     inserter->retune(tuning_);
@@ -195,6 +197,12 @@ std::vector<std::pair<VertId, VertId>> Triangulator::duplicates() const
   for (const auto& inserter : inserters_)
     all.insert(all.end(), inserter->duplicates().begin(), inserter->duplicates().end());
   return all;
+}
+
+void Triangulator::adaptToWeights()
+{
+  const auto [lowest, highest] = std::minmax_element(mesh_.weights.begin(), mesh_.weights.end());
+  tuning_.adaptToWeights(*lowest, *highest);
 }
 
 std::vector<VertId> Triangulator::hidden() const

@@ -39,11 +39,12 @@ public:
   /// when it asked to stop.
   bool insertAll(
     const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress);
-  /// Appends `more` vertices, distinct from each other and within the bounds, and inserts them,
+  /// Appends `more` vertices (of `weights` on a weighted mesh, in the frame's units), distinct
+  /// from each other and within the bounds, and inserts them,
   /// in the rounds of `roundStarts` (indices into `more`). Those that repeat a vertex of the mesh
   /// are left out and listed in duplicates().
-  bool insertMore(VertexArray more, const std::vector<std::size_t>& roundStarts,
-    const std::function<bool(double)>& progress);
+  bool insertMore(VertexArray more, std::vector<double> weights,
+    const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress);
   /// Appends `vertex` and inserts it on this thread, appending the finite tetrahedra the insertion
   /// deleted and made to `deleted` and `made`; false, with no change, when it repeats a vertex
   /// (listed in duplicates()).
@@ -141,6 +142,8 @@ private:
   /// More room than there is, for an insertion that found too little.
   void growRecords();
   bool reportProgress(const std::function<bool(double)>& progress);
+  /// The predicates' static bound of the power test, for the weights' spread so far.
+  void adaptToWeights();
 
   static constexpr int kLockingPasses = 4;
   static constexpr const char* kLockingPassNames[kLockingPasses] = {"insertion locking pass 1",

@@ -1,4 +1,5 @@
-// The Voronoi vertices (step 2 of VoronoiCells.cxx): each tetrahedron's circumcentre, computed
+// The Voronoi vertices (step 2 of VoronoiCells.cxx): each tetrahedron's circumcentre (for weighted
+// points its orthocentre, the same formula with the weights in the squared lengths), computed
 // once from its vertices in sorted order on edges scaled near 1 (in double-double where the
 // tetrahedron is flat, exactly where even that loses the digits), and the output point of each
 // centre in the box.
@@ -19,8 +20,8 @@ namespace
 /// The circumcentre's offset from the first vertex, in double-double from the exact edges (each
 /// scaled by `down`, a power of two): for flat tetrahedra, whose offset in doubles loses the
 /// digits that cancel in its determinants.
-void circumcentreInDoubleDouble(
-  const double* xyz, const std::uint32_t* ids, double down, double up, double* offset)
+void circumcentreInDoubleDouble(const double* xyz, const double* weights, const std::uint32_t* ids,
+  double down, double up, double* offset)
 {
   DoubleDouble e[3][3];
   for (int i = 0; i < 3; ++i)
@@ -43,22 +44,34 @@ void circumcentreInDoubleDouble(
   crossDD(e[1], e[2], vw);
   crossDD(e[2], e[0], wu);
   crossDD(e[0], e[1], uv);
-  const DoubleDouble uu = dotDD(e[0], e[0]), vv = dotDD(e[1], e[1]), ww = dotDD(e[2], e[2]);
+  DoubleDouble lift[3] = {dotDD(e[0], e[0]), dotDD(e[1], e[1]), dotDD(e[2], e[2])};
   const double twiceVolume = 2 * dotDD(e[0], vw).value();
+  const double edgeProduct = std::sqrt(lift[0].value() * lift[1].value() * lift[2].value());
+  if (weights)
+    for (int i = 0; i < 3; ++i)
+    {
+      DoubleDouble dw = DoubleDouble::difference(weights[ids[i + 1]], weights[ids[0]]);
+      dw.hi *= down * down;
+      dw.lo *= down * down;
+      lift[i] = lift[i] - dw;
+    }
   // The volume's rounding in double-double is a few 2^-106 of the edges' product; below
   // kTrustedFlatness of that product the offset would keep fewer than about 12 digits (three
   // points of a speck far smaller than its distance to the fourth): computed exactly instead.
   constexpr double kTrustedFlatness = 1e-18;
-  const double edgeProduct = std::sqrt(uu.value() * vv.value() * ww.value());
   if (!(std::fabs(twiceVolume) > 2 * kTrustedFlatness * edgeProduct))
   {
     const double* p[4] = {&xyz[3 * std::size_t(ids[0])], &xyz[3 * std::size_t(ids[1])],
       &xyz[3 * std::size_t(ids[2])], &xyz[3 * std::size_t(ids[3])]};
-    exactCircumcentreOffset(p[0], p[1], p[2], p[3], offset);
+    double w[4];
+    if (weights)
+      for (int i = 0; i < 4; ++i)
+        w[i] = weights[ids[i]];
+    exactCircumcentreOffset(p[0], p[1], p[2], p[3], offset, weights ? w : nullptr);
     return;
   }
   for (int k = 0; k < 3; ++k)
-    offset[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]).value() / twiceVolume * up;
+    offset[k] = (lift[0] * vw[k] + lift[1] * wu[k] + lift[2] * uv[k]).value() / twiceVolume * up;
 }
 
 /// ilogb(x) for a finite x > 0, read from its bits where it is normal.
@@ -83,7 +96,8 @@ double powerOfTwo(int e)
 /// edges scaled by a power of two (exact) to a length near 1, so that their squares and cubes
 /// neither underflow nor overflow at any magnitude of the input; in double-double where the
 /// tetrahedron is flat enough for doubles to lose the offset's digits.
-void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* a)
+void addScaledCircumcentre(
+  const double* xyz, const double* weights, const std::uint32_t* ids, double* a)
 {
   // Below this volume over the product of the edges, the offset in doubles is off by more than
   // 1e-13 of the edges.
@@ -103,19 +117,24 @@ void addScaledCircumcentre(const double* xyz, const std::uint32_t* ids, double* 
   for (auto& edge : edges)
     for (double& x : edge)
       x = normal ? x * down : std::ldexp(x, -exponent);
-  const Circumcentre c = circumcentreOfEdges(edges[0], edges[1], edges[2]);
+  double lowered[3]; // weighted: the weights' differences, in the edges' scale
+  if (weights)
+    for (int e = 0; e < 3; ++e)
+      lowered[e] = std::ldexp(weights[ids[e + 1]] - weights[ids[0]], -2 * exponent);
+  const Circumcentre c =
+    circumcentreOfEdges(edges[0], edges[1], edges[2], weights ? lowered : nullptr);
   double offset[3];
   for (int k = 0; k < 3; ++k)
     offset[k] = normal ? c.offset[k] * up : std::ldexp(c.offset[k], exponent);
   if (normal && c.sixVolume * c.sixVolume < kFlat * kFlat * c.edgeProduct2)
-    circumcentreInDoubleDouble(xyz, ids, down, up, offset);
+    circumcentreInDoubleDouble(xyz, weights, ids, down, up, offset);
   for (int k = 0; k < 3; ++k)
     a[k] += offset[k];
 }
 } // namespace
 
-void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedra,
-  const Bounds& box, Doubles& centres, Flags& inBox)
+void circumcentres(ThreadTeam& team, const double* xyz, const double* weights,
+  const IdArray& tetrahedra, const Bounds& box, Doubles& centres, Flags& inBox)
 {
   const std::size_t tets = tetrahedra.size() / 4;
   centres.resize(3 * tets);
@@ -127,7 +146,7 @@ void circumcentres(ThreadTeam& team, const double* xyz, const IdArray& tetrahedr
       double* x = &centres[3 * t];
       for (int a = 0; a < 3; ++a)
         x[a] = xyz[3 * std::size_t(v[0]) + a];
-      addScaledCircumcentre(xyz, v, x);
+      addScaledCircumcentre(xyz, weights, v, x);
       inBox[t] = box.contains(x);
     }
   });

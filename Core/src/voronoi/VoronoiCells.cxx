@@ -65,10 +65,13 @@ struct CurvePoints
 {
   VoronoiCells::Doubles xyz; ///< empty when the corners are not finite
   IdArray inputId;           ///< of each point but the corners
+  /// Weighted points: each one's weight, the corners' the least finite one (see the top of this
+  /// file: no box point is then nearer a corner in power than its own generator); else empty.
+  VoronoiCells::Doubles weights;
 };
 
-CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
-  std::size_t generators, const Bounds& points, const Bounds& box)
+CurvePoints alongCurve(ThreadTeam& team, const double* xyz, const double* weights,
+  std::size_t count, std::size_t generators, const Bounds& points, const Bounds& box)
 {
   const double cells = double(1u << kHilbertBits);
   double scale[3];
@@ -115,6 +118,16 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, std::size_t count,
     }
   });
   team.release(keys, "voronoi curve");
+  if (weights)
+  {
+    double least = HUGE_VAL;
+    for (std::size_t i = 0; i < count; ++i)
+      if (std::isfinite(weights[i]) && isFinite(xyz + 3 * i))
+        least = std::min(least, weights[i]);
+    curve.weights.resize(count + kFarPoints, std::isfinite(least) ? least : 0.0);
+    for (std::size_t k = 0; k < count; ++k)
+      curve.weights[k] = weights[curve.inputId[k]];
+  }
   return curve;
 }
 
@@ -131,13 +144,16 @@ Triangulation meshOf(const CurvePoints& curve, std::size_t count, const VoronoiO
   delaunay.threads = options.threads;
   delaunay.progress = options.progress;
   delaunay.computeNeighbors = false; // the stars are listed instead
-  IncrementalDelaunay mesh(
-    curve.xyz.data(), count, delaunay, frameOf(curve.xyz.data(), count + kFarPoints), kFarPoints);
+  const double* weights = curve.weights.empty() ? nullptr : curve.weights.data();
+  Frame frame = frameOf(curve.xyz.data(), count + kFarPoints);
+  if (weights && !weightsFitFrame(frame, weights, count + kFarPoints))
+    frame = identityFrame(frame.bounds);
+  IncrementalDelaunay mesh(curve.xyz.data(), count, delaunay, frame, kFarPoints, weights);
   if (mesh.status() == Status::Aborted)
     return mesh.release();
   if (options.density)
     density = densities(curve.xyz.data(), count, mesh.snapshot());
-  mesh.add(curve.xyz.data() + 3 * count, kFarPoints);
+  mesh.add(curve.xyz.data() + 3 * count, kFarPoints, weights ? weights + count : nullptr);
   return mesh.release();
 }
 
@@ -184,8 +200,8 @@ CellPlaces placeCells(ThreadTeam& team, const IdArray& vertices, const Stars& st
     for (std::size_t c = begin; c < end; ++c)
       if (const std::uint32_t p = vertices[c]; !stars.clipped[p])
       {
-        const std::size_t star = stars.sizeOf(p);
-        cells.cellFaces[c + 1] = 2 + star / 2;
+        const std::size_t star = stars.sizeOf(p); // 0 for a hidden point: no faces
+        cells.cellFaces[c + 1] = star ? 2 + star / 2 : 0;
         at.vertex[c + 1] = 3 * star;
         at.crossing[c + 1] = 0;
         if (polyhedra)
@@ -330,7 +346,8 @@ VoronoiCells cellsOf(ThreadTeam& team, CurvePoints curve, std::size_t count,
   groupByLowestVertex(team, mesh, count + kFarPoints, stars);
   Doubles centres;
   Flags inBox;
-  circumcentres(team, curve.xyz.data(), stars.tetrahedra, cells.box, centres, inBox);
+  circumcentres(team, curve.xyz.data(), curve.weights.empty() ? nullptr : curve.weights.data(),
+    stars.tetrahedra, cells.box, centres, inBox);
   listOthers(team, inBox, stars);
   IdArray pointOf = options.polyhedra ? numberCentres(team, inBox) : IdArray();
   IdArray vertices, clipped;
@@ -389,6 +406,11 @@ VoronoiCells cellsOf(ThreadTeam& team, CurvePoints curve, std::size_t count,
         const std::uint32_t p = vertices[c];
         if (stars.clipped[p])
           continue;
+        if (stars.sizeOf(p) == 0) // hidden: an empty power cell
+        {
+          cells.volumes[c] = cells.areas[c] = 0;
+          continue;
+        }
         cell.trace(p);
         if (options.polyhedra)
           cell.emitWhole<true>(p, c, cells.cellFaces[c], at.vertex[c], cells);
@@ -419,6 +441,12 @@ std::size_t VoronoiCells::numberOfNeighbors(std::size_t cell) const
 
 VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOptions& options)
 {
+  return voronoiCells(xyz, nullptr, count, options);
+}
+
+VoronoiCells voronoiCells(
+  const double* xyz, const double* weights, std::size_t count, const VoronoiOptions& options)
+{
   VoronoiCells cells;
   cells.cellFaces.assign(1, 0);
   cells.faceStart.assign(1, 0);
@@ -433,7 +461,7 @@ VoronoiCells voronoiCells(const double* xyz, std::size_t count, const VoronoiOpt
     return cells;
   }
   cells.box = options.box.finite() ? options.box : bounds;
-  CurvePoints curve = alongCurve(team, xyz, count, options.generators, bounds, cells.box);
+  CurvePoints curve = alongCurve(team, xyz, weights, count, options.generators, bounds, cells.box);
   if (curve.xyz.empty())
   {
     cells.status = Status::OutOfRange;
@@ -480,7 +508,7 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   Triangulation tetrahedra = mesh.release(xyz);
   const std::size_t count = xyz.size() / 3 - kFarPoints;
   CurvePoints curve =
-    alongCurve(team, xyz.data(), count, options.generators, pointBounds, cells.box);
+    alongCurve(team, xyz.data(), nullptr, count, options.generators, pointBounds, cells.box);
   std::vector<double> density;
   if (options.density)
   {
