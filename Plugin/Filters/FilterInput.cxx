@@ -6,6 +6,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkArrayDispatch.h"
+#include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
@@ -47,6 +48,26 @@ bool CheckAbort(Algorithm* filter, long)
 
 namespace fd3vtk
 {
+std::vector<double> PointWeights(
+  vtkDataArray* array, vtkIdType inputPoints, bool radii, std::size_t count, std::string& problem)
+{
+  if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != inputPoints)
+  {
+    problem = std::string("the weights array \"") + (array->GetName() ? array->GetName() : "") +
+      "\" is not a point-data array of one component";
+    return {};
+  }
+  std::vector<double> weights(count, 0.0);
+  vtkSMPTools::For(0, inputPoints, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const double value = array->GetComponent(i, 0);
+      weights[static_cast<std::size_t>(i)] = radii ? value * value : value;
+    }
+  });
+  return weights;
+}
+
 bool AbortRequested(vtkAlgorithm* filter)
 {
   return CheckAbort(filter, 0);

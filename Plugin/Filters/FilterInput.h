@@ -4,16 +4,18 @@
 =========================================================================*/
 // What the filters of FastDelaunay3D (and their MPI subclasses) take from their input before the
 // kernel runs: the points in the requested precision, their coordinates as doubles (whose finite
-// ones fd3::finiteBounds() bounds), and the threads to run on. Shared by the module's filters; not an API of its own.
+// ones fd3::finiteBounds() bounds), the weights of weighted points, and the threads to run on. Shared by the module's filters; not an API of its own.
 #ifndef FilterInput_h
 #define FilterInput_h
 
 #include "FastDelaunay3DFiltersModule.h" // For export macro
 #include "vtkSmartPointer.h"
 
+#include <string>
 #include <vector>
 
 class vtkAlgorithm;
+class vtkDataArray;
 class vtkDataSet;
 class vtkPoints;
 
@@ -29,6 +31,12 @@ FASTDELAUNAY3DFILTERS_EXPORT vtkSmartPointer<vtkPoints> PointsInPrecision(
 /// filled without a virtual call per point.
 FASTDELAUNAY3DFILTERS_EXPORT const double* CoordinatesAsDoubles(
   vtkPoints* points, std::vector<double>& copy);
+
+/// Weighted points: the weights of an input's `inputPoints` points from `array` (a radius r gives
+/// r^2 where `radii`), `count` of them, 0 past the input's (points a filter adds). Empty, with the
+/// reason in `problem`, where the array is not one component per input point.
+FASTDELAUNAY3DFILTERS_EXPORT std::vector<double> PointWeights(
+  vtkDataArray* array, vtkIdType inputPoints, bool radii, std::size_t count, std::string& problem);
 
 /// Whether the filter has been asked to stop: vtkAlgorithm::CheckAbort() where VTK has it (VTK 9.3,
 /// ParaView 5.11's VTK), else GetAbortExecute().

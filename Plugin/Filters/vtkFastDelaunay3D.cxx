@@ -343,10 +343,19 @@ int vtkFastDelaunay3D::RequestData(
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
   std::vector<double> weights;
-  if (!this->PointWeights(inputVector, numberOfPoints, count, weights))
+  if (vtkDataArray* weightArray = this->GetInputArrayToProcess(0, inputVector))
   {
-    SetPointsWithoutCells(output, points, pointData);
-    return 0;
+    std::string problem;
+    weights =
+      fd3vtk::PointWeights(weightArray, numberOfPoints, this->WeightsAreRadii, count, problem);
+    if (weights.empty())
+    {
+      vtkErrorMacro("Cannot triangulate: " << problem
+                                           << "; the output holds the points and no "
+                                              "cells");
+      SetPointsWithoutCells(output, points, pointData);
+      return 0;
+    }
   }
   const double* weightOf = weights.empty() ? nullptr : weights.data();
   fd3::Triangulation result;
@@ -401,33 +410,6 @@ int vtkFastDelaunay3D::RequestData(
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
   return 1;
-}
-
-bool vtkFastDelaunay3D::PointWeights(vtkInformationVector** inputVector, vtkIdType inputPoints,
-  std::size_t count, std::vector<double>& weights)
-{
-  vtkDataArray* array = this->GetInputArrayToProcess(0, inputVector);
-  if (!array)
-  {
-    return true;
-  }
-  if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != inputPoints)
-  {
-    vtkErrorMacro("The weights array \"" << (array->GetName() ? array->GetName() : "")
-                                         << "\" must be a point-data array of one "
-                                         << "component; the output holds the points and no cells");
-    return false;
-  }
-  weights.assign(count, 0.0); // a bounding octahedron's points weigh nothing
-  const bool radii = this->WeightsAreRadii;
-  vtkSMPTools::For(0, inputPoints, [&](vtkIdType begin, vtkIdType end) {
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      const double value = array->GetComponent(i, 0);
-      weights[static_cast<std::size_t>(i)] = radii ? value * value : value;
-    }
-  });
-  return true;
 }
 
 fd3::Triangulation vtkFastDelaunay3D::Triangulate(const double* xyz, const double* weights,

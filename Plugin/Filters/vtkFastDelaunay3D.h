@@ -403,11 +403,6 @@ protected:
   using CellFilter = std::function<bool(const std::uint32_t* ids, int size)>;
 
   fd3::Options KernelOptions(double diagonal);
-  /// The weights of the input's points (WeightsAreRadii applied), `count` of them with the
-  /// points added after the input's (weight 0), into `weights`; left empty without an array to
-  /// process. False, with an error, for an array that cannot give them.
-  bool PointWeights(vtkInformationVector** inputVector, vtkIdType inputPoints, std::size_t count,
-    std::vector<double>& weights);
   /// The kernel's tetrahedralization of the first `count` points of xyz, the input's first
   /// `inputPoints` of them merged by the Locator where there is one; regular where `weights` is
   /// given.

@@ -11,6 +11,7 @@
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
@@ -101,11 +102,24 @@ int vtkFastVoronoi3D::RequestData(
     fd3vtk::PointsInPrecision(input, vtkAlgorithm::DEFAULT_PRECISION);
   std::vector<double> converted;
   const double* xyz = fd3vtk::CoordinatesAsDoubles(points, converted);
+  std::vector<double> weights;
+  if (vtkDataArray* weightArray = this->GetInputArrayToProcess(0, inputVector))
+  {
+    std::string problem;
+    weights = fd3vtk::PointWeights(weightArray, numberOfPoints, this->WeightsAreRadii,
+      static_cast<std::size_t>(numberOfPoints), problem);
+    if (weights.empty())
+    {
+      vtkErrorMacro("No Voronoi cells: " << problem);
+      return 0;
+    }
+  }
   fd3::VoronoiCells cells;
   try
   {
     const auto kernelStart = std::chrono::steady_clock::now();
-    cells = fd3::voronoiCells(xyz, static_cast<std::size_t>(numberOfPoints), this->KernelOptions());
+    cells = fd3::voronoiCells(xyz, weights.empty() ? nullptr : weights.data(),
+      static_cast<std::size_t>(numberOfPoints), this->KernelOptions());
     this->KernelSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
   }
@@ -120,7 +134,8 @@ int vtkFastVoronoi3D::RequestData(
   }
   this->RecordFigures(static_cast<vtkIdType>(cells.numberOfCells()),
     static_cast<vtkIdType>(cells.stats.duplicatesMerged),
-    static_cast<vtkIdType>(cells.stats.nonFinitePoints));
+    static_cast<vtkIdType>(cells.stats.nonFinitePoints),
+    static_cast<vtkIdType>(cells.stats.hiddenPoints));
   if (!this->ReportOnInput(cells.status, cells.box, numberOfPoints))
   {
     return 1;
@@ -154,11 +169,13 @@ fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
   return options;
 }
 
-void vtkFastVoronoi3D::RecordFigures(vtkIdType generators, vtkIdType duplicates, vtkIdType invalid)
+void vtkFastVoronoi3D::RecordFigures(
+  vtkIdType generators, vtkIdType duplicates, vtkIdType invalid, vtkIdType hidden)
 {
   this->NumberOfGenerators = generators;
   this->NumberOfDuplicatePoints = duplicates;
   this->NumberOfInvalidPoints = invalid;
+  this->NumberOfHiddenPoints = hidden;
 }
 
 bool vtkFastVoronoi3D::ReportOnInput(
@@ -175,7 +192,8 @@ bool vtkFastVoronoi3D::ReportOnInput(
                     << numberOfPoints
                     << " points have no cell of their own: " << this->NumberOfDuplicatePoints
                     << " exact duplicates (the first copy's cell is theirs), "
-                    << this->NumberOfInvalidPoints << " with NaN or infinite coordinates");
+                    << this->NumberOfInvalidPoints
+                    << " with NaN or infinite coordinates or weight");
   }
   if (!(box.volume() > 0))
   {
@@ -347,6 +365,10 @@ void vtkFastVoronoi3D::AddFigures(vtkFieldData* fields) const
     AddFieldValue(fields, "NumberOfDuplicatePoints", double(this->NumberOfDuplicatePoints));
     AddFieldValue(fields, "NumberOfInvalidPoints", double(this->NumberOfInvalidPoints));
   }
+  if (this->NumberOfHiddenPoints > 0)
+  {
+    AddFieldValue(fields, "NumberOfHiddenPoints", double(this->NumberOfHiddenPoints));
+  }
 }
 
 void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
@@ -356,6 +378,7 @@ void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
      << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
      << this->Bounds[5] << ")\n";
   os << indent << "Number Of Threads: " << this->NumberOfThreads << "\n";
+  os << indent << "WeightsAreRadii: " << this->WeightsAreRadii << "\n";
   os << indent << "Compute Density: " << this->ComputeDensity << "\n";
   os << indent << "Generate Polyhedra: " << this->GeneratePolyhedra << "\n";
   os << indent << "Generate Faces: " << this->GenerateFaces << "\n";

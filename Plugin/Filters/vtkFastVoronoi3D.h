@@ -98,6 +98,22 @@ public:
 
   ///@{
   /**
+   * Weighted points, as vtkFastDelaunay3D takes them: the input array to process 0 (none by
+   * default), a point array of radii (WeightsAreRadii, the default: weight r^2) or weights, gives
+   * each point's power (Laguerre, radical) cell, of the points x whose power distance
+   * |x - p|^2 - w is the least, as Voro++'s container_poly computes them. A cell may miss its own
+   * point; a hidden point's cell is empty (no faces, volume 0; NumberOfHiddenPoints counts them),
+   * and the volumes still fill the box. Density is then that of the regular tetrahedralization's
+   * vertices (NaN at hidden points). Across MPI ranks (vtkPFastVoronoi3D) weights are not
+   * available yet.
+   */
+  vtkSetMacro(WeightsAreRadii, vtkTypeBool);
+  vtkGetMacro(WeightsAreRadii, vtkTypeBool);
+  vtkBooleanMacro(WeightsAreRadii, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * When on (the default), each cell is its Voronoi polyhedron, a VTK_POLYHEDRON. When off, each
    * cell is a VTK_VERTEX at its generator (the input point) with the same cell data: every
    * point's Voronoi volume, area and neighbours in a small part of the polyhedra's memory.
@@ -127,11 +143,13 @@ public:
   ///@{
   /**
    * Figures of the last run: the distinct finite points (one cell each), the exact duplicates
-   * merged and the points with NaN or infinite coordinates left out.
+   * merged, the points with NaN or infinite coordinates (or weight) left out, and the weighted
+   * points hidden (an empty cell each).
    */
   vtkGetMacro(NumberOfGenerators, vtkIdType);
   vtkGetMacro(NumberOfDuplicatePoints, vtkIdType);
   vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
+  vtkGetMacro(NumberOfHiddenPoints, vtkIdType);
   ///@}
 
   ///@{
@@ -154,7 +172,8 @@ protected:
   /// The kernel's options from the properties, with progress and abort for the tetrahedralization.
   fd3::VoronoiOptions KernelOptions();
   /// Records the figures (of every rank, under MPI).
-  void RecordFigures(vtkIdType generators, vtkIdType duplicates, vtkIdType invalid);
+  void RecordFigures(
+    vtkIdType generators, vtkIdType duplicates, vtkIdType invalid, vtkIdType hidden = 0);
   /// Warns of what the figures say was left out, or why there are no cells (`status`, of the
   /// kernel, `box`, the box the cells were clipped to); false when there are no cells to output.
   bool ReportOnInput(fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints);
@@ -183,9 +202,11 @@ protected:
   vtkTypeBool ComputeDensity = 0;
   vtkTypeBool GeneratePolyhedra = 1;
   vtkTypeBool GenerateFaces = 0;
+  vtkTypeBool WeightsAreRadii = 1;
   vtkIdType NumberOfGenerators = 0;
   vtkIdType NumberOfDuplicatePoints = 0;
   vtkIdType NumberOfInvalidPoints = 0;
+  vtkIdType NumberOfHiddenPoints = 0;
   double KernelSeconds = 0.0;
   double ConversionSeconds = 0.0;
 

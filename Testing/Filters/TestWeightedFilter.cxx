@@ -2,9 +2,11 @@
 // with the exact validator, hidden points kept and counted, the weighted alpha shape.
 #include "VtkTestUtilities.h"
 #include "vtkFastDelaunay3D.h"
+#include "vtkFastVoronoi3D.h"
 
 #include <gtest/gtest.h>
 
+#include "vtkCellData.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -17,6 +19,7 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Delaunay.h"
+#include "fd3/Voronoi.h"
 
 #include <cmath>
 #include <random>
@@ -164,5 +167,47 @@ TEST(WeightedFilter, BadWeightsGetAMessageAndWellFormedOutput)
   EXPECT_TRUE(warnings->GetWarning());
   EXPECT_EQ(filter->GetNumberOfInvalidPoints(), 2);
   EXPECT_GT(filter->GetOutput()->GetNumberOfCells(), 0);
+}
+// Power cells: one per distinct point, a hidden point's empty, the volumes Core's, filling the box.
+TEST(WeightedFilter, VoronoiGivesPowerCells)
+{
+  std::vector<double> weights;
+  auto cloud = weightedCloud(3000, weights);
+  vtkNew<vtkFastVoronoi3D> voronoi;
+  voronoi->SetInputData(cloud);
+  voronoi->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Radius");
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  voronoi->AddObserver(vtkCommand::WarningEvent, warnings);
+  voronoi->Update();
+  EXPECT_FALSE(warnings->GetWarning()) << warnings->GetWarningMessage();
+  vtkUnstructuredGrid* out = voronoi->GetOutput();
+  ASSERT_EQ(out->GetNumberOfCells(), 3000);
+  const fd3test::Points p = fd3test::coordinates(vtkPointSet::SafeDownCast(cloud));
+  const fd3::VoronoiCells core = fd3::voronoiCells(p.data(), weights.data(), 3000);
+  EXPECT_EQ(voronoi->GetNumberOfHiddenPoints(), static_cast<vtkIdType>(core.stats.hiddenPoints));
+  EXPECT_GE(voronoi->GetNumberOfHiddenPoints(), 250);
+  vtkDataArray* hidden = out->GetFieldData()->GetArray("NumberOfHiddenPoints");
+  ASSERT_NE(hidden, nullptr);
+  EXPECT_EQ(hidden->GetComponent(0, 0), voronoi->GetNumberOfHiddenPoints());
+  vtkDataArray* volume = out->GetCellData()->GetArray("Volume");
+  vtkDataArray* generator = out->GetCellData()->GetArray("GeneratorId");
+  ASSERT_NE(volume, nullptr);
+  ASSERT_NE(generator, nullptr);
+  std::vector<double> byPoint(3000, -1);
+  for (std::size_t c = 0; c < core.numberOfCells(); ++c)
+    byPoint[core.generators[c]] = core.volumes[c];
+  double sum = 0;
+  vtkIdType empty = 0;
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+  {
+    const double v = volume->GetComponent(c, 0);
+    EXPECT_EQ(v, byPoint[static_cast<std::size_t>(generator->GetComponent(c, 0))]);
+    sum += v;
+    empty += v == 0;
+  }
+  EXPECT_GE(empty, voronoi->GetNumberOfHiddenPoints());
+  const fd3::Bounds box = fd3::finiteBounds(p.data(), 3000);
+  const double boxVolume = box.extent(0) * box.extent(1) * box.extent(2);
+  EXPECT_NEAR(sum, boxVolume, 1e-12 * boxVolume);
 }
 } // namespace

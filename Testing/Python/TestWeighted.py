@@ -1,7 +1,7 @@
-"""pvpython: Fast Delaunay 3D on weighted points. Weights defaults to None, even where the input
-has active scalars; a radii array then gives the regular tetrahedralization, whose hidden points
-stay in the output on no cell and are counted in the field data, and Alpha the weighted alpha
-shape.
+"""pvpython: Fast Delaunay 3D and Fast Voronoi 3D on weighted points. Weights defaults to None,
+even where the input has active scalars; a radii array then gives the regular tetrahedralization,
+whose hidden points stay in the output on no cell and are counted in the field data, Alpha the
+weighted alpha shape, and Fast Voronoi 3D the power cells, a hidden point's empty.
 
 usage: pvpython TestWeighted.py <plugin .so>
 """
@@ -42,6 +42,7 @@ def run(proxy):
     return output, set(ids.tolist())
 
 
+cloud.UpdatePipeline()  # the domain then lists Radius, the active scalars: still not the default
 delaunay = FastDelaunay3D(Input=cloud)
 assert list(delaunay.Weights) == ["POINTS", "None"], delaunay.Weights
 assert delaunay.WeightsAreRadii == 1
@@ -65,5 +66,17 @@ types = set(output.GetCellType(c) for c in range(output.GetNumberOfCells()))
 assert 10 in types and output.GetNumberOfCells() > 0, types  # VTK_TETRA among the cells
 assert len(used) <= total - hidden
 
-print("TestWeighted: %d of %d points hidden, weighted alpha shape of %d cells: OK"
+# Fast Voronoi 3D: power cells, a hidden point's empty, the volumes filling the points' box.
+voronoi = FastVoronoi3D(Input=cloud)
+assert list(voronoi.Weights) == ["POINTS", "None"], voronoi.Weights
+voronoi.Weights = ["POINTS", "Radius"]
+cells = servermanager.Fetch(voronoi)
+assert cells.GetNumberOfCells() == total
+assert int(cells.GetFieldData().GetArray("NumberOfHiddenPoints").GetValue(0)) == hidden
+volumes = vtk_to_numpy(cells.GetCellData().GetArray("Volume"))
+box = 1.2 ** 3  # the corners' box
+assert abs(volumes.sum() - box) < 1e-12 * box, volumes.sum()
+assert (volumes == 0).sum() >= hidden
+
+print("TestWeighted: %d of %d points hidden, weighted alpha shape of %d cells, power cells: OK"
       % (hidden, total, output.GetNumberOfCells()))
