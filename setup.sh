@@ -9,6 +9,8 @@
 #                       output/benchmark.{md,csv,png}, the paper's Table 1 into output/table1.md,
 #                       the Voronoi cells against Voro++ and scipy into output/voronoi.{md,csv},
 #                       Fast Voronoi 3D under pvpython into output/pvpython-voronoi.md,
+#                       weighted points against CGAL's regular triangulation and Voro++'s
+#                       radical cells into output/weighted.{md,csv},
 #                       instructions and cache misses per point for Core and CGAL (cachegrind)
 #                       into output/work-per-point.md,
 #                       and the threads' scaling model (1 to 64 threads, default 4000000 points)
@@ -84,6 +86,8 @@ case "${1:-build}" in
     PYTHONPATH="$PWD/build/lib/python3.11/site-packages" "${xvfb[@]}" pvpython \
       Testing/Benchmark/pvpython_voronoi.py "$plugin" "$(echo "${2:-1000000}" | tr ',' '\n' | tail -1)" \
       3 1 build/bin/Benchmark | tee output/pvpython-voronoi.md
+    build/bin/Benchmark --weighted --sizes "${2:-100000,1000000}" --repeat 3 \
+      --markdown output/weighted.md --csv output/weighted.csv
     build/bin/Benchmark --scaling --sizes "${3:-4000000}" --threads 1,2,4,8,16,32,64 \
       --kinds cube,ball,clusters,torus,cylinder,noisyshell,scans,terrain,molshell \
       --markdown output/scaling.md --csv output/scaling.csv

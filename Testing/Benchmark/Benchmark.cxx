@@ -17,6 +17,10 @@
 //   Benchmark --voronoi [--kinds ...] [--sizes N] [--threads 1,2] [--methods Core,filter,...]
 //             [--csv FILE] [--markdown FILE]
 //                                            Voronoi cells: Core, Voro++, scipy (VoronoiBench.cxx)
+//   Benchmark --weighted [--sizes N] [--radii LO,HI] [--repeat K] [--methods Core,CGAL,cells,Voro++]
+//             [--csv FILE] [--markdown FILE]
+//                                            weighted points: CGAL's regular triangulation, Voro++'s
+//                                            radical cells (WeightedBench.cxx)
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
 // child resets it) and a crash or a time-out costs one row, not the run.
@@ -24,6 +28,7 @@
 #include "Scaling.h"
 #include "VoronoiBench.h"
 #include "VtkTestUtilities.h"
+#include "WeightedBench.h"
 #include "fd3/Delaunay.h"
 #include "vtkFastDelaunay3D.h"
 #include "vtkFastVoronoi3D.h"
@@ -247,14 +252,6 @@ Measurement runTetgen(const fd3test::Points& p, std::size_t validateLimit)
 }
 #endif
 
-std::string cell(const Measurement& m, const char* format, double value)
-{
-  if (!m.ran)
-    return m.note.empty() ? "skipped" : m.note;
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
 } // namespace
 
 // The paper's Table 1 (HP 735, 1994): points, tetrahedra, tetrahedra per second, mean path.
@@ -481,6 +478,8 @@ int main(int argc, char* argv[])
     return scalingMain(argc, argv);
   if (given("--voronoi"))
     return voronoiMain(argc, argv, runVoronoiFilter);
+  if (given("--weighted"))
+    return weightedMain(argc, argv);
   Settings settings;
   if (!parse(argc, argv, settings))
     return 2;

@@ -9,6 +9,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -190,7 +191,17 @@ inline std::vector<std::string> split(const std::string& s)
   return out;
 }
 
-/// The options that `--scaling` and `--voronoi` share; defaults are each mode's.
+/// A table cell: `value` in `format` where the run ran, else why not.
+inline std::string cell(const Measurement& m, const char* format, double value)
+{
+  if (!m.ran)
+    return m.note.empty() ? "skipped" : m.note;
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+/// The options that `--scaling`, `--voronoi` and `--weighted` share; defaults are each mode's.
 struct RunSettings
 {
   std::vector<std::string> kinds;
@@ -198,11 +209,12 @@ struct RunSettings
   std::vector<int> threads;
   std::vector<std::string> methods; ///< the ones to run; empty for all
   double limit = 1e9;               ///< seconds for one run
+  int repeat = 1;                   ///< interleaved runs of every method, where a mode takes it
   std::string csvFile, markdownFile;
 };
 
-/// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--methods M,..] [--limit S] [--csv F]
-/// [--markdown F] into `settings`, skipping the mode's own `flag`; false (with a message) on any other option.
+/// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--methods M,..] [--limit S] [--repeat K]
+/// [--csv F] [--markdown F] into `settings`, skipping the mode's own `flag`; false (with a message) on any other option.
 inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettings& settings)
 {
   for (int i = 1; i < argc; i += 2)
@@ -226,6 +238,8 @@ inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettin
     }
     else if (key == "--limit")
       settings.limit = std::stod(value);
+    else if (key == "--repeat")
+      settings.repeat = std::max(1, std::stoi(value));
     else if (key == "--csv")
       settings.csvFile = value;
     else if (key == "--markdown")
