@@ -14,27 +14,35 @@ bool Inserter::baseInConflict(TetId base, VertId v)
     return true; // beyond the hull, where no point is hidden
   VertId tv[4];
   tets_.vertices(base, tv);
-  return conflictSoS(tv, v) > 0;
+  const Vertex* p = mesh_.vertices.data();
+  const double* q[4] = {p[tv[0]].xyz, p[tv[1]].xyz, p[tv[2]].xyz, p[tv[3]].xyz};
+  const double* w = mesh_.weights.data();
+  const double weights[4] = {w[tv[0]], w[tv[1]], w[tv[2]], w[tv[3]]};
+  return conflictProbe<true>(v).inside(q, weights);
 }
 
-// Every vertex of every deleted tetrahedron, repeats too: their records are in cache from the
-// cavity's tests, where a mark per vertex to list each once would be another array to miss in.
+// Only a vertex whose own tetrahedron (Vertex::tet) the cavity deletes can lose all of them: each
+// vertex is a candidate in one deleted tetrahedron at most, whose record, and the vertex's, the
+// cavity's tests have in cache.
 void Inserter::collectCavityVertices()
 {
   cavityVertices_.clear();
+  const Vertex* vertices = mesh_.vertices.data();
   for (const FaceCode c : cavity_.deleted)
+  {
+    const TetId t = tetOf(c);
     for (int i = 0; i < 4; ++i)
-      if (const VertId u = tets_.vertex(tetOf(c), i); u != kInfinite)
+      if (const VertId u = tets_.vertex(t, i); u != kInfinite && relaxedLoad(vertices[u].tet) == t)
         cavityVertices_.push_back(u);
+  }
 }
 
-// The fill gave every vertex of the cavity's boundary one of the new tetrahedra; a vertex of the
-// cavity still on one of the deleted ones is on no tetrahedron left (and hidden once: hide()
-// leaves it on none).
+// The fill gave every vertex of the cavity's boundary one of the new tetrahedra; a candidate
+// still on a deleted one is on no tetrahedron left.
 void Inserter::hideEnclosedVertices()
 {
   for (const VertId u : cavityVertices_)
-    if (const TetId t = relaxedLoad(mesh_.vertices[u].tet); t != kNoTet && tets_.isDead(t))
+    if (tets_.isDead(relaxedLoad(mesh_.vertices[u].tet)))
     {
       hide(u);
       --stats_.insertedPoints; // inserted by this inserter or another: the sum is right

@@ -278,8 +278,8 @@ private:
   /// hull face v lies beyond, conflicts with v: if not, v is hidden, since every tetrahedron in
   /// conflict with a point is connected to the one that contains it.
   bool baseInConflict(TetId base, VertId v);
-  /// The vertices of the cavity's tetrahedra, before the fill: those the fill leaves on no
-  /// tetrahedron are hidden by v (hideEnclosedVertices()).
+  /// The vertices of the cavity's tetrahedra that might lose all of theirs, before the fill:
+  /// those the fill leaves on no tetrahedron are hidden by v (hideEnclosedVertices()).
   void collectCavityVertices();
   void hideEnclosedVertices();
   void hide(VertId u);
