@@ -16,9 +16,11 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace
@@ -53,6 +55,60 @@ TEST(Threads, SameTetrahedraForEveryThreadCountOnEveryPointSet)
         << threads << " threads";
       EXPECT_EQ(parallel.stats.insertedPoints, serial.stats.insertedPoints);
       EXPECT_EQ(parallel.stats.duplicatesMerged, serial.stats.duplicatesMerged);
+      deferred += parallel.stats.deferredInsertions;
+    }
+    EXPECT_GT(deferred, 0u) << "the threads' borders should have put some insertions off";
+  }
+}
+
+// Weighted points: the same regular tetrahedralization and hidden points for every thread count,
+// where heavy points hide vertices that another region's or another locking thread's insertions
+// reached: uniform radii, and a packing whose small balls inside large ones are a fifth of it.
+TEST(Threads, SameRegularTetrahedraForEveryThreadCount)
+{
+  const std::size_t n = kPoints;
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  fd3test::Points uniform = fd3test::uniformCube(n, 6), packing = uniform;
+  std::vector<double> radii(n), packed(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    radii[i] = 0.002 + 0.02 * unit(random);
+    packed[i] = 0.03;
+    if (i % 5 == 4) // beside the point before it, far smaller
+    {
+      for (int k = 0; k < 3; ++k)
+        packing[3 * i + k] = packing[3 * (i - 1) + k] + 0.002 * unit(random);
+      packed[i] = 0.001;
+    }
+  }
+  for (auto [p, r] : {std::pair(&uniform, &radii), std::pair(&packing, &packed)})
+  {
+    std::vector<double> w(n);
+    for (std::size_t i = 0; i < n; ++i)
+      w[i] = (*r)[i] * (*r)[i];
+    fd3::Options options;
+    options.pointsPerThread = 32;
+    const fd3::Triangulation serial = fd3::triangulate(p->data(), w.data(), n, options);
+    ASSERT_EQ(serial.status, fd3::Status::Ok);
+    EXPECT_GT(serial.hidden.size(), 0u);
+    fd3test::ValidityOptions check;
+    check.weights = w.data();
+    check.hidden = serial.hidden;
+    const auto report = fd3test::checkTriangulation(p->data(), n, serial.tetrahedra, check);
+    EXPECT_TRUE(report.valid()) << report.summary();
+    const auto reference = fd3test::canonicalTetrahedra(serial.tetrahedra);
+    std::size_t deferred = 0;
+    for (int threads : {2, 3, 8, 64})
+    {
+      options.threads = threads;
+      const fd3::Triangulation parallel = fd3::triangulate(p->data(), w.data(), n, options);
+      ASSERT_EQ(parallel.status, fd3::Status::Ok) << threads << " threads";
+      EXPECT_EQ(fd3test::canonicalTetrahedra(parallel.tetrahedra), reference)
+        << threads << " threads";
+      EXPECT_EQ(parallel.hidden, serial.hidden) << threads << " threads";
+      EXPECT_EQ(parallel.stats.insertedPoints, serial.stats.insertedPoints);
+      EXPECT_EQ(parallel.stats.hiddenPoints, serial.stats.hiddenPoints);
       deferred += parallel.stats.deferredInsertions;
     }
     EXPECT_GT(deferred, 0u) << "the threads' borders should have put some insertions off";

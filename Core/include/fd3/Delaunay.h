@@ -254,8 +254,8 @@ Triangulation triangulate(const double* xyz, std::size_t count, const Options& o
 /// non-finite weight is left out as a non-finite point. A point whose power cell is empty is hidden:
 /// no vertex, listed in Triangulation::hidden; of points at one position, only the heaviest can be
 /// a vertex. Exact, as triangulate() is, with ties broken by the same symbolic perturbation of the
-/// lifted coordinate |p|^2 - w. Options::volumeThreshold does not apply (the result is exactly
-/// regular), and the insertion runs on one thread, whatever Options::threads says.
+/// lifted coordinate |p|^2 - w, and the same for any Options::threads. Options::volumeThreshold
+/// does not apply (the result is exactly regular).
 Triangulation triangulate(
   const double* xyz, const double* weights, std::size_t count, const Options& options = Options());
 

@@ -33,18 +33,21 @@ void Inserter::collectCavityVertices()
     const TetId t = tetOf(c);
     for (int i = 0; i < 4; ++i)
       if (const VertId u = tets_.vertex(t, i); u != kInfinite && relaxedLoad(vertices[u].tet) == t)
-        cavityVertices_.push_back(u);
+        cavityVertices_.push_back({u, t});
   }
 }
 
-// The fill gave every vertex of the cavity's boundary one of the new tetrahedra; a candidate
-// still on a deleted one is on no tetrahedron left.
+// A candidate on the cavity's boundary got one of the new tetrahedra from the fill (never a
+// deleted one: the new ones came from the pool before those went back to it), and in a locking
+// pass another inserter may have given it one of its own since; a candidate whose tetrahedron is
+// still the deleted one lies inside the cavity, on no tetrahedron left. Comparing the one word
+// reads no record that another inserter may be writing.
 void Inserter::hideEnclosedVertices()
 {
-  for (const VertId u : cavityVertices_)
-    if (tets_.isDead(relaxedLoad(mesh_.vertices[u].tet)))
+  for (const CavityVertex& candidate : cavityVertices_)
+    if (relaxedLoad(mesh_.vertices[candidate.vertex].tet) == candidate.tet)
     {
-      hide(u);
+      hide(candidate.vertex);
       --stats_.insertedPoints; // inserted by this inserter or another: the sum is right
     }
 }

@@ -202,7 +202,8 @@ private:
   void releaseHeld();
 
   // Locate.cxx
-  TetId startTet(VertId v) const;
+  TetId startTet(VertId v);
+  TetId liveStart();
   TetId regionStart(VertId v) const;
   template <bool Weighted>
   TetId walk(TetId from, VertId v);
@@ -312,7 +313,12 @@ private:
   bool lookForDuplicates_ = false;
   std::vector<std::pair<VertId, VertId>> duplicates_;
   std::vector<VertId> hidden_;
-  std::vector<VertId> cavityVertices_; // weighted only
+  struct CavityVertex
+  {
+    VertId vertex;
+    TetId tet; ///< its Vertex::tet, deleted by the cavity
+  };
+  std::vector<CavityVertex> cavityVertices_; // weighted only
   // The start of the next walk: the last inserted vertex (unrestricted), or, restricted, a
   // tetrahedron of the region near the last point: the last one created, or the base found for a
   // point that was put off (both the inserter's, unlike a vertex's tetrahedron).

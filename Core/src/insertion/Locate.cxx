@@ -58,7 +58,7 @@ void orderByDistance(const double* const q[4], const double* p, int order[4])
 // one the grid's onion search finds and the last inserted one (the curve order puts it close). On a
 // surface sample the grid's cells are sized for volume and hold many points each, so the last
 // vertex is often nearer; on volume data the grid's usually is.
-TetId Inserter::startTet(VertId v) const
+TetId Inserter::startTet(VertId v)
 {
   if (restricted_)
     return regionStart(v);
@@ -74,7 +74,22 @@ TetId Inserter::startTet(VertId v) const
       distance2(point(near), point(v)) < distance2(point(start), point(v)))
       start = near;
   }
-  return relaxedLoad(mesh_.vertices[start].tet);
+  const TetId t = relaxedLoad(mesh_.vertices[start].tet);
+  return t != kNoTet ? t : liveStart();
+}
+
+// Weighted, in a locking pass another inserter may hide this one's last vertex, or the grid's
+// since it was read: the last tetrahedron this inserter made or started from instead. In a
+// locking pass the walk takes it only if it is live (mayEnter()); alone, a dead one makes way for
+// the first live slot.
+TetId Inserter::liveStart()
+{
+  if (owners_ || !tets_.isDead(regionStart_))
+    return regionStart_;
+  TetId t = 0;
+  while (tets_.isDead(t))
+    ++t;
+  return regionStart_ = t;
 }
 
 // In a region, the start must be the inserter's. The candidates are the region's tetrahedron near
@@ -90,8 +105,9 @@ TetId Inserter::regionStart(VertId v) const
   if (!mesh_.grid.enabled())
     return regionStart_;
   const double* p = point(v);
-  const VertId near = mesh_.grid.nearestInserted(
-    p, kMaxOnionLayers, [this](VertId u) { return region_.contains(point(u)); });
+  // A weighted mesh's grid may name a vertex hidden since (in the region: by this inserter).
+  const VertId near = mesh_.grid.nearestInserted(p, kMaxOnionLayers,
+    [this](VertId u) { return region_.contains(point(u)) && mesh_.vertices[u].tet != kNoTet; });
   if (near == BackgroundGrid::kEmpty)
     return regionStart_;
   VertId tv[4];

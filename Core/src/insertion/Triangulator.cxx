@@ -94,8 +94,7 @@ bool Triangulator::insertRounds(std::size_t begin, std::size_t end,
   const std::vector<std::size_t>& roundStarts, bool reserveEarly,
   const std::function<bool(double)>& progress)
 {
-  const bool parallel =
-    inserters_.size() > 1 && mesh_.options.volumeThreshold <= 0 && !mesh_.weighted();
+  const bool parallel = inserters_.size() > 1 && mesh_.options.volumeThreshold <= 0;
   // Once a few rounds are in (random samples of the whole set), the tetrahedra per vertex tell
   // the final count, and memory for all is reserved (only what is written becomes resident).
   const std::size_t reserveAt = std::max<std::size_t>(end / 32, 4096);
