@@ -8,8 +8,10 @@
 #include "vtkArrayDispatch.h"
 #include "vtkDataArray.h"
 #include "vtkDataArrayRange.h"
+#include "vtkDataObject.h"
 #include "vtkDataSet.h"
 #include "vtkDoubleArray.h"
+#include "vtkInformation.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
@@ -48,6 +50,13 @@ bool CheckAbort(Algorithm* filter, long)
 
 namespace fd3vtk
 {
+bool WeightsChosen(vtkAlgorithm* filter)
+{
+  vtkInformation* chosen = filter->GetInputArrayInformation(0);
+  return chosen->Has(vtkDataObject::FIELD_NAME()) ||
+    chosen->Has(vtkDataObject::FIELD_ATTRIBUTE_TYPE());
+}
+
 std::vector<double> PointWeights(
   vtkDataArray* array, vtkIdType inputPoints, bool radii, std::size_t count, std::string& problem)
 {

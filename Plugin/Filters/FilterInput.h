@@ -16,6 +16,7 @@
 
 class vtkAlgorithm;
 class vtkDataArray;
+class vtkInformationVector;
 class vtkDataSet;
 class vtkPoints;
 
@@ -31,6 +32,11 @@ FASTDELAUNAY3DFILTERS_EXPORT vtkSmartPointer<vtkPoints> PointsInPrecision(
 /// filled without a virtual call per point.
 FASTDELAUNAY3DFILTERS_EXPORT const double* CoordinatesAsDoubles(
   vtkPoints* points, std::vector<double>& copy);
+
+/// Weighted points: whether the filter's input array to process 0 is named at all (where it is
+/// not, vtkAlgorithm::GetInputArrayToProcess() reports an error; ParaView's "None" names no array
+/// of the input, and that call then gives null).
+FASTDELAUNAY3DFILTERS_EXPORT bool WeightsChosen(vtkAlgorithm* filter);
 
 /// Weighted points: the weights of an input's `inputPoints` points from `array` (a radius r gives
 /// r^2 where `radii`), `count` of them, 0 past the input's (points a filter adds). Empty, with the

@@ -137,7 +137,7 @@ void AddCellMeasures(
 }
 
 /// What the tetrahedralization leaves out, by cause, with what keeps it; empty when nothing is.
-std::string LeftOutPoints(const fd3::Statistics& stats)
+std::string LeftOutPoints(const fd3::Statistics& stats, bool weighted)
 {
   std::ostringstream causes;
   const char* separator = "";
@@ -156,7 +156,9 @@ std::string LeftOutPoints(const fd3::Statistics& stats)
   if (stats.nonFinitePoints > 0)
   {
     causes << separator << stats.nonFinitePoints
-           << " with NaN or infinite coordinates or weight (no position or power to triangulate)";
+           << (weighted ? " with NaN or infinite coordinates or weight (no position or power to "
+                          "triangulate)"
+                        : " with NaN or infinite coordinates (no position to triangulate)");
   }
   return causes.str();
 }
@@ -343,7 +345,9 @@ int vtkFastDelaunay3D::RequestData(
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
   std::vector<double> weights;
-  if (vtkDataArray* weightArray = this->GetInputArrayToProcess(0, inputVector))
+  vtkDataArray* weightArray =
+    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+  if (weightArray)
   {
     std::string problem;
     weights =
@@ -383,7 +387,7 @@ int vtkFastDelaunay3D::RequestData(
     SetPointsWithoutCells(output, points, pointData);
     return 0;
   }
-  if (!this->ReportOnInput(result.status, result.stats, numberOfPoints))
+  if (!this->ReportOnInput(result.status, result.stats, numberOfPoints, weightOf != nullptr))
   {
     SetPointsWithoutCells(output, points, pointData);
     return 1;
@@ -530,9 +534,9 @@ void vtkFastDelaunay3D::RecordFigures(const fd3::Statistics& stats)
 }
 
 bool vtkFastDelaunay3D::ReportOnInput(
-  fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints)
+  fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints, bool weighted)
 {
-  const std::string leftOut = LeftOutPoints(stats);
+  const std::string leftOut = LeftOutPoints(stats, weighted);
   if (status != fd3::Status::Ok)
   {
     vtkWarningMacro("Cannot triangulate: "

@@ -410,7 +410,9 @@ protected:
     vtkIdType inputPoints, const fd3::Bounds& bounds);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
-  bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints);
+  /// (`weighted`: the points had weights, whose NaN or Inf leaves a point out too.)
+  bool ReportOnInput(fd3::Status status, const fd3::Statistics& stats, vtkIdType numberOfPoints,
+    bool weighted = false);
   /// The tetrahedra, or the alpha shape's cells, of `result` (ids into xyz; weighted where
   /// `weights` is given), those that `keep` accepts. Without an alpha shape the output takes
   /// result.tetrahedra over (left empty).

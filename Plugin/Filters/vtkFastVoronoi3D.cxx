@@ -103,7 +103,9 @@ int vtkFastVoronoi3D::RequestData(
   std::vector<double> converted;
   const double* xyz = fd3vtk::CoordinatesAsDoubles(points, converted);
   std::vector<double> weights;
-  if (vtkDataArray* weightArray = this->GetInputArrayToProcess(0, inputVector))
+  vtkDataArray* weightArray =
+    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+  if (weightArray)
   {
     std::string problem;
     weights = fd3vtk::PointWeights(weightArray, numberOfPoints, this->WeightsAreRadii,
@@ -136,7 +138,7 @@ int vtkFastVoronoi3D::RequestData(
     static_cast<vtkIdType>(cells.stats.duplicatesMerged),
     static_cast<vtkIdType>(cells.stats.nonFinitePoints),
     static_cast<vtkIdType>(cells.stats.hiddenPoints));
-  if (!this->ReportOnInput(cells.status, cells.box, numberOfPoints))
+  if (!this->ReportOnInput(cells.status, cells.box, numberOfPoints, !weights.empty()))
   {
     return 1;
   }
@@ -179,7 +181,7 @@ void vtkFastVoronoi3D::RecordFigures(
 }
 
 bool vtkFastVoronoi3D::ReportOnInput(
-  fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints)
+  fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints, bool weighted)
 {
   if (status != fd3::Status::Ok)
   {
@@ -192,8 +194,8 @@ bool vtkFastVoronoi3D::ReportOnInput(
                     << numberOfPoints
                     << " points have no cell of their own: " << this->NumberOfDuplicatePoints
                     << " exact duplicates (the first copy's cell is theirs), "
-                    << this->NumberOfInvalidPoints
-                    << " with NaN or infinite coordinates or weight");
+                    << this->NumberOfInvalidPoints << " with NaN or infinite coordinates"
+                    << (weighted ? " or weight" : ""));
   }
   if (!(box.volume() > 0))
   {

@@ -176,7 +176,8 @@ protected:
     vtkIdType generators, vtkIdType duplicates, vtkIdType invalid, vtkIdType hidden = 0);
   /// Warns of what the figures say was left out, or why there are no cells (`status`, of the
   /// kernel, `box`, the box the cells were clipped to); false when there are no cells to output.
-  bool ReportOnInput(fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints);
+  bool ReportOnInput(
+    fd3::Status status, const fd3::Bounds& box, vtkIdType numberOfPoints, bool weighted = false);
   /// The first output's points and cells, polyhedra or generators as GeneratePolyhedra says
   /// (`xyz`: the points the kernel was given), written on `workers`; returns the polyhedra's
   /// points, which the faces are on (null where the kernel made no polyhedra). The cells' points

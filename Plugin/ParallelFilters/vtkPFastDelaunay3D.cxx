@@ -59,7 +59,7 @@ int vtkPFastDelaunay3D::RequestData(
     fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision);
   vtkPointData* inputData = input ? input->GetPointData() : nullptr;
   const bool root = this->Controller->GetLocalProcessId() == 0;
-  if (this->GetInputArrayToProcess(0, inputVector))
+  if (fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector))
   {
     // Each rank would need its halo for power distances, where a heavy point far from the
     // boundary can reach across it.

@@ -105,7 +105,7 @@ int vtkPFastVoronoi3D::RequestData(
   output->Initialize();
   faces->Initialize();
   this->RecordFigures(0, 0, 0);
-  if (this->GetInputArrayToProcess(0, inputVector))
+  if (fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector))
   {
     // Each rank's halo would have to reach by power distance, where a heavy point far from the
     // boundary can reach across it.
