@@ -665,6 +665,8 @@ bool IncrementalDelaunay::addOne(const double p[3], MeshChange& change)
 {
   if (impl_->released || impl_->status != Status::Ok)
     throw std::logic_error("fd3::IncrementalDelaunay::addOne: no tetrahedralization to add to");
+  if (impl_->weighted)
+    throw std::logic_error("fd3::IncrementalDelaunay::addOne: a weighted mesh takes add() only");
   if (impl_->points + 1 >= kMaxVertices)
     throw std::length_error("fd3::IncrementalDelaunay::addOne: more than 2^30 points");
   return impl_->insertOne(p, change);

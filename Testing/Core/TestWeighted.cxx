@@ -465,6 +465,8 @@ TEST(Weighted, MeshBuiltInPiecesIsTheWholeSets)
   const fd3::Frame frame = fd3::frameOf(p.data(), total);
   fd3::IncrementalDelaunay mesh(p.data(), first, {}, frame, total - first, w.data());
   EXPECT_THROW(mesh.add(p.data() + 3 * first, 1), std::logic_error);
+  fd3::MeshChange change;
+  EXPECT_THROW(mesh.addOne(p.data(), change), std::logic_error);
   mesh.add(p.data() + 3 * first, total - first, w.data() + first);
   const fd3::Triangulation pieces = mesh.release();
   const fd3::Triangulation whole = fd3::triangulate(p.data(), w.data(), total);

@@ -106,7 +106,8 @@ public:
   /// current (vtkFastDelaunay3D's incremental API): one insertion on the calling thread, its
   /// deleted and made finite tetrahedra in `change`. The point takes the next id, as in add();
   /// returns whether it became a vertex (false: not finite, or a repeat of a vertex, which it is
-  /// merged into). Throws as add() does, and std::logic_error while status() is not Ok.
+  /// merged into). Throws as add() does, and std::logic_error while status() is not Ok or on a
+  /// weighted mesh.
   bool addOne(const double p[3], MeshChange& change);
   /// The ids of the live finite tetrahedra, for a caller of addOne() that starts its own mesh.
   std::vector<std::uint32_t> liveTetrahedra() const;
