@@ -106,33 +106,13 @@ int exactInSphere(
   }
   if (differencesInRange && trusted(value, permanent))
     return value < 0 ? 1 : -1;
-  mpq_class R[4][4];
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int k = 0; k < 3; ++k)
-      R[i][k] = mpq_class(rows[i][k]) - mpq_class(e[k]);
-    R[i][3] = R[i][0] * R[i][0] + R[i][1] * R[i][1] + R[i][2] * R[i][2];
-  }
-  mpq_class det = 0;
-  for (int i = 0; i < 4; ++i)
-  {
-    const mpq_class* m[3];
-    int k = 0;
-    for (int j = 0; j < 4; ++j)
-      if (j != i)
-        m[k++] = R[j];
-    const mpq_class minor = det3(m[0], m[1], m[2]);
-    if (i % 2 == 0)
-      det -= R[i][3] * minor;
-    else
-      det += R[i][3] * minor;
-  }
-  return -sign(det);
+  const double zero[4] = {0, 0, 0, 0};
+  return exactPowerTest(rows, e, zero, 0);
 }
 
 int exactPowerTest(const double* const p[4], const double* e, const double w[4], double we)
 {
-  // exactInSphere()'s rows with each lift lowered by w - we: rational, no filter.
+  // Rows (x - e, |x - e|^2 - (w - we)), rational, no filter: exactInSphere()'s exact stage.
   mpq_class R[4][4];
   for (int i = 0; i < 4; ++i)
   {

@@ -189,6 +189,35 @@ int weightScaleLimit(const double* weights, int count)
   // floor(unit / 2), also for negative units.
   return unit == INT_MAX ? INT_MAX : (unit >= 0 ? unit / 2 : -((1 - unit) / 2));
 }
+
+/// insphere's sign from the integer rows x - e of q: det[(x - e, lift)] expanded along the lift
+/// column, each lift |x - e|^2, lowered by w_x - w_e where `weights` (of the rows, then of e) are
+/// given, counted at twice the rows' scale (which weightScaleLimit() made low enough).
+int liftedDeterminantSign(IntegerRows<4>& q, const double* weights = nullptr)
+{
+  const int weightScale = 2 * q.scale();
+  Integer det, lift, minor, weight, weightE;
+  if (weights)
+    IntegerRows<4>::set(weightE, weights[4], weightScale);
+  const int others[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  const int sign[4] = {-1, 1, -1, 1};
+  for (int r = 0; r < 4; ++r)
+  {
+    q.lift(r, lift);
+    if (weights)
+    {
+      IntegerRows<4>::set(weight, weights[r], weightScale);
+      mpz_sub(lift.get(), lift.get(), weight.get());
+      mpz_add(lift.get(), lift.get(), weightE.get());
+    }
+    q.minor3(others[r][0], others[r][1], others[r][2], minor);
+    if (sign[r] > 0)
+      mpz_addmul(det.get(), lift.get(), minor.get());
+    else
+      mpz_submul(det.get(), lift.get(), minor.get());
+  }
+  return -mpz_sgn(det.get());
+}
 } // namespace
 
 bool exactCircumcentreOffset(const double* a, const double* b, const double* c, const double* d,
@@ -587,20 +616,7 @@ int Predicates::inSphereExact(
   {
     ++integerExactCalls;
     IntegerRows<4> q(rows, e);
-    // Laplace expansion along the lift column, as below.
-    Integer det, lift, minor;
-    const int others[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-    const int sign[4] = {-1, 1, -1, 1};
-    for (int r = 0; r < 4; ++r)
-    {
-      q.lift(r, lift);
-      q.minor3(others[r][0], others[r][1], others[r][2], minor);
-      if (sign[r] > 0)
-        mpz_addmul(det.get(), lift.get(), minor.get());
-      else
-        mpz_submul(det.get(), lift.get(), minor.get());
-    }
-    return -mpz_sgn(det.get());
+    return liftedDeterminantSign(q);
   }
   ExpansionArena& x = arena_;
   x.reset();
@@ -662,24 +678,7 @@ int Predicates::powerTestExact(
   ++integerExactCalls;
   const double weights[5] = {w[0], w[1], w[2], w[3], we};
   IntegerRows<4> q(p, pe, weightScaleLimit(weights, 5));
-  const int weightScale = 2 * q.scale();
-  Integer det, lift, minor, weight, weightE;
-  IntegerRows<4>::set(weightE, we, weightScale);
-  const int others[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  const int sign[4] = {-1, 1, -1, 1};
-  for (int r = 0; r < 4; ++r)
-  {
-    q.lift(r, lift);
-    IntegerRows<4>::set(weight, w[r], weightScale);
-    mpz_sub(lift.get(), lift.get(), weight.get());
-    mpz_add(lift.get(), lift.get(), weightE.get());
-    q.minor3(others[r][0], others[r][1], others[r][2], minor);
-    if (sign[r] > 0)
-      mpz_addmul(det.get(), lift.get(), minor.get());
-    else
-      mpz_submul(det.get(), lift.get(), minor.get());
-  }
-  return -mpz_sgn(det.get());
+  return liftedDeterminantSign(q, weights);
 }
 
 // Four of the five points in a plane x_k = v: expanding the homogeneous 5x5 form of the

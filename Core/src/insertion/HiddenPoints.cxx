@@ -16,8 +16,8 @@ bool Inserter::baseInConflict(TetId base, VertId v)
   tets_.vertices(base, tv);
   const Vertex* p = mesh_.vertices.data();
   const double* q[4] = {p[tv[0]].xyz, p[tv[1]].xyz, p[tv[2]].xyz, p[tv[3]].xyz};
-  const double* w = mesh_.weights.data();
-  const double weights[4] = {w[tv[0]], w[tv[1]], w[tv[2]], w[tv[3]]};
+  double weights[4];
+  weightsOf(tv, weights);
   return conflictProbe<true>(v).inside(q, weights);
 }
 

@@ -215,8 +215,8 @@ private:
   }
   bool provenInConflict(const PowerProbe& probe, const double* const q[4], const VertId tv[4])
   {
-    const double* w = mesh_.weights.data();
-    const double weights[4] = {w[tv[0]], w[tv[1]], w[tv[2]], w[tv[3]]};
+    double weights[4];
+    weightsOf(tv, weights);
     return probe.provenInside(q, weights);
   }
   TetId scanForBase(VertId v, bool toFirstConflict);
@@ -226,6 +226,12 @@ private:
   template <Access A>
   Outcome insertAs(VertId v);
 
+  /// The weights of the finite tetrahedron tv's vertices (weighted meshes only).
+  void weightsOf(const VertId tv[4], double out[4]) const
+  {
+    for (int k = 0; k < 4; ++k)
+      out[k] = mesh_.weights[tv[k]];
+  }
   // DigCavity.cxx
   /// Whether e conflicts with the finite tetrahedron `tet`, ties broken symbolically: e in its
   /// circumsphere or, weighted, of negative power distance to its orthogonal sphere.
@@ -235,9 +241,9 @@ private:
     const double* p[4] = {v[tet[0]].xyz, v[tet[1]].xyz, v[tet[2]].xyz, v[tet[3]].xyz};
     if (!mesh_.weighted())
       return predicates_.inSphereSoS(p, v[e].xyz);
-    const double* w = mesh_.weights.data();
-    const double weights[4] = {w[tet[0]], w[tet[1]], w[tet[2]], w[tet[3]]};
-    return predicates_.powerTestSoS(p, v[e].xyz, weights, w[e]);
+    double weights[4];
+    weightsOf(tet, weights);
+    return predicates_.powerTestSoS(p, v[e].xyz, weights, mesh_.weights[e]);
   }
   /// The cavity search's conflict tests for v: InSphereProbe, or weighted, PowerProbe.
   template <bool Weighted>
