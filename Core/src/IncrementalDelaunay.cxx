@@ -222,6 +222,9 @@ struct IncrementalDelaunay::Impl
   std::vector<double> heldWeights;
   std::vector<std::uint32_t> hiddenCopies;
 
+  /// The first batch, in a frame given by the caller.
+  void start(const double* xyz, std::size_t count, const Options& givenOptions,
+    const Frame& givenFrame, std::size_t givenRoom, const double* givenWeights);
   void insertFirst(const double* xyz, std::size_t count);
   void insertMore(const double* xyz, std::size_t count, const double* moreWeights);
   bool insertOne(const double* p, MeshChange& change);
@@ -602,23 +605,31 @@ void IncrementalDelaunay::Impl::writeRecordedPoints(double* xyz) const
       std::copy_n(xyz + 3 * std::size_t(original), 3, xyz + 3 * std::size_t(copy));
 }
 
+void IncrementalDelaunay::Impl::start(const double* xyz, std::size_t count,
+  const Options& givenOptions, const Frame& givenFrame, std::size_t givenRoom,
+  const double* givenWeights)
+{
+  options = givenOptions;
+  frame = givenFrame;
+  room = givenRoom;
+  weights = givenWeights;
+  if (weights)
+    options.volumeThreshold = 0; // the regular tetrahedralization, exactly
+  insertFirst(xyz, count);
+  if (!triangulator) // until the mesh can start
+  {
+    if (!takesPoints)
+      held.assign(xyz, xyz + 3 * count);
+    if (weights)
+      heldWeights.assign(weights, weights + count);
+  }
+}
+
 IncrementalDelaunay::IncrementalDelaunay(const double* xyz, std::size_t count,
   const Options& options, const Frame& frame, std::size_t room, const double* weights)
   : impl_(std::make_unique<Impl>())
 {
-  impl_->options = options;
-  impl_->frame = frame;
-  impl_->room = room;
-  impl_->weights = weights;
-  if (weights)
-    impl_->options.volumeThreshold = 0; // the regular tetrahedralization, exactly
-  impl_->insertFirst(xyz, count);
-  if (!impl_->triangulator)
-  {
-    impl_->held.assign(xyz, xyz + 3 * count); // until the mesh can start
-    if (weights)
-      impl_->heldWeights.assign(weights, weights + count);
-  }
+  impl_->start(xyz, count, options, frame, room, weights);
 }
 
 IncrementalDelaunay::IncrementalDelaunay(
@@ -633,18 +644,15 @@ IncrementalDelaunay::IncrementalDelaunay(
   impl_->insertFirst(xyz, count);
 }
 
-IncrementalDelaunay::IncrementalDelaunay(
-  Coordinates xyz, const Options& options, const Frame& frame, std::size_t room)
+IncrementalDelaunay::IncrementalDelaunay(Coordinates xyz, const Options& options,
+  const Frame& frame, std::size_t room, const double* weights)
   : impl_(std::make_unique<Impl>())
 {
   if (xyz.size() % 3 != 0)
     throw std::invalid_argument("fd3::IncrementalDelaunay: coordinates are not in threes");
-  impl_->options = options;
-  impl_->frame = frame;
-  impl_->room = room;
   impl_->takesPoints = true;
   impl_->held = std::move(xyz);
-  impl_->insertFirst(impl_->held.data(), impl_->held.size() / 3);
+  impl_->start(impl_->held.data(), impl_->held.size() / 3, options, frame, room, weights);
 }
 
 IncrementalDelaunay::~IncrementalDelaunay() = default;
@@ -652,6 +660,11 @@ IncrementalDelaunay::~IncrementalDelaunay() = default;
 Status IncrementalDelaunay::status() const
 {
   return impl_->status;
+}
+
+std::size_t IncrementalDelaunay::pointCount() const
+{
+  return impl_->points;
 }
 
 void IncrementalDelaunay::add(const double* xyz, std::size_t count, const double* weights)
@@ -743,7 +756,7 @@ std::size_t IncrementalDelaunay::heldPoints() const
 }
 
 std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
-  const std::vector<Bounds>& boxes) const
+  const std::vector<Bounds>& boxes, double heaviest) const
 {
   // In the frame, from the vertex records: they lie in insertion order, as the tetrahedra that
   // use them were made, where the input's coordinates lie in input order and a pass over the
@@ -752,7 +765,10 @@ std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
   std::vector<Bounds> framed = boxes;
   for (Bounds& box : framed)
     box = toFrame(impl_->frame, box);
-  HaloBuilder halo(framed);
+  const bool weighted = impl_->weighted;
+  if (weighted)
+    heaviest = std::ldexp(heaviest, impl_->frame.identity ? 0 : 2 * std::ilogb(impl_->frame.scale));
+  HaloBuilder halo(framed, heaviest);
   if (impl_->status != Status::Ok || !impl_->triangulator)
     return halo.take();
   const TetMesh& mesh = impl_->triangulator->tetrahedra();
@@ -776,7 +792,14 @@ std::vector<std::vector<std::uint32_t>> IncrementalDelaunay::haloVertices(
     {
       const std::uint32_t ids[4] = {pointOf(v[0]), pointOf(v[1]), pointOf(v[2]), pointOf(v[3])};
       const double* p[4] = {point(v[0]), point(v[1]), point(v[2]), point(v[3])};
-      halo.tetrahedron(p, ids);
+      if (weighted)
+      {
+        const std::vector<double>& w = impl_->triangulator->weights();
+        const double tw[4] = {w[v[0]], w[v[1]], w[v[2]], w[v[3]]};
+        halo.tetrahedron(p, ids, tw);
+      }
+      else
+        halo.tetrahedron(p, ids);
     }
   }
   return halo.take();

@@ -1,7 +1,9 @@
 // fd3::haloVertices, the exchange of the distributed filter, simulated in one process: every
 // piece tetrahedralizes its own points plus the halo the others send it, keeps the tetrahedra
 // whose lexicographically smallest vertex it owns (the lowest piece holding a copy of it), and the
-// pieces together are the one-piece tetrahedralization, each tetrahedron exactly once.
+// pieces together are the one-piece tetrahedralization, each tetrahedron exactly once. Weighted
+// points too: the regular tetrahedralization, with each point hidden by the piece that owns it
+// exactly where the whole set hides it.
 #include "CoreTestUtilities.h"
 #include "ExactValidator.h"
 #include "PointSets.h"
@@ -11,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <random>
 
 namespace
@@ -30,27 +33,56 @@ fd3::Bounds boxOf(const fd3test::Points& p, const std::vector<std::uint32_t>& id
   return box;
 }
 
+/// Weighted points: every point's weight, and the largest.
+struct Weights
+{
+  std::vector<double> of;
+  double heaviest = -HUGE_VAL;
+
+  explicit Weights(std::vector<double> weights = {}) : of(std::move(weights))
+  {
+    for (double w : of)
+      heaviest = std::max(heaviest, w);
+  }
+};
+
 struct Piece
 {
   std::vector<std::uint32_t> ids; ///< input ids: its own points, then the halo received
   std::size_t own = 0;
   std::vector<double> xyz;
+  std::vector<double> weights; ///< weighted points only
   std::unique_ptr<fd3::IncrementalDelaunay> mesh;
 
-  void append(const fd3test::Points& p, const std::vector<std::uint32_t>& more)
+  void append(const fd3test::Points& p, const Weights& w, const std::vector<std::uint32_t>& more)
   {
     for (std::uint32_t id : more)
     {
       ids.push_back(id);
       xyz.insert(xyz.end(), p.begin() + 3 * id, p.begin() + 3 * id + 3);
+      if (!w.of.empty())
+        weights.push_back(w.of[id]);
     }
   }
+  const double* weightsFrom(std::size_t k) const
+  {
+    return weights.empty() ? nullptr : weights.data() + k;
+  }
+};
+
+/// The result of the pieces together: the tetrahedra (as input ids of first copies) and the hidden
+/// points (input ids, ascending), and the size of the halos.
+struct Distributed
+{
+  std::vector<std::uint32_t> tetrahedra;
+  std::vector<std::uint32_t> hidden;
+  std::size_t halo = 0;
 };
 
 /// What each piece receives from the others (input ids): every piece's halo for every other box,
 /// or all its points where it has no tetrahedron yet.
 std::vector<std::vector<std::uint32_t>> exchangeHalos(
-  const std::vector<Piece>& pieces, const std::vector<fd3::Bounds>& boxes)
+  const std::vector<Piece>& pieces, const std::vector<fd3::Bounds>& boxes, double heaviest)
 {
   const int pieceCount = static_cast<int>(pieces.size());
   std::vector<std::vector<std::uint32_t>> received(pieceCount);
@@ -61,8 +93,9 @@ std::vector<std::vector<std::uint32_t>> exchangeHalos(
     std::vector<std::vector<std::uint32_t>> halo(pieceCount);
     if (t.status == fd3::Status::Ok)
     {
-      halo = piece.mesh->haloVertices(boxes);
-      EXPECT_EQ(halo, fd3::haloVertices(piece.xyz.data(), t, boxes)) << "live mesh and snapshot";
+      halo = piece.mesh->haloVertices(boxes, heaviest);
+      EXPECT_EQ(halo, fd3::haloVertices(piece.xyz.data(), piece.weightsFrom(0), t, boxes, heaviest))
+        << "live mesh and snapshot";
     }
     else
     {
@@ -84,9 +117,9 @@ std::vector<std::vector<std::uint32_t>> exchangeHalos(
   return received;
 }
 
-/// The tetrahedra (as input ids of first copies) that the pieces keep, all pieces together.
-std::vector<std::uint32_t> distributedTetrahedra(
-  const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount, std::size_t* haloSize)
+/// What the pieces keep, all pieces together.
+Distributed distributedRun(
+  const fd3test::Points& p, const Weights& w, const std::vector<int>& pieceOf, int pieceCount)
 {
   const fd3::Frame frame = fd3test::frameOf(p);
   std::vector<Piece> pieces(pieceCount);
@@ -100,25 +133,30 @@ std::vector<std::uint32_t> distributedTetrahedra(
     piece.own = piece.ids.size();
     std::vector<std::uint32_t> own;
     own.swap(piece.ids);
-    piece.append(p, own);
+    piece.append(p, w, own);
     piece.mesh = std::make_unique<fd3::IncrementalDelaunay>(
-      piece.xyz.data(), piece.own, fd3::Options(), frame);
+      piece.xyz.data(), piece.own, fd3::Options(), frame, 0, piece.weightsFrom(0));
     boxes.push_back(boxOf(p, piece.ids));
   }
-  const std::vector<std::vector<std::uint32_t>> received = exchangeHalos(pieces, boxes);
+  const std::vector<std::vector<std::uint32_t>> received = exchangeHalos(pieces, boxes, w.heaviest);
   const std::vector<std::uint32_t> copy = fd3test::firstCopies(p);
-  std::vector<std::uint32_t> kept;
-  *haloSize = 0;
+  Distributed out;
   for (int j = 0; j < pieceCount; ++j)
   {
     Piece& piece = pieces[j];
-    *haloSize += received[j].size();
-    piece.append(p, received[j]);
-    piece.mesh->add(piece.xyz.data() + 3 * piece.own, received[j].size());
+    out.halo += received[j].size();
+    piece.append(p, w, received[j]);
+    piece.mesh->add(
+      piece.xyz.data() + 3 * piece.own, received[j].size(), piece.weightsFrom(piece.own));
     const fd3::Triangulation t = piece.mesh->release();
     if (t.status != fd3::Status::Ok)
     {
       continue;
+    }
+    for (const std::uint32_t h : t.hidden)
+    {
+      if (h < piece.own)
+        out.hidden.push_back(piece.ids[h]);
     }
     // The lowest piece holding each vertex's position owns it.
     std::vector<int> holder(piece.ids.size(), pieceCount);
@@ -138,11 +176,12 @@ std::vector<std::uint32_t> distributedTetrahedra(
       if (holder[smallest] == j)
       {
         for (int k = 0; k < 4; ++k)
-          kept.push_back(copy[piece.ids[v[k]]]);
+          out.tetrahedra.push_back(copy[piece.ids[v[k]]]);
       }
     }
   }
-  return kept;
+  std::sort(out.hidden.begin(), out.hidden.end());
+  return out;
 }
 
 std::vector<int> slabs(const fd3test::Points& p, int count)
@@ -158,22 +197,41 @@ std::vector<int> slabs(const fd3test::Points& p, int count)
   return pieceOf;
 }
 
-void expectSameAsOnePiece(const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount)
+void expectSameAsOnePiece(const fd3test::Points& p, const std::vector<int>& pieceOf, int pieceCount,
+  const Weights& w = Weights())
 {
-  fd3::Options options;
-  const fd3::Triangulation whole = fd3::triangulate(p.data(), p.size() / 3, options);
+  const fd3::Triangulation whole =
+    fd3::triangulate(p.data(), w.of.empty() ? nullptr : w.of.data(), p.size() / 3);
   ASSERT_EQ(whole.status, fd3::Status::Ok);
-  std::size_t haloSize = 0;
-  const std::vector<std::uint32_t> kept = distributedTetrahedra(p, pieceOf, pieceCount, &haloSize);
+  const Distributed pieces = distributedRun(p, w, pieceOf, pieceCount);
   const auto copy = fd3test::firstCopies(p);
   fd3::IdArray reference(whole.tetrahedra.size());
   std::transform(whole.tetrahedra.begin(), whole.tetrahedra.end(), reference.begin(),
     [&](std::uint32_t id) { return copy[id]; });
   // Equal sorted lists, so no tetrahedron is kept twice or missed.
-  EXPECT_EQ(fd3test::canonicalTetrahedra(kept), fd3test::canonicalTetrahedra(reference));
-  const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, kept);
+  EXPECT_EQ(
+    fd3test::canonicalTetrahedra(pieces.tetrahedra), fd3test::canonicalTetrahedra(reference));
+  EXPECT_EQ(pieces.hidden, whole.hidden);
+  fd3test::ValidityOptions check;
+  check.weights = w.of.empty() ? nullptr : w.of.data();
+  check.hidden = pieces.hidden;
+  const auto report = fd3test::checkTriangulation(p.data(), p.size() / 3, pieces.tetrahedra, check);
   EXPECT_TRUE(report.valid()) << report.summary();
-  testing::Test::RecordProperty("halo", std::to_string(haloSize));
+  testing::Test::RecordProperty("halo", std::to_string(pieces.halo));
+}
+
+/// Radii drawn in [lo, hi], squared, and `heavy` radii of `large` among them.
+Weights randomRadii(
+  std::size_t n, double lo, double hi, std::size_t heavy, double large, std::uint64_t seed)
+{
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> radius(lo, hi);
+  std::vector<double> w(n);
+  for (double& x : w)
+    x = std::pow(radius(random), 2);
+  for (std::size_t k = 0; k < heavy; ++k)
+    w[random() % n] = large * large;
+  return Weights(std::move(w));
 }
 } // namespace
 
@@ -229,4 +287,46 @@ TEST(Halo, DegeneratePiecesSendEverything)
   }
   ASSERT_EQ(pieceOf.size(), n + 23);
   expectSameAsOnePiece(p, pieceOf, 4);
+}
+
+// Weighted points: heavy points reach across the slabs' faces by power distance, far beyond
+// their circumspheres, and hide the points of other pieces; a packing hides a quarter of them.
+TEST(Halo, WeightedPiecesGiveTheOnePieceRegularTetrahedra)
+{
+  const fd3test::Points cube = fd3test::generate("cube", 4000, 11);
+  for (int pieces : {2, 3, 4})
+  {
+    SCOPED_TRACE(pieces);
+    expectSameAsOnePiece(
+      cube, slabs(cube, pieces), pieces, randomRadii(4000, 0.001, 0.03, 0, 0, 12));
+    expectSameAsOnePiece(
+      cube, slabs(cube, pieces), pieces, randomRadii(4000, 0.001, 0.03, 6, 0.2, 13));
+  }
+  std::vector<double> radii;
+  const fd3test::Points molecule = fd3test::molecule(3000, 14, radii);
+  for (double& r : radii)
+    r = (r + 1.4) * (r + 1.4);
+  expectSameAsOnePiece(molecule, slabs(molecule, 3), 3, Weights(radii));
+  std::mt19937 random(15);
+  std::vector<int> scattered(cube.size() / 3);
+  for (int& piece : scattered)
+    piece = static_cast<int>(random() % 3);
+  expectSameAsOnePiece(cube, scattered, 3, randomRadii(4000, 0.0, 0.05, 3, 0.3, 16));
+}
+
+TEST(Halo, WeightedPackingHidesAQuarterAcrossPieces)
+{
+  const std::size_t large = 3000, small = 1000;
+  fd3test::Points p = fd3test::uniformCube(large, 21);
+  std::vector<double> w(large, 0.1 * 0.1);
+  std::mt19937_64 random(22);
+  std::uniform_real_distribution<double> offset(-0.005, 0.005);
+  for (std::size_t i = 0; i < small; ++i)
+  {
+    const std::size_t c = random() % large;
+    for (int k = 0; k < 3; ++k)
+      p.push_back(p[3 * c + k] + offset(random));
+    w.push_back(0.001 * 0.001);
+  }
+  expectSameAsOnePiece(p, slabs(p, 4), 4, Weights(w));
 }

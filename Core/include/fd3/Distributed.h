@@ -7,6 +7,7 @@
 #include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -87,14 +88,16 @@ public:
   /// The same on points that the mesh takes (xyz.size() / 3 of them), and those of every add():
   /// it holds them for points() and release(Coordinates&), except where its vertex records give
   /// them back bit for bit, which it then frees as soon as the records are made, so that they
-  /// are not in the peak.
-  IncrementalDelaunay(
-    Coordinates xyz, const Options& options, const Frame& frame, std::size_t room = 0);
+  /// are not in the peak. The weights it does not take: they are read during the call.
+  IncrementalDelaunay(Coordinates xyz, const Options& options, const Frame& frame,
+    std::size_t room = 0, const double* weights = nullptr);
   ~IncrementalDelaunay();
   IncrementalDelaunay(const IncrementalDelaunay&) = delete;
   IncrementalDelaunay& operator=(const IncrementalDelaunay&) = delete;
 
   Status status() const;
+  /// The points given so far, every batch's: the ids handed out.
+  std::size_t pointCount() const;
   /// Inserts `count` more points, within the frame's box; those that repeat a point are merged
   /// into it as in triangulate(). Throws std::logic_error after an abort, a failed check or
   /// release(), std::invalid_argument for a point outside the frame. A weighted mesh takes the
@@ -133,8 +136,10 @@ public:
   std::size_t heldPoints() const;
 
   /// haloVertices() of the mesh as it stands, without a snapshot, computed in the frame; `boxes`
-  /// in the input's coordinates. Empty lists while status() is not Ok.
-  std::vector<std::vector<std::uint32_t>> haloVertices(const std::vector<Bounds>& boxes) const;
+  /// in the input's coordinates, and for a weighted mesh `heaviest` too, the largest finite
+  /// weight of every piece's points. Empty lists while status() is not Ok.
+  std::vector<std::vector<std::uint32_t>> haloVertices(
+    const std::vector<Bounds>& boxes, double heaviest = -HUGE_VAL) const;
 
 private:
   friend Triangulation triangulate(
@@ -156,6 +161,12 @@ private:
 /// 2017). Requires neighbours; a piece whose points have no tetrahedron sends them all instead.
 std::vector<std::vector<std::uint32_t>> haloVertices(
   const double* xyz, const Triangulation& triangulation, const std::vector<Bounds>& boxes);
+/// The same for a regular tetrahedralization, of points with `weights`: the orthogonal spheres of
+/// the tetrahedra take the place of circumspheres, each widened to the power distance of the
+/// heaviest point of any piece, `heaviest` (see Halo.cxx for why that is enough). A hidden point
+/// is no vertex and is never sent: the whole set hides it too.
+std::vector<std::vector<std::uint32_t>> haloVertices(const double* xyz, const double* weights,
+  const Triangulation& triangulation, const std::vector<Bounds>& boxes, double heaviest);
 
 } // namespace fd3
 

@@ -67,6 +67,8 @@ public:
   IdArray copyRecords() const { return mesh_.tets.copyRecords(); }
   /// The vertices, by insertion rank (each with its input point id).
   const VertexArray& vertices() const { return mesh_.vertices; }
+  /// Weighted: the vertices' weights, by insertion rank, in the frame's units; else empty.
+  const std::vector<double>& weights() const { return mesh_.weights; }
   /// Frees the grid and the inserters' scratch: only the mesh and its vertices are left for the
   /// output.
   TetMesh& releaseWorkspace();
