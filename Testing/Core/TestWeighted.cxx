@@ -481,4 +481,46 @@ TEST(Weighted, MeshBuiltInPiecesIsTheWholeSets)
   fd3::IncrementalDelaunay unweighted(plain.data(), first, {}, frame);
   EXPECT_THROW(unweighted.add(p.data() + 3 * first, 1, w.data()), std::logic_error);
 }
+// A distributed piece's weighted mesh, its own points first and the received ones (with their
+// weights) added, gives the power cells that its points give from scratch: the far points take
+// the least weight, of every point it was given, and no cell in the box changes.
+TEST(Weighted, PowerCellsOfAMeshAreThoseOfItsPoints)
+{
+  const std::size_t n = 3000, own = 1800;
+  const Points p = fd3test::uniformCube(n, 61);
+  std::vector<double> w = randomWeights(n, 0.0, 0.05, 62);
+  w[5] = 0.3 * 0.3; // a heavy point hides its neighbours
+  const fd3::Bounds bounds = fd3::finiteBounds(p.data(), n);
+  for (const fd3::Bounds& box : {bounds, fd3test::boxOf({0.1, 0.9, 0.2, 0.8, 0.0, 1.0})})
+  {
+    fd3::VoronoiOptions options;
+    options.generators = own;
+    options.box = box;
+    const fd3::VoronoiCells scratch = fd3::voronoiCells(p.data(), w.data(), n, options);
+    std::vector<double> withFar = p;
+    const std::vector<double> far = fd3::voronoiFarPoints(bounds, box);
+    withFar.insert(withFar.end(), far.begin(), far.end());
+    fd3::Options meshOptions;
+    meshOptions.computeNeighbors = false;
+    fd3::IncrementalDelaunay mesh(fd3::Coordinates(p.begin(), p.begin() + 3 * own), meshOptions,
+      fd3test::frameOf(withFar), n - own, w.data());
+    mesh.add(p.data() + 3 * own, n - own, w.data() + own);
+    fd3::Coordinates back;
+    const fd3::VoronoiCells fromMesh = fd3::voronoiCells(mesh, bounds, options, back, w.data());
+    ASSERT_EQ(fromMesh.status, fd3::Status::Ok);
+    ASSERT_EQ(fromMesh.generators, scratch.generators);
+    std::size_t empty = 0;
+    double sum = 0;
+    for (std::size_t c = 0; c < scratch.numberOfCells(); ++c)
+    {
+      EXPECT_NEAR(fromMesh.volumes[c], scratch.volumes[c], 1e-12) << "cell " << c;
+      EXPECT_EQ(fromMesh.numberOfNeighbors(c), scratch.numberOfNeighbors(c)) << "cell " << c;
+      empty += scratch.volumes[c] == 0;
+      sum += fromMesh.volumes[c];
+    }
+    EXPECT_GT(empty, 0u); // the heavy point's hidden neighbours
+    EXPECT_LT(sum, box.extent(0) * box.extent(1) * box.extent(2)); // the other points' cells
+  }
+}
+
 } // namespace

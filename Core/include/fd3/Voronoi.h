@@ -118,9 +118,11 @@ VoronoiCells voronoiCells(
 /// piece adds the same far points), in a frame that also holds voronoiFarPoints(pointBounds,
 /// options.box); options.box must be a finite box. The cells are those voronoiCells() gives the same
 /// points. Adds the far points and ends the mesh, which gives back its points' coordinates in
-/// `xyz` (as IncrementalDelaunay::release does). Throws as triangulate() does.
+/// `xyz` (as IncrementalDelaunay::release does). A weighted mesh gives power cells: `weights`
+/// then holds every point's weight, by id, as the mesh was given them, and stats.hiddenPoints
+/// counts the generators hidden. Throws as triangulate() does.
 VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
-  const VoronoiOptions& options, Coordinates& xyz);
+  const VoronoiOptions& options, Coordinates& xyz, const double* weights = nullptr);
 
 /// The eight far points (x, y, z each) that the cells of points within `pointBounds`, clipped to
 /// `box`, add to the points' tetrahedralization (the corners of a cube about both); empty where

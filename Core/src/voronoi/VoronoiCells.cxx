@@ -70,6 +70,17 @@ struct CurvePoints
   VoronoiCells::Doubles weights;
 };
 
+/// The far points' weight: the least finite one of `count` weights (0 where none), so that no
+/// point in the box is nearer a far point in power than its own generator.
+double farWeight(const double* weights, std::size_t count)
+{
+  double least = HUGE_VAL;
+  for (std::size_t i = 0; i < count; ++i)
+    if (std::isfinite(weights[i]))
+      least = std::min(least, weights[i]);
+  return std::isfinite(least) ? least : 0.0;
+}
+
 CurvePoints alongCurve(ThreadTeam& team, const double* xyz, const double* weights,
   std::size_t count, std::size_t generators, const Bounds& points, const Bounds& box)
 {
@@ -120,11 +131,7 @@ CurvePoints alongCurve(ThreadTeam& team, const double* xyz, const double* weight
   team.release(keys, "voronoi curve");
   if (weights)
   {
-    double least = HUGE_VAL;
-    for (std::size_t i = 0; i < count; ++i)
-      if (std::isfinite(weights[i]) && isFinite(xyz + 3 * i))
-        least = std::min(least, weights[i]);
-    curve.weights.resize(count + kFarPoints, std::isfinite(least) ? least : 0.0);
+    curve.weights.resize(count + kFarPoints, farWeight(weights, count));
     for (std::size_t k = 0; k < count; ++k)
       curve.weights[k] = weights[curve.inputId[k]];
   }
@@ -475,7 +482,7 @@ VoronoiCells voronoiCells(
 }
 
 VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
-  const VoronoiOptions& options, Coordinates& xyz)
+  const VoronoiOptions& options, Coordinates& xyz, const double* weights)
 {
   VoronoiCells cells;
   cells.cellFaces.assign(1, 0);
@@ -504,11 +511,13 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   Triangulation own;
   if (options.density)
     own = mesh.snapshot();
-  mesh.add(far.data(), kFarPoints);
+  const std::vector<double> farWeights(
+    weights ? kFarPoints : 0, weights ? farWeight(weights, mesh.pointCount()) : 0.0);
+  mesh.add(far.data(), kFarPoints, weights ? farWeights.data() : nullptr);
   Triangulation tetrahedra = mesh.release(xyz);
   const std::size_t count = xyz.size() / 3 - kFarPoints;
   CurvePoints curve =
-    alongCurve(team, xyz.data(), nullptr, count, options.generators, pointBounds, cells.box);
+    alongCurve(team, xyz.data(), weights, count, options.generators, pointBounds, cells.box);
   std::vector<double> density;
   if (options.density)
   {
@@ -519,9 +528,13 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
       density[k] = byPoint[curve.inputId[k]];
   }
   xyz.resize(3 * count);
+  const auto hiddenGenerators = static_cast<std::size_t>(std::count_if(tetrahedra.hidden.begin(),
+    tetrahedra.hidden.end(), [&](std::uint32_t id) { return id < options.generators; }));
   renumberAlongCurve(team, curve.inputId, tetrahedra);
-  return cellsOf(
+  cells = cellsOf(
     team, std::move(curve), count, options, std::move(tetrahedra), density, std::move(cells));
+  cells.stats.hiddenPoints = hiddenGenerators;
+  return cells;
 }
 
 std::vector<double> voronoiFarPoints(const Bounds& pointBounds, const Bounds& box)
