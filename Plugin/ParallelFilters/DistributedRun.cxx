@@ -4,11 +4,14 @@
 =========================================================================*/
 #include "DistributedRun.h"
 
+#include "FilterInput.h"
+
 #include "vtkArrayDispatch.h"
 #include "vtkCellArray.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArrayRange.h"
 #include "vtkDataSetAttributesFieldList.h"
+#include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
 #include "vtkMultiProcessController.h"
@@ -179,8 +182,10 @@ void OnCellIds(vtkCellArray* cells, Worker worker, Args&... args)
   }
 }
 
-/// The input pieces' point ids in rank order, as the "GlobalIds" array of each point.
-vtkSmartPointer<vtkPointData> InputData(vtkDataSet* input, vtkIdType count, vtkIdType firstId)
+/// The input pieces' point ids in rank order, as the "GlobalIds" array of each point, and where
+/// given, the points' weights (kWeights).
+vtkSmartPointer<vtkPointData> InputData(
+  vtkDataSet* input, vtkIdType count, vtkIdType firstId, const std::vector<double>* weights)
 {
   auto data = vtkSmartPointer<vtkPointData>::New();
   if (input)
@@ -193,6 +198,15 @@ vtkSmartPointer<vtkPointData> InputData(vtkDataSet* input, vtkIdType count, vtkI
   inputIds->SetNumberOfValues(count);
   std::iota(inputIds->GetPointer(0), inputIds->GetPointer(0) + count, firstId);
   data->AddArray(inputIds);
+  if (weights)
+  {
+    vtkNew<vtkDoubleArray> values;
+    values->SetName(kWeights);
+    values->SetNumberOfValues(count);
+    std::copy_n(
+      weights->begin(), std::min<std::size_t>(weights->size(), count), values->GetPointer(0));
+    data->AddArray(values);
+  }
   return data;
 }
 
@@ -270,11 +284,23 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 
 } // namespace
 
+InputWeights ReadInputWeights(vtkDataArray* array, vtkIdType points, bool radii)
+{
+  InputWeights weights;
+  weights.Found = array != nullptr;
+  if (array)
+  {
+    weights.Values =
+      PointWeights(array, points, radii, static_cast<std::size_t>(points), weights.Problem);
+  }
+  return weights;
+}
+
 DistributedRun::DistributedRun(vtkMultiProcessController* controller, int threads)
   : Ranks(controller), Threads(threads), Exchange(this->Ranks)
 {}
 
-bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
+bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points, const InputWeights& weights)
 {
   const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
   std::vector<vtkIdType> counts(this->Ranks.Size);
@@ -285,11 +311,23 @@ bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
   int type = count > 0 ? points->GetDataType() : 0, widest = 0; // as the one-process output's
   this->Ranks.Controller->AllReduce(&type, &widest, 1, vtkCommunicator::MAX_OP);
   this->PointType = widest > 0 ? widest : VTK_DOUBLE;
+  int found = weights.Found, anyFound = 0;
+  this->Ranks.Controller->AllReduce(&found, &anyFound, 1, vtkCommunicator::MAX_OP);
+  this->Weighted = anyFound != 0;
 
   vtkSmartPointer<vtkPointData> data;
   std::vector<vtkIdType> finite, nonFinite;
   if (!this->Ranks.Local([&] {
-        data = InputData(input, count, firstId);
+        if (!weights.Problem.empty())
+        {
+          throw std::runtime_error(weights.Problem);
+        }
+        if (this->Weighted && count > 0 && !weights.Found)
+        {
+          throw std::runtime_error("the weights array is missing from the input on rank " +
+            std::to_string(this->Ranks.Rank));
+        }
+        data = InputData(input, count, firstId, this->Weighted ? &weights.Values : nullptr);
         ForEachPoint(points->GetData(), [&](vtkIdType i, const double x[3]) {
           (fd3::isFinite(x) ? finite : nonFinite).push_back(i);
         });
@@ -305,6 +343,10 @@ bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points)
   }
   return this->Ranks.Local([&] {
     this->Gather(points->GetData(), data, nonFinite, parts);
+    if (this->Weighted)
+    {
+      this->TakeWeights({ this->Own.Data }, false); // the halo sends them on
+    }
     return true;
   });
 }
@@ -346,10 +388,20 @@ bool DistributedRun::ChooseFrame(
   }
   const fd3::Frame frame = fd3::frameFor(framed, exact);
   int fits = fd3::fitsFrame(frame, xyz.data(), this->Own.Count) &&
-    fd3::fitsFrame(frame, more.data(), more.size() / 3),
+    fd3::fitsFrame(frame, more.data(), more.size() / 3) &&
+    fd3::weightsFitFrame(frame, this->Weights.data(), this->Weights.size()),
       allFit = 0;
   this->Ranks.Controller->AllReduce(&fits, &allFit, 1, vtkCommunicator::MIN_OP);
   this->Frame = allFit ? frame : fd3::identityFrame(framed);
+  if (this->Weighted)
+  {
+    double heaviest = -HUGE_VAL;
+    for (const double w : this->Weights)
+    {
+      heaviest = std::isfinite(w) ? std::max(heaviest, w) : heaviest;
+    }
+    this->Ranks.Controller->AllReduce(&heaviest, &this->Heaviest, 1, vtkCommunicator::MAX_OP);
+  }
   return true;
 }
 
@@ -357,8 +409,8 @@ bool DistributedRun::Triangulate(const fd3::Options& options)
 {
   const auto start = std::chrono::steady_clock::now();
   const bool done = this->Ranks.Local([&] {
-    this->Mesh = std::make_unique<fd3::IncrementalDelaunay>(
-      std::move(this->Own.Xyz), options, this->Frame, GhostRoom(this->Own.Count));
+    this->Mesh = std::make_unique<fd3::IncrementalDelaunay>(std::move(this->Own.Xyz), options,
+      this->Frame, GhostRoom(this->Own.Count), this->WeightsOrNull());
     return this->Mesh->status() != fd3::Status::Aborted;
   });
   this->MeshSeconds = SecondsSince(start);
@@ -371,7 +423,8 @@ bool DistributedRun::ExchangeHalo()
   std::vector<std::vector<double>> xyz;
   const bool meshed = this->Mesh->status() == fd3::Status::Ok;
   if (!this->Ranks.Local([&] {
-        halo = meshed ? this->Mesh->haloVertices(this->OtherBoxes()) : this->AllToAll();
+        halo =
+          meshed ? this->Mesh->haloVertices(this->OtherBoxes(), this->Heaviest) : this->AllToAll();
         xyz = meshed ? this->Mesh->points(halo) : std::vector<std::vector<double>>();
         return true;
       }))
@@ -409,11 +462,20 @@ bool DistributedRun::AddGhosts(
 {
   return this->Ranks.Local([&] {
     Coordinates ghostXyz;
+    std::vector<vtkPointData*> ghostData;
     for (const auto& part : this->Ghosts.Parts)
     {
       AppendPoints(part->GetPoints()->GetData(), ghostXyz);
+      ghostData.push_back(part->GetPointData());
     }
-    this->Mesh->add(ghostXyz.data(), ghostXyz.size() / 3);
+    const std::size_t own = this->Weights.size();
+    if (this->Weighted) // every rank has sent its halo: the weights leave the point data
+    {
+      this->TakeWeights(ghostData, true);
+      this->Own.Data->RemoveArray(kWeights);
+    }
+    const double* weights = this->WeightsOrNull();
+    this->Mesh->add(ghostXyz.data(), ghostXyz.size() / 3, weights ? weights + own : nullptr);
     Coordinates().swap(ghostXyz); // the mesh holds them
     const bool finished = finish(*this->Mesh, this->Xyz);
     this->Mesh.reset();
@@ -464,6 +526,32 @@ std::vector<vtkIdType> DistributedRun::InputIds() const
     }
   }
   return ids;
+}
+
+const double* DistributedRun::WeightsOrNull() const
+{
+  static const double none = 0;
+  return !this->Weighted ? nullptr : this->Weights.empty() ? &none : this->Weights.data();
+}
+
+void DistributedRun::TakeWeights(const std::vector<vtkPointData*>& parts, bool remove)
+{
+  for (vtkPointData* part : parts)
+  {
+    vtkDataArray* weights = part->GetArray(kWeights);
+    if (!weights)
+    {
+      throw std::logic_error("points came without their weights");
+    }
+    for (vtkIdType i = 0; i < weights->GetNumberOfTuples(); ++i)
+    {
+      this->Weights.push_back(weights->GetComponent(i, 0));
+    }
+    if (remove)
+    {
+      part->RemoveArray(kWeights);
+    }
+  }
 }
 
 bool DistributedRun::Owns(const std::uint32_t* ids, int size) const
@@ -615,15 +703,20 @@ vtkSmartPointer<vtkPolyData> DistributedRun::HaloPart(
 void DistributedRun::CountOwned(fd3::Statistics& stats) const
 {
   stats.inputPoints = stats.insertedPoints = stats.duplicatesMerged = 0;
-  stats.closePointsSkipped = stats.tetrahedra = 0;
+  stats.closePointsSkipped = stats.tetrahedra = stats.hiddenPoints = 0;
   for (std::size_t t = 0; t < this->Result.numberOfTetrahedra(); ++t)
   {
     stats.tetrahedra += this->Owns(this->Result.tetrahedra.data() + 4 * t, 4);
   }
+  const std::vector<std::uint32_t>& hidden = this->Result.hidden; // ascending
+  auto nextHidden = hidden.begin();
   for (std::size_t k = 0; k < this->Own.Count && this->Result.status == fd3::Status::Ok; ++k)
   {
     const std::uint32_t v = this->Result.representative[k];
-    stats.insertedPoints += v == k;
+    const bool isHidden = nextHidden != hidden.end() && *nextHidden == k;
+    nextHidden += isHidden;
+    stats.hiddenPoints += isHidden;
+    stats.insertedPoints += v == k && !isHidden;
     if (v != k && v != fd3::kNoPoint)
     {
       const bool same = std::equal(&this->Xyz[3 * k], &this->Xyz[3 * k + 3], &this->Xyz[3 * v]);

@@ -38,8 +38,23 @@ namespace fd3vtk
 /// The point data array of every point's input id (its position in the input pieces taken in rank
 /// order).
 constexpr const char* kInputIds = "GlobalIds";
+/// The point data array that carries weighted points' weights to other ranks: point data travels
+/// with its points. It leaves the point data once the ghosts are in.
+constexpr const char* kWeights = "FastDelaunay3DWeights";
 
 using fd3::Coordinates;
+
+/// Weighted points, as one rank read them from its input piece before the run.
+struct InputWeights
+{
+  bool Found = false;         ///< whether the piece has the weights array
+  std::vector<double> Values; ///< one per input point, radii squared where they are radii
+  std::string Problem;        ///< why they could not be read, which stops every rank
+};
+
+/// The weights of a piece's `points` points from the filter's weights `array` (null where the
+/// piece has none): as fd3vtk::PointWeights() reads them.
+InputWeights ReadInputWeights(vtkDataArray* array, vtkIdType points, bool radii);
 
 /// This rank's points once spread by space: the finite points in its part of space, then its own
 /// non-finite ones (nothing to triangulate, but they stay in the output as unused points).
@@ -61,13 +76,16 @@ public:
 
   /// Step 1: the finite points spread over the ranks by space (PointExchange::BalancedCuts()),
   /// with their point data and input ids, this rank's non-finite ones after them. `points`: the
-  /// input's, in the output's precision.
-  bool Redistribute(vtkDataSet* input, vtkPoints* points);
+  /// input's, in the output's precision. The run is weighted where any rank found `weights`; each
+  /// point's weight then travels with it (kWeights), and a piece with points but no weights, or
+  /// a Problem on any rank, stops every rank.
+  bool Redistribute(vtkDataSet* input, vtkPoints* points, const InputWeights& weights = {});
 
   /// Step 2: one exact frame for every rank, from the global bounds (computed here once, for the
   /// diagonal too) and the shifts that are exact on every rank. `later`, where given, makes from
   /// the global bounds the points (x, y, z each, the same on every rank) that every rank adds to
-  /// its mesh after the ghosts: the frame holds them too.
+  /// its mesh after the ghosts: the frame holds them too. Weighted: the frame holds every weight
+  /// too, and Heaviest is found.
   bool ChooseFrame(const std::function<std::vector<double>(const fd3::Bounds&)>& later = nullptr);
 
   /// Step 3: this rank's points tetrahedralized. The mesh takes them, and frees them where its
@@ -77,8 +95,8 @@ public:
   /// Step 4: the halo of every other rank sent to it (fd3::haloVertices).
   bool ExchangeHalo();
 
-  /// Step 5: the received points added to this rank's mesh, the output taken from it with every
-  /// point's coordinates, and the owner of every point.
+  /// Step 5: the received points (and their weights) added to this rank's mesh, the output taken
+  /// from it with every point's coordinates, and the owner of every point.
   bool AddGhosts();
   /// Step 5 for a caller that ends the mesh itself: the received points added, then `finish`
   /// given the mesh and Xyz, where it must release the mesh's coordinates (it returns false when
@@ -107,6 +125,9 @@ public:
   vtkPointData* OwnData() const { return this->Own.Data; }
   /// From step 5: the input id of each point of Xyz, the own points' and the received ones'.
   std::vector<vtkIdType> InputIds() const;
+  /// Weighted: the weight of each point so far (the own points', then from step 5 the received
+  /// ones'), never null, even with no point; else null.
+  const double* WeightsOrNull() const;
 
   RankGroup Ranks;
   const int Threads;
@@ -116,6 +137,8 @@ public:
   double Diagonal = 0;       ///< of the global bounds
   fd3::Triangulation Result; ///< this rank's: its points and the received ones
   Coordinates Xyz;           ///< from step 5: this rank's points, then the received ones
+  bool Weighted = false;     ///< from step 1: whether any rank's points are weighted
+  double Heaviest = 0;       ///< from step 2, weighted: the largest finite weight of all ranks
 
 private:
   /// The ghost points that room is made for up front, in Xyz and in the mesh's vertex records: a
@@ -128,6 +151,10 @@ private:
   /// this rank gets, its own among them, in rank order.
   bool SpreadFinite(
     vtkDataArray* coordinates, vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts);
+
+  /// The weights array (kWeights) that `parts` carry, appended to Weights, and taken out of
+  /// their point data where `remove`.
+  void TakeWeights(const std::vector<vtkPointData*>& parts, bool remove);
 
   /// OwnPoints from the parts received and this rank's non-finite points, with room for the
   /// ghosts in Xyz.
@@ -160,7 +187,8 @@ private:
   std::unique_ptr<fd3::IncrementalDelaunay> Mesh;
   double MeshSeconds = 0;
   Received Ghosts;
-  std::vector<int> Owner; ///< per point of Xyz: the rank whose own point it is
+  std::vector<int> Owner;      ///< per point of Xyz: the rank whose own point it is
+  std::vector<double> Weights; ///< weighted: per point of Xyz
 };
 } // namespace fd3vtk
 

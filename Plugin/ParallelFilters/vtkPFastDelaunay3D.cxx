@@ -59,18 +59,12 @@ int vtkPFastDelaunay3D::RequestData(
     fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision);
   vtkPointData* inputData = input ? input->GetPointData() : nullptr;
   const bool root = this->Controller->GetLocalProcessId() == 0;
-  if (fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector))
-  {
-    // Each rank would need its halo for power distances, where a heavy point far from the
-    // boundary can reach across it.
-    vtkErrorMacro("Weighted points are not available across MPI ranks yet; the output holds the "
-                  "points and no cells");
-    fd3vtk::SetPointsWithoutCells(output, inputPoints, inputData);
-    return 0;
-  }
+  const fd3vtk::InputWeights weights = fd3vtk::ReadInputWeights(
+    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr,
+    input ? input->GetNumberOfPoints() : 0, this->WeightsAreRadii);
 
   fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
-  const bool redistributed = run.Redistribute(input, inputPoints);
+  const bool redistributed = run.Redistribute(input, inputPoints, weights);
   if (redistributed && run.InputPoints == 0)
   {
     if (root)
@@ -92,7 +86,7 @@ int vtkPFastDelaunay3D::RequestData(
   this->NumberOfGhostPoints = run.GhostPoints;
   if (root) // one report for all ranks
   {
-    this->ReportOnInput(status, figures, static_cast<vtkIdType>(figures.inputPoints));
+    this->ReportOnInput(status, figures, static_cast<vtkIdType>(figures.inputPoints), run.Weighted);
   }
   if (status != fd3::Status::Ok)
   {
@@ -110,8 +104,8 @@ int vtkPFastDelaunay3D::RequestData(
     }
     if (run.Result.status == fd3::Status::Ok)
     {
-      this->SetOutputCells(output, run.Xyz.data(), nullptr, run.Xyz.size() / 3, run.Result,
-        [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); });
+      this->SetOutputCells(output, run.Xyz.data(), run.WeightsOrNull(), run.Xyz.size() / 3,
+        run.Result, [&run](const std::uint32_t* ids, int size) { return run.Owns(ids, size); });
     }
     else // a rank whose points are all NaN or Inf: they stay in its output, unused
     {

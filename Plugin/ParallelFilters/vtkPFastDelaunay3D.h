@@ -22,6 +22,12 @@
  *    smallest vertex it owns (every position is one rank's: the cuts send a point by its
  *    coordinates, so the copies of a position all go to one rank, which merges them).
  *
+ * Weighted points (Weights) give the regular tetrahedralization across ranks too: each point's
+ * weight travels with it, and step 3 sends the vertices of the tetrahedra whose orthogonal sphere,
+ * widened to the power distance of the heaviest point of all ranks, meets a rank's bounds, so a
+ * heavy point far from a rank reaches it where it matters. Each rank hides its own hidden points
+ * as one process hides them; NumberOfHiddenPoints counts all ranks'.
+ *
  * Each rank's output then holds the tetrahedra it owns (or, with Alpha, the alpha shape's cells it
  * owns), its own points with their point data, and the other ranks' points that those cells use,
  * marked as duplicate points in vtkGhostType; "GlobalIds" gives every output point its input id.

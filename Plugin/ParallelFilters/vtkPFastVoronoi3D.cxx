@@ -40,13 +40,14 @@ struct CellFigures
   double Cells = 0;
   double Duplicates = 0;
   double NonFinite = 0;
+  double Hidden = 0;     ///< weighted: own points whose power cell is empty
   double Ghosts = 0;     ///< points received
   double OutOfRange = 0; ///< ranks whose cells span more than doubles hold
 
   void Sum(vtkMultiProcessController* controller)
   {
-    constexpr std::array<double CellFigures::*, 5> kFields = { &CellFigures::Cells,
-      &CellFigures::Duplicates, &CellFigures::NonFinite, &CellFigures::Ghosts,
+    constexpr std::array<double CellFigures::*, 6> kFields = { &CellFigures::Cells,
+      &CellFigures::Duplicates, &CellFigures::NonFinite, &CellFigures::Hidden, &CellFigures::Ghosts,
       &CellFigures::OutOfRange };
     std::array<double, kFields.size()> local, total;
     for (std::size_t k = 0; k < kFields.size(); ++k)
@@ -105,13 +106,9 @@ int vtkPFastVoronoi3D::RequestData(
   output->Initialize();
   faces->Initialize();
   this->RecordFigures(0, 0, 0);
-  if (fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector))
-  {
-    // Each rank's halo would have to reach by power distance, where a heavy point far from the
-    // boundary can reach across it.
-    vtkErrorMacro("Weighted points are not available across MPI ranks yet; no cells");
-    return 0;
-  }
+  const fd3vtk::InputWeights weights = fd3vtk::ReadInputWeights(
+    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr,
+    input ? input->GetNumberOfPoints() : 0, this->WeightsAreRadii);
   vtkSmartPointer<vtkPoints> inputPoints =
     fd3vtk::PointsInPrecision(input, vtkAlgorithm::DEFAULT_PRECISION);
   const bool root = this->Controller->GetLocalProcessId() == 0;
@@ -119,7 +116,7 @@ int vtkPFastVoronoi3D::RequestData(
   // The points spread by space, each rank's mesh, and the halo that completes its points' cells.
   const auto kernelStart = std::chrono::steady_clock::now();
   fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
-  const bool redistributed = run.Redistribute(input, inputPoints);
+  const bool redistributed = run.Redistribute(input, inputPoints, weights);
   if (redistributed && run.InputPoints == 0)
   {
     if (root)
@@ -154,7 +151,7 @@ int vtkPFastVoronoi3D::RequestData(
   options.generators = run.OwnCount();
   fd3::VoronoiCells cells;
   if (!run.AddGhosts([&](fd3::IncrementalDelaunay& mesh, fd3::Coordinates& xyz) {
-        cells = fd3::voronoiCells(mesh, run.GlobalBounds, options, xyz);
+        cells = fd3::voronoiCells(mesh, run.GlobalBounds, options, xyz, run.WeightsOrNull());
         return cells.status != fd3::Status::Aborted;
       }))
   {
@@ -174,17 +171,20 @@ int vtkPFastVoronoi3D::RequestData(
   figures.Cells = double(cells.numberOfCells());
   figures.Duplicates = double(cells.stats.duplicatesMerged);
   figures.NonFinite = double(cells.stats.nonFinitePoints);
+  figures.Hidden = double(cells.stats.hiddenPoints);
   figures.Ghosts = double(ghosts);
   figures.OutOfRange = cells.status == fd3::Status::OutOfRange;
   figures.Sum(this->Controller);
   this->RecordFigures(static_cast<vtkIdType>(figures.Cells),
-    static_cast<vtkIdType>(figures.Duplicates), static_cast<vtkIdType>(figures.NonFinite));
+    static_cast<vtkIdType>(figures.Duplicates), static_cast<vtkIdType>(figures.NonFinite),
+    static_cast<vtkIdType>(figures.Hidden));
   this->NumberOfGhostPoints = static_cast<vtkIdType>(figures.Ghosts);
   const fd3::Status status = figures.OutOfRange > 0 ? fd3::Status::OutOfRange
     : figures.Cells > 0                             ? fd3::Status::Ok
                                                     : fd3::Status::Empty;
-  const bool hasCells =
-    root ? this->ReportOnInput(status, options.box, run.InputPoints) : status == fd3::Status::Ok;
+  const bool hasCells = root
+    ? this->ReportOnInput(status, options.box, run.InputPoints, run.Weighted)
+    : status == fd3::Status::Ok;
   if (!hasCells)
   {
     return 1;

@@ -15,14 +15,14 @@
  * points), with their point data, and GeneratorId, the input id of each cell's point (its
  * position in the input pieces taken in rank order). Together the pieces are the one-process
  * output's cells: the same faces and neighbours, and volumes and vertices equal to rounding (a
- * rank computes a shared vertex from the same points, possibly in another order). The figures
- * (getters, field data) count all ranks. With one process, or a controller that is not MPI, this
- * is vtkFastVoronoi3D.
+ * rank computes a shared vertex from the same points, possibly in another order). Weighted
+ * points (Weights) give power cells across ranks, with the halo of vtkPFastDelaunay3D's weighted
+ * run; a hidden point's cell is empty on the rank that owns it. The figures (getters, field data)
+ * count all ranks. With one process, or a controller that is not MPI, this is vtkFastVoronoi3D.
  *
  * @warning
- * A rank tetrahedralizes its points twice: once to find the halo, once with the halo for the
- * cells. Coplanar or collinear input has no tetrahedron to find a halo with: every rank then
- * receives all points.
+ * Coplanar or collinear input has no tetrahedron to find a halo with: every rank then receives
+ * all points.
  *
  * @sa
  * vtkFastVoronoi3D vtkPFastDelaunay3D

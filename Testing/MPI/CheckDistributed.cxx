@@ -4,7 +4,9 @@
 // input, each once, and pass the exact validator; every point keeps its point data ("Label", made
 // from its coordinates); the volume Integrate Variables found is that of
 // the convex hull, once; the own points' Density is the one-process run's. With an alpha, the alpha
-// shape's cells of every dimension are compared.
+// shape's cells of every dimension are compared. Weighted points (a "Radius" point array, which
+// the filter weighed the points by): the regular tetrahedralization, its hidden points counted and
+// truly hidden.
 //
 // usage: CheckDistributed <pieces .pvtu> <volume printed by TestMPI.py> [alpha]
 #include "ExactValidator.h"
@@ -12,7 +14,9 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkDataObject.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkFastDelaunay3D.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -62,10 +66,10 @@ std::vector<std::vector<std::uint32_t>> cellSet(vtkUnstructuredGrid* grid,
 }
 
 /// The input, rebuilt in input order from the points each rank owns, with `toInput` (output id to
-/// input id); an error when a point is owned other than once, a ghost differs from its point, or
-/// a point has another's point data.
-std::string rebuildInput(
-  vtkUnstructuredGrid* pieces, fd3test::Points& input, std::vector<std::uint32_t>& toInput)
+/// input id) and, where the points have a "Radius" array, `radii`; an error when a point is owned
+/// other than once, a ghost differs from its point, or a point has another's point data.
+std::string rebuildInput(vtkUnstructuredGrid* pieces, fd3test::Points& input,
+  std::vector<std::uint32_t>& toInput, std::vector<double>& radii)
 {
   auto* inputIds = vtkIdTypeArray::SafeDownCast(pieces->GetPointData()->GetArray("GlobalIds"));
   auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
@@ -78,6 +82,8 @@ std::string rebuildInput(
   for (vtkIdType i = 0; i < n; ++i)
     inputCount += ghosts->GetValue(i) == 0;
   input.assign(3 * inputCount, NAN);
+  vtkDataArray* radius = pieces->GetPointData()->GetArray("Radius");
+  radii.assign(radius ? inputCount : 0, NAN);
   std::vector<int> seen(inputCount, 0);
   toInput.resize(n);
   for (vtkIdType i = 0; i < n; ++i)
@@ -90,6 +96,8 @@ std::string rebuildInput(
     {
       ++seen[id];
       std::copy_n(&xyz[3 * i], 3, &input[3 * id]);
+      if (radius)
+        radii[id] = radius->GetComponent(i, 0);
     }
   }
   for (vtkIdType id = 0; id < inputCount; ++id)
@@ -114,6 +122,7 @@ std::string compareFigures(vtkUnstructuredGrid* pieces, vtkFastDelaunay3D* seria
     {"NumberOfInsertedPoints", serial->GetNumberOfInsertedPoints()},
     {"NumberOfDuplicatePoints", serial->GetNumberOfDuplicatePoints()},
     {"NumberOfInvalidPoints", serial->GetNumberOfInvalidPoints()},
+    {"NumberOfHiddenPoints", serial->GetNumberOfHiddenPoints()},
     {"NumberOfTetrahedra", serial->GetNumberOfTetrahedra()}};
   for (const auto& [name, expected] : counts)
   {
@@ -178,12 +187,28 @@ int main(int argc, char* argv[])
   vtkUnstructuredGrid* pieces = reader->GetOutput();
   fd3test::Points input;
   std::vector<std::uint32_t> toInput;
-  if (const std::string failure = rebuildInput(pieces, input, toInput); !failure.empty())
+  std::vector<double> radii;
+  if (const std::string failure = rebuildInput(pieces, input, toInput, radii); !failure.empty())
     return fail(failure);
   const std::size_t inputCount = input.size() / 3;
 
   vtkNew<vtkFastDelaunay3D> serial;
-  serial->SetInputData(fd3test::toPolyData(input));
+  vtkSmartPointer<vtkPolyData> whole = fd3test::toPolyData(input);
+  std::vector<double> weights;
+  if (!radii.empty())
+  {
+    vtkNew<vtkDoubleArray> radius;
+    radius->SetName("Radius");
+    for (const double r : radii)
+    {
+      radius->InsertNextValue(r);
+      weights.push_back(r * r);
+    }
+    whole->GetPointData()->AddArray(radius);
+    serial->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Radius");
+    serial->WeightsAreRadiiOn();
+  }
+  serial->SetInputData(whole);
   serial->SetAlpha(alpha);
   serial->ComputeDensityOn();
   serial->Update();
@@ -205,8 +230,21 @@ int main(int argc, char* argv[])
     std::vector<std::uint32_t> tets = fd3test::tetrahedra(pieces);
     for (auto& id : tets)
       id = toInput[id];
+    fd3test::ValidityOptions check;
+    if (!weights.empty()) // hidden: the first copies of a position that no tetrahedron uses
+    {
+      check.weights = weights.data();
+      std::vector<bool> used(inputCount, false);
+      for (const std::uint32_t id : tets)
+        used[firstCopy[id]] = true;
+      for (std::uint32_t id = 0; id < inputCount; ++id)
+        if (firstCopy[id] == id && !used[id])
+          check.hidden.push_back(id);
+      if (check.hidden.empty())
+        return fail("no point is hidden: the weights are not used");
+    }
     const fd3test::ValidityReport report =
-      fd3test::checkTriangulation(input.data(), inputCount, tets);
+      fd3test::checkTriangulation(input.data(), inputCount, tets, check);
     if (!report.valid())
       return fail(report.summary());
   }

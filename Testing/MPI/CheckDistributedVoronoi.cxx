@@ -4,15 +4,20 @@
 // ("Label", made from the coordinates); their Density is the one-process run's (but where ties
 // let a rank pick other tetrahedra); the pieces' volumes fill the box; the ranks' faces outputs
 // together have the one-process faces (count and area); the duplicates are counted across ranks.
+// Weighted points (a "Radius" array, which the filter weighed the points by): power cells, a
+// hidden point's empty, the hidden points counted across ranks as one process counts them.
 //
 // usage: CheckDistributedVoronoi <pieces .pvtu> <kind, as TestMPI.py's> <faces> <their area>
 #include "VtkTestUtilities.h"
 
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
 #include "vtkFastVoronoi3D.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkXMLPUnstructuredGridReader.h"
@@ -89,28 +94,40 @@ int main(int argc, char* argv[])
   vtkDataArray* position = pieces->GetCellData()->GetArray("Position");
   vtkDataArray* label = pieces->GetCellData()->GetArray("Label");
   vtkDataArray* generatorIds = pieces->GetCellData()->GetArray("GeneratorId");
+  vtkDataArray* radius = pieces->GetCellData()->GetArray("Radius");
   if (!position || !label)
     return fail("the input's point data is not on the cells");
 
   // The generators, one per cell, in the order of their ids: the one-process run's input.
-  std::map<vtkIdType, std::array<double, 3>> byId;
+  std::map<vtkIdType, std::array<double, 4>> byId; // x, y, z and the radius
   for (vtkIdType c = 0; c < pieces->GetNumberOfCells(); ++c)
   {
-    std::array<double, 3> x;
+    std::array<double, 4> x;
     position->GetTuple(c, x.data());
     if (label->GetComponent(c, 0) != x[0] / 4 + x[1] / 2 + x[2])
       return fail("cell " + std::to_string(c) + " has another point's data");
+    x[3] = radius ? radius->GetComponent(c, 0) : 0;
     byId[static_cast<vtkIdType>(generatorIds->GetComponent(c, 0))] = x;
   }
   fd3test::Points input;
   std::vector<vtkIdType> inputId;
+  vtkNew<vtkDoubleArray> radii;
+  radii->SetName("Radius");
   for (const auto& [id, x] : byId)
   {
-    input.insert(input.end(), x.begin(), x.end());
+    input.insert(input.end(), x.begin(), x.begin() + 3);
+    radii->InsertNextValue(x[3]);
     inputId.push_back(id);
   }
   vtkNew<vtkFastVoronoi3D> serial;
-  serial->SetInputData(fd3test::toPolyData(input));
+  vtkSmartPointer<vtkPolyData> whole = fd3test::toPolyData(input);
+  if (radius)
+  {
+    whole->GetPointData()->AddArray(radii);
+    serial->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Radius");
+    serial->WeightsAreRadiiOn();
+  }
+  serial->SetInputData(whole);
   serial->ComputeDensityOn();
   serial->GenerateFacesOn();
   serial->Update();
@@ -127,7 +144,7 @@ int main(int argc, char* argv[])
   const double boxVolume = (box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4]);
   const double cellVolume = boxVolume / double(distributed.size());
   const double cellArea = std::pow(cellVolume, 2.0 / 3.0);
-  double total = 0, doubled = 0;
+  double total = 0, doubled = 0, hidden = 0;
   for (const auto& [id, cell] : distributed)
   {
     const Cell& one = renumbered.at(id);
@@ -143,14 +160,18 @@ int main(int argc, char* argv[])
     // The one-process run here has no duplicates: a generator that had one has twice the mass.
     // On a lattice a rank breaks ties in its own frame, and may pick other tetrahedra.
     // A speck's cells have no volume in doubles: their density is infinite in both.
-    const double ratio = cell.density == one.density ? 1 : cell.density / one.density;
+    const bool same = cell.density == one.density || // NaN: a hidden generator's
+      (std::isnan(cell.density) && std::isnan(one.density));
+    const double ratio = same ? 1 : cell.density / one.density;
     if (!ties && !(std::abs(ratio - 1) < 1e-9 || std::abs(ratio - 2) < 1e-9))
       return fail("generator " + std::to_string(id) + ": density " + text(cell.density) +
         ", one process " + text(one.density));
     doubled += std::abs(ratio - 2) < 1e-9;
+    hidden += std::isnan(one.density);
     total += cell.volume;
   }
-  if (!ties && doubled != kDuplicates)
+  // A hidden point has no density (NaN) to double, whether it has a duplicate or not.
+  if (!ties && !(doubled <= kDuplicates && doubled + hidden >= kDuplicates))
     return fail(std::to_string(doubled) + " cells have a duplicate's mass in their density");
   if (!(std::abs(total - boxVolume) <= 1e-9 * boxVolume))
     return fail("the cells' volumes add up to " + std::to_string(total) + ", the box's is " +
@@ -168,6 +189,14 @@ int main(int argc, char* argv[])
   vtkDataArray* duplicates = pieces->GetFieldData()->GetArray("NumberOfDuplicatePoints");
   if (!duplicates || duplicates->GetComponent(0, 0) != kDuplicates)
     return fail("the duplicates are not counted across ranks");
+  if (radius)
+  {
+    vtkDataArray* hidden = pieces->GetFieldData()->GetArray("NumberOfHiddenPoints");
+    if (serial->GetNumberOfHiddenPoints() == 0 || !hidden ||
+      hidden->GetComponent(0, 0) != double(serial->GetNumberOfHiddenPoints()))
+      return fail("the hidden points are not counted across ranks as one process counts them (" +
+        std::to_string(serial->GetNumberOfHiddenPoints()) + ")");
+  }
   std::cout << "CheckDistributedVoronoi: OK, " << distributed.size() << " cells\n";
   return 0;
 }

@@ -9,7 +9,9 @@ around them (the volumes fill each).
 
 kind: cube, lattice (ties on the seams), clusters, sphere (exactly cospherical integer points),
 outlier (the cube and one point at 1e100), speck (the cube centred on 0 and a cluster 1e-150
-wide at 0): magnitudes that no scaled frame holds; each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
+wide at 0): magnitudes that no scaled frame holds; radii: the cube with a "Radius" array made
+from the coordinates, a few of them large enough to reach across the ranks' seams and hide points
+there, that the filter weighs the points by; each with exact duplicates. distribution: one (every point on rank 0), scattered (each point on
 a random rank), empty (rank 0 holds none), pvtp (written as a partitioned .pvtp, read back in
 pieces, with single-precision points as files often have). Every point carries a "Label" made from
 its coordinates. Writes the pieces to the .pvtu (CheckDistributed then compares them with the
@@ -44,7 +46,7 @@ controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 rng = np.random.default_rng(7)
 kind, distribution, single = "%s", "%s", %s
-if kind == "cube":
+if kind in ("cube", "radii"):
     p = rng.random((4000, 3))
 elif kind == "lattice":
     g = np.arange(12.0)
@@ -70,6 +72,10 @@ points.SetData(dsa.numpyTovtkDataArray(mine, "Points"))
 self.GetOutput().SetPoints(points)
 m = mine.astype(float)
 out.PointData.append(m[:, 0] / 4 + m[:, 1] / 2 + m[:, 2], "Label")  # CheckDistributed recomputes it
+if kind == "radii":  # from the coordinates, so that a duplicate has its original's
+    radius = 0.001 + 0.03 * ((m[:, 0] * 7919 + m[:, 1] * 104729 + m[:, 2] * 1299709) %% 1)
+    radius[(m[:, 0] * 31337 %% 1) < 0.005] = 0.2
+    out.PointData.append(radius, "Radius")
 if %s:
     out.PointData.append(m, "Position")
 """ % (kind, "scattered" if distribution == "pvtp" else distribution, distribution == "pvtp", voronoi)
@@ -78,12 +84,13 @@ if distribution == "pvtp":
     pieces = os.path.splitext(pieces_path)[0] + "-input.pvtp"
     SaveData(pieces, proxy=cloud)
     cloud = XMLPartitionedPolydataReader(FileName=[pieces])
+weights = {"Weights": ["POINTS", "Radius"], "WeightsAreRadii": 1} if kind == "radii" else {}
 if voronoi:
-    result = FastVoronoi3D(Input=cloud, ComputeDensity=1, GenerateFaces=1)
+    result = FastVoronoi3D(Input=cloud, ComputeDensity=1, GenerateFaces=1, **weights)
 else:
     result = FastDelaunay3D(Input=cloud, Alpha=alpha, AlphaLines=1, AlphaVerts=1,  # every dimension
                             ComputeStatistics=1,  # all ranks' figures, as field data
-                            ComputeDensity=1)
+                            ComputeDensity=1, **weights)
 SaveData(pieces_path, proxy=result)
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 if voronoi:
@@ -107,7 +114,7 @@ if voronoi:
             array = cells.GetCellData().GetArray("Volume")
             values += [array.GetValue(c) for c in range(array.GetNumberOfTuples())] if array else []
         return len(values), sorted(values)
-    vertices = FastVoronoi3D(Input=cloud, GeneratePolyhedra=0)
+    vertices = FastVoronoi3D(Input=cloud, GeneratePolyhedra=0, **weights)
     result_volumes = volumes(result)
     assert volumes(vertices) == result_volumes, "GeneratePolyhedra=0 changed the volumes"
     cells_made = result.GetDataInformation().GetNumberOfCells()
@@ -122,7 +129,7 @@ if voronoi:
         for a in range(3):
             extent = lo_hi[2 * a + 1] - lo_hi[2 * a]
             box += [lo_hi[2 * a] + inner * extent, lo_hi[2 * a] + outer * extent]
-        clipped = FastVoronoi3D(Input=cloud, Bounds=box, GeneratePolyhedra=0)
+        clipped = FastVoronoi3D(Input=cloud, Bounds=box, GeneratePolyhedra=0, **weights)
         box_volume = (box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4])
         total = 0.0
         for v in volumes(clipped)[1]:
