@@ -162,27 +162,21 @@ TEST(Weighted, EqualWeightsGiveTheDelaunayTetrahedraBitForBit)
   EXPECT_TRUE(weighted.hidden.empty());
 }
 
-TEST(Weighted, LatticeWithEqualAndAlternatingWeights)
+/// Radii of the lattice's points: 0.5 and 0 alternating, as a rock-salt crystal's two ions.
+std::vector<double> alternatingRadii(const Points& p)
 {
-  const Points p = fd3test::lattice(6);
-  const std::size_t n = p.size() / 3;
-  std::vector<double> alternating(n), equal(n, 0.1);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const auto parity = static_cast<long>(p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) % 2;
-    alternating[i] = parity ? 0.25 : 0.0;
-  }
-  triangulateWeighted(p, equal, {}, "lattice, equal weights");
-  const fd3::Triangulation t = triangulateWeighted(p, alternating, {}, "lattice, alternating");
-  EXPECT_GT(t.stats.symbolicTies, 0u);
+  std::vector<double> radii(p.size() / 3);
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    radii[i] = static_cast<long>(p[3 * i] + p[3 * i + 1] + p[3 * i + 2]) % 2 ? 0.5 : 0.0;
+  return radii;
 }
 
-// Small balls deep inside large ones: a quarter of the points, nearly all of them hidden.
-TEST(Weighted, PackingWithAQuarterHidden)
+/// Uniform balls of radius 0.1 and, a quarter of the points, balls of 0.001 deep inside them.
+Points packing(std::vector<double>& radii)
 {
   const std::size_t large = 3000, small = 1000;
   Points p = fd3test::uniformCube(large, 21);
-  std::vector<double> w(large, 0.1 * 0.1);
+  radii.assign(large, 0.1);
   std::mt19937_64 random(22);
   std::uniform_real_distribution<double> offset(-0.005, 0.005);
   std::uniform_int_distribution<std::size_t> pick(0, large - 1);
@@ -191,10 +185,37 @@ TEST(Weighted, PackingWithAQuarterHidden)
     const std::size_t c = pick(random);
     for (int k = 0; k < 3; ++k)
       p.push_back(p[3 * c + k] + offset(random));
-    w.push_back(0.001 * 0.001);
+    radii.push_back(0.001);
   }
-  const fd3::Triangulation t = triangulateWeighted(p, w, {}, "packing");
-  EXPECT_GE(t.hidden.size(), small * 9 / 10);
+  return p;
+}
+
+std::vector<double> squares(const std::vector<double>& radii)
+{
+  std::vector<double> w(radii.size());
+  for (std::size_t i = 0; i < w.size(); ++i)
+    w[i] = radii[i] * radii[i];
+  return w;
+}
+
+TEST(Weighted, LatticeWithEqualAndAlternatingWeights)
+{
+  const Points p = fd3test::lattice(6);
+  const std::size_t n = p.size() / 3;
+  std::vector<double> equal(n, 0.1);
+  const std::vector<double> alternating = squares(alternatingRadii(p));
+  triangulateWeighted(p, equal, {}, "lattice, equal weights");
+  const fd3::Triangulation t = triangulateWeighted(p, alternating, {}, "lattice, alternating");
+  EXPECT_GT(t.stats.symbolicTies, 0u);
+}
+
+// Small balls deep inside large ones: a quarter of the points, nearly all of them hidden.
+TEST(Weighted, PackingWithAQuarterHidden)
+{
+  std::vector<double> radii;
+  const Points p = packing(radii);
+  const fd3::Triangulation t = triangulateWeighted(p, squares(radii), {}, "packing");
+  EXPECT_GE(t.hidden.size(), 900u); // of the 1000 small balls
 }
 
 // Inserted in input order, a heavy point last takes vertices out of the mesh.
@@ -415,10 +436,7 @@ void expectVoroppVolumes(const Points& p, const std::vector<double>& radii, cons
     box.lo[a] -= margin;
     box.hi[a] += margin;
   }
-  std::vector<double> w(radii.size());
-  for (std::size_t i = 0; i < w.size(); ++i)
-    w[i] = radii[i] * radii[i];
-  const fd3::VoronoiCells cells = powerCells(p, w, box, 2, what);
+  const fd3::VoronoiCells cells = powerCells(p, squares(radii), box, 2, what);
   const std::vector<double> reference = voroppRadicalVolumes(p, radii, box);
   std::size_t compared = 0;
   for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
@@ -443,6 +461,13 @@ TEST(Weighted, PowerCellsAgainstVoroppRadicalCells)
   std::vector<double> atomRadii;
   const Points atoms = fd3test::molecule(2000, 95, atomRadii);
   expectVoroppVolumes(atoms, atomRadii, "molecule");
+  // Exact ties: the cells are unique where the tetrahedra are not.
+  const Points lattice = fd3test::lattice(6);
+  expectVoroppVolumes(lattice, std::vector<double>(lattice.size() / 3, 0.3), "lattice, equal");
+  expectVoroppVolumes(lattice, alternatingRadii(lattice), "lattice, alternating");
+  std::vector<double> packingRadii;
+  const Points balls = packing(packingRadii);
+  expectVoroppVolumes(balls, packingRadii, "packing");
 }
 #endif
 } // namespace
