@@ -12,7 +12,7 @@
 #include "fd3/Voronoi.h"
 
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-#include <voro++/voro++.hh>
+#include "VoroppRun.h"
 #endif
 
 #include <algorithm>
@@ -45,58 +45,22 @@ Measurement runCore(const fd3test::Points& p, int threads, bool polyhedra)
 }
 
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-/// Voro++'s cells; with `polyhedra`, each one's vertices (in the box's coordinates) and faces
-/// appended to arrays of all the cells, a VTK polyhedron's face stream (each face's size, then
-/// its vertices).
+/// Voro++'s cells (sweepCells()), with their polyhedra where asked.
 Measurement runVoropp(const fd3test::Points& p, bool polyhedra)
 {
   const std::size_t n = p.size() / 3;
   const fd3::Bounds b = fd3::finiteBounds(p.data(), n);
-  // About 5 points a block, Voro++'s advice; blocks as cubic as the box allows.
-  const double side = std::cbrt(5 * b.volume() / double(n));
-  int blocks[3];
-  for (int a = 0; a < 3; ++a)
-    blocks[a] = std::max(1, int(b.extent(a) / side));
+  const std::array<int, 3> blocks = voroppBlocks(b, n);
   const auto t0 = Clock::now();
   voro::container box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0], blocks[1],
     blocks[2], false, false, false, 8);
   for (std::size_t i = 0; i < n; ++i)
     box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-  voro::c_loop_all loop(box);
-  voro::voronoicell_neighbor cell;
-  std::vector<int> neighbors, faces;
-  std::vector<double> vertices, points;
-  std::vector<long long> faceStream;
-  double total = 0, area = 0;
-  std::size_t cells = 0;
-  if (loop.start())
-    do
-      if (box.compute_cell(cell, loop))
-      {
-        total += cell.volume();
-        area += cell.surface_area();
-        cell.neighbors(neighbors);
-        ++cells;
-        if (!polyhedra)
-          continue;
-        double x, y, z;
-        loop.pos(x, y, z);
-        cell.vertices(x, y, z, vertices);
-        cell.face_vertices(faces); // each face's size, then its vertices
-        const auto first = static_cast<long long>(points.size() / 3);
-        points.insert(points.end(), vertices.begin(), vertices.end());
-        for (std::size_t k = 0; k < faces.size(); k += std::size_t(faces[k]) + 1)
-        {
-          faceStream.push_back(faces[k]);
-          for (int i = 1; i <= faces[k]; ++i)
-            faceStream.push_back(first + faces[k + i]);
-        }
-      }
-    while (loop.inc());
+  const VoroppSweep sweep = sweepCells(box, polyhedra);
   Measurement m;
   m.seconds = since(t0);
   m.ran = true;
-  m.figures = {total, double(cells)};
+  m.figures = {sweep.volume, double(sweep.cells)};
   return m;
 }
 #endif

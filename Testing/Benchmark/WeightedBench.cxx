@@ -17,7 +17,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #endif
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-#include <voro++/voro++.hh>
+#include "VoroppRun.h"
 #endif
 
 #include <algorithm>
@@ -114,35 +114,18 @@ Measurement runVoropp(const WeightedPoints& p)
 {
   const std::size_t n = p.radii.size();
   const fd3::Bounds b = fd3::finiteBounds(p.xyz.data(), n);
-  const double side = std::cbrt(5 * b.volume() / double(n)); // about 5 points a block
-  int blocks[3];
-  for (int a = 0; a < 3; ++a)
-    blocks[a] = std::max(1, int(b.extent(a) / side));
+  const std::array<int, 3> blocks = voroppBlocks(b, n);
   const auto t0 = Clock::now();
   voro::container_poly box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0],
     blocks[1], blocks[2], false, false, false, 8);
   for (std::size_t i = 0; i < n; ++i)
     box.put(int(i), p.xyz[3 * i], p.xyz[3 * i + 1], p.xyz[3 * i + 2], p.radii[i]);
-  voro::c_loop_all loop(box);
-  voro::voronoicell_neighbor cell;
-  std::vector<int> neighbors;
-  double total = 0, area = 0;
-  std::size_t cells = 0;
-  if (loop.start())
-    do
-      if (box.compute_cell(cell, loop))
-      {
-        total += cell.volume();
-        area += cell.surface_area();
-        cell.neighbors(neighbors);
-        cells += cell.volume() > 0;
-      }
-    while (loop.inc());
+  const VoroppSweep sweep = sweepCells(box, false);
   Measurement m;
   m.seconds = since(t0);
   m.ran = true;
   m.peakMiB = peakSoFarMiB();
-  m.figures = {total, double(cells)};
+  m.figures = {sweep.volume, double(sweep.withVolume)};
   return m;
 }
 #endif

@@ -20,7 +20,7 @@
 #include <string>
 
 #ifdef FD3_TEST_WITH_VOROPP
-#include <voro++/voro++.hh>
+#include "VoroppVolumes.h"
 #endif
 
 namespace
@@ -714,20 +714,12 @@ std::vector<double> voroppVolumes(const std::vector<double>& xyz, const fd3::Bou
   double b[6];
   bounds.toMinMax(b);
   const std::size_t n = xyz.size() / 3;
-  const int blocks = std::max(1, int(std::cbrt(double(n) / 5)));
+  const int blocks = fd3test::voroppBlocks(n);
   voro::container box(
     b[0], b[1], b[2], b[3], b[4], b[5], blocks, blocks, blocks, false, false, false, 8);
   for (std::size_t i = 0; i < n; ++i)
     box.put(int(i), xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  std::vector<double> volumes(n, -1);
-  voro::c_loop_all loop(box);
-  voro::voronoicell cell;
-  if (loop.start())
-    do
-      if (box.compute_cell(cell, loop))
-        volumes[std::size_t(loop.pid())] = cell.volume();
-    while (loop.inc());
-  return volumes;
+  return fd3test::voroppVolumes(box, n);
 }
 
 class VoronoiAgainstVoropp : public ::testing::TestWithParam<const char*>

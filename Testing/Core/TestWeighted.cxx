@@ -344,7 +344,7 @@ TEST(Weighted, AlphaComplexOfOrthogonalSpheres)
 } // namespace
 
 #ifdef FD3_TEST_WITH_VOROPP
-#include <voro++/voro++.hh>
+#include "VoroppVolumes.h"
 #endif
 #include "fd3/Voronoi.h"
 
@@ -410,20 +410,12 @@ std::vector<double> voroppRadicalVolumes(
   const Points& p, const std::vector<double>& radii, const fd3::Bounds& b)
 {
   const std::size_t n = radii.size();
-  const int blocks = std::max(1, int(std::cbrt(double(n) / 5)));
+  const int blocks = fd3test::voroppBlocks(n);
   voro::container_poly box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks, blocks,
     blocks, false, false, false, 8);
   for (std::size_t i = 0; i < n; ++i)
     box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2], radii[i]);
-  std::vector<double> volumes(n, -1);
-  voro::c_loop_all loop(box);
-  voro::voronoicell cell;
-  if (loop.start())
-    do
-      if (box.compute_cell(cell, loop))
-        volumes[std::size_t(loop.pid())] = cell.volume();
-    while (loop.inc());
-  return volumes;
+  return fd3test::voroppVolumes(box, n);
 }
 
 // Voro++ clips to its container, our cells to the box: the same box, points strictly inside.
