@@ -3,8 +3,9 @@
 
 usage: mpiexec -np N pvbatch --mpi mpi_benchmark.py <plugin .so> <points> [kind] [filter]
 
-Every rank generates its share of uniform points (kind "cube") or of a torus surface ("torus")
-over the whole domain, so that no file reading is timed; the time is the filter's update,
+Every rank generates its share of uniform points (kind "cube"), of uniform points with radii in
+[0.001, 0.01] that weigh them ("radii", the weighted benchmark's set) or of a torus surface
+("torus") over the whole domain, so that no file reading is timed; the time is the filter's update,
 redistribution and exchange included: FastDelaunay3D's, or with filter "voronoi" FastVoronoi3D's
 (its cells' polyhedra, in the points' bounds).
 """
@@ -35,11 +36,14 @@ else:
 points = vtkPoints()
 points.SetData(dsa.numpyTovtkDataArray(p, "Points"))
 self.GetOutput().SetPoints(points)
-""" % (count, count, kind)
+if "%s" == "radii":
+    dsa.WrapDataObject(self.GetOutput()).PointData.append(0.001 + 0.009 * rng.random(n), "Radius")
+""" % (count, count, kind, kind)
+weights = {"Weights": ["POINTS", "Radius"]} if kind == "radii" else {}
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 cloud.UpdatePipeline()
 if voronoi:
-    cells = FastVoronoi3D(Input=cloud)
+    cells = FastVoronoi3D(Input=cloud, **weights)
     start = time.perf_counter()
     cells.UpdatePipeline()
     seconds = time.perf_counter() - start
@@ -49,7 +53,7 @@ if voronoi:
           % (kind, count, servermanager.ActiveConnection.GetNumberOfDataPartitions(), seconds,
              info.GetNumberOfCells(), peak))
     sys.exit(0)
-delaunay = FastDelaunay3D(Input=cloud, ComputeStatistics=1)
+delaunay = FastDelaunay3D(Input=cloud, ComputeStatistics=1, **weights)
 start = time.perf_counter()
 delaunay.UpdatePipeline()
 seconds = time.perf_counter() - start
