@@ -572,14 +572,23 @@ public:
   PowerProbe(Predicates& predicates, const double* e, double we)
     : predicates_(predicates), e_(e), we_(we), apex_(e), staticBound_(predicates.powerStaticBound())
   {}
-  /// Whether e conflicts with the positive tetrahedron p of weights w, ties broken symbolically.
-  bool inside(const double* const p[4], const double w[4]) const
+  /// Whether e conflicts with the positive tetrahedron abcd of weights wa, wb, wc, wd, ties
+  /// broken symbolically. The cavity search has each of them at hand: no array of points or
+  /// weights is built for a test that the static filter decides.
+  bool inside(const double* a, const double* b, const double* c, const double* d, double wa,
+    double wb, double wc, double wd) const
   {
-    const double lowered[4] = {w[0] - we_, w[1] - we_, w[2] - we_, w[3] - we_};
-    const double det = inSphereDeterminant(apex_, p[0], p[1], p[2], p[3], nullptr, lowered);
+    const double lowered[4] = {wa - we_, wb - we_, wc - we_, wd - we_};
+    const double det = inSphereDeterminant(apex_, a, b, c, d, nullptr, lowered);
     if (det > staticBound_ || -det > staticBound_)
       return det < 0;
+    const double* const p[4] = {a, b, c, d};
+    const double w[4] = {wa, wb, wc, wd};
     return predicates_.powerTestSoS(p, e_, w, we_) > 0;
+  }
+  bool inside(const double* const p[4], const double w[4]) const
+  {
+    return inside(p[0], p[1], p[2], p[3], w[0], w[1], w[2], w[3]);
   }
   /// Whether the static filter alone proves that e conflicts with p: false may be a tie or a test
   /// the filter left open.

@@ -113,12 +113,8 @@ bool Inserter::digCavity(TetId base, VertId v)
           given |= lockLost_;
       }
       else if constexpr (Weighted)
-      {
-        const double* q[4] = {
-          vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz};
-        const double w[4] = {weights[nv[0]], weights[nv[1]], weights[nv[2]], weights[nv[3]]};
-        inside = probe.inside(q, w);
-      }
+        inside = probe.inside(vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz,
+          vertices[nv[3]].xyz, weights[nv[0]], weights[nv[1]], weights[nv[2]], weights[nv[3]]);
       else
         inside = probe.inside(
           vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz);
