@@ -372,8 +372,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   // mmap threshold has grown; hand it back before the mesh grows so it does not add to the peak.
   malloc_trim(0);
 #endif
-  triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box),
-    toFrame(frame, frame.bounds), options, *team, frame.identity, std::move(vertexWeights));
+  triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box), options,
+    *team, frame.identity, std::move(vertexWeights));
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }

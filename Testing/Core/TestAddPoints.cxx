@@ -6,6 +6,7 @@
 #include "PointSets.h"
 #include "exact/Frame.h"
 #include "fd3/Distributed.h"
+#include "fd3/Voronoi.h"
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,38 @@ TEST(AddPoints, PointsOffTheLatticeRetuneThePredicates)
   const fd3::Triangulation whole = fd3::triangulate(p.data(), p.size() / 3, options);
   EXPECT_EQ(
     fd3test::canonicalTetrahedra(added.tetrahedra), fd3test::canonicalTetrahedra(whole.tetrahedra));
+}
+
+// The predicates' static bounds come from the first points' box; points added far beyond it (a
+// Voronoi run's far points, the corners of a cube about them, cospherical) must widen them, else
+// the float filters pass signs that rounding decides. Weighted too, where the power test has no
+// relative filter to fall back on.
+TEST(AddPoints, PointsFarBeyondTheFirstOnesWidenTheStaticBounds)
+{
+  for (const char* kind : {"cube", "clusters", "sphere", "lattice"})
+    for (const bool weighted : {false, true})
+    {
+      SCOPED_TRACE(std::string(kind) + (weighted ? ", weighted" : ""));
+      fd3test::Points p = fd3test::generate(kind, 3000, 31);
+      const std::size_t first = p.size() / 3;
+      const fd3::Bounds box = fd3::finiteBounds(p.data(), first);
+      const std::vector<double> far = fd3::voronoiFarPoints(box, box);
+      p.insert(p.end(), far.begin(), far.end());
+      const std::size_t n = p.size() / 3;
+      std::vector<double> weights(n, 0.0);
+      for (std::size_t i = 0; i < first; ++i)
+        weights[i] = 1e-3 * box.diagonal() * box.diagonal() * double(i % 7);
+      const double* w = weighted ? weights.data() : nullptr;
+      fd3::IncrementalDelaunay mesh(p.data(), first, fd3::Options(), fd3test::frameOf(p), 8, w);
+      mesh.add(p.data() + 3 * first, n - first, weighted ? w + first : nullptr);
+      const fd3::Triangulation added = mesh.release();
+      ASSERT_EQ(added.status, fd3::Status::Ok);
+      fd3test::ValidityOptions check;
+      check.weights = w;
+      check.hidden = added.hidden;
+      const auto report = fd3test::checkTriangulation(p.data(), n, added.tetrahedra, check);
+      EXPECT_TRUE(report.valid()) << report.summary();
+    }
 }
 
 TEST(AddPoints, TooFewOrCoplanarPointsWaitForMore)

@@ -29,8 +29,8 @@ std::unique_ptr<fd3::Triangulator> meshOf(const fd3test::Points& p)
     box.hi[a] = 1;
   }
   static fd3::ThreadTeam oneThread(1);
-  auto mesh = std::make_unique<fd3::Triangulator>(
-    std::move(vertices), box, box, fd3::Options(), oneThread, false);
+  auto mesh =
+    std::make_unique<fd3::Triangulator>(std::move(vertices), box, fd3::Options(), oneThread, false);
   EXPECT_TRUE(mesh->insertAll({0}, nullptr));
   return mesh;
 }

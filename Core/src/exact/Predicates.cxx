@@ -286,6 +286,19 @@ std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
 void Predicates::adaptTo(
   const double* xyz, std::size_t count, std::size_t stride, const Bounds& box)
 {
+  tuning_ = Tuning();
+  setBoxBounds(box);
+  include(xyz, count, stride);
+}
+
+void Predicates::widenTo(const Bounds& box)
+{
+  setBoxBounds(box);
+  applyGrid();
+}
+
+void Predicates::setBoxBounds(const Bounds& box)
+{
   // Static bounds: the semi-static ones with every difference at its largest possible value, the
   // box's extent on its axis (the 1% covers the rounding of the extents and of the differences).
   // Per axis, not the largest extent cubed: flat sets (terrain, slabs) get bounds as tight as
@@ -294,16 +307,14 @@ void Predicates::adaptTo(
   const double ex = box.extent(0), ey = box.extent(1), ez = box.extent(2);
   const double m = std::max({ex, ey, ez});
   const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
-  const bool staticSafe =
-    orientProduct > filter::kUnderflowGuard && inSphereProduct > filter::kUnderflowGuard;
-  tuning_ = Tuning();
+  const bool staticSafe = !tuning_.anyMagnitude && orientProduct > filter::kUnderflowGuard &&
+    inSphereProduct > filter::kUnderflowGuard;
   tuning_.extents[0] = ex;
   tuning_.extents[1] = ey;
   tuning_.extents[2] = ez;
   tuning_.boxOrient = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
   tuning_.boxInSphere =
     staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
-  include(xyz, count, stride);
 }
 
 void Predicates::adaptToWeights(double lowest, double highest)

@@ -176,6 +176,11 @@ public:
   void adaptTo(const double* xyz, std::size_t count, std::size_t stride, const Bounds& box);
   /// Widens the tuning to more points of the same box (the grid may get finer, or go).
   void include(const double* xyz, std::size_t count, std::size_t stride);
+  /// Widens the static bounds to `box`, which holds adaptTo()'s and every point passed from now
+  /// on (points added beyond the first ones' box: the Voronoi cells' far points, a rank's
+  /// ghosts); the grid stays include()'s. The power test's bound then needs adaptToWeights()
+  /// again.
+  void widenTo(const Bounds& box);
   /// Takes other's tuning, keeping this one's counters.
   void tuneLike(const Predicates& other)
   {
@@ -261,6 +266,8 @@ private:
     bool anyMagnitude = false; // allowAnyMagnitude()
   } tuning_;
   void applyGrid();
+  /// The static bounds from `box` alone (boxOrient, boxInSphere, extents).
+  void setBoxBounds(const Bounds& box);
 };
 
 inline int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)

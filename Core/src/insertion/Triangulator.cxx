@@ -8,9 +8,9 @@
 
 namespace fd3
 {
-Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Bounds& bounds,
-  const Options& options, ThreadTeam& team, bool anyMagnitude, std::vector<double> weights)
-  : team_(team), tuning_(options.randomSeed)
+Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Options& options,
+  ThreadTeam& team, bool anyMagnitude, std::vector<double> weights)
+  : team_(team), tuning_(options.randomSeed), staticBox_(box)
 {
   mesh_.vertices = std::move(vertices);
   mesh_.weights = std::move(weights);
@@ -18,7 +18,7 @@ Triangulator::Triangulator(VertexArray vertices, const Bounds& box, const Bounds
   const std::size_t n = vertexCount();
   mesh_.tets.reserve(7 * n + 64); // uniform points make 6.7 per vertex; insertAll() corrects it
   mesh_.grid.build(n, box, options.pointsPerCell, team.stretches("grid"));
-  tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), bounds);
+  tuning_.adaptTo(mesh_.vertices[0].xyz, n, sizeof(Vertex) / sizeof(double), box);
   if (anyMagnitude)
     tuning_.allowAnyMagnitude();
   if (mesh_.weighted())
@@ -43,7 +43,7 @@ bool Triangulator::insertMore(VertexArray more, std::vector<double> weights,
   const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress)
 {
   const std::size_t begin = vertexCount();
-  tuning_.include(more[0].xyz, more.size(), sizeof(Vertex) / sizeof(double));
+  tuneFor(more.data(), more.size());
   if (mesh_.weighted())
   {
     mesh_.weights.insert(mesh_.weights.end(), weights.begin(), weights.end());
@@ -65,7 +65,7 @@ bool Triangulator::insertMore(VertexArray more, std::vector<double> weights,
 bool Triangulator::insertOne(
   const Vertex& vertex, std::vector<TetId>& deleted, std::vector<TetId>& made)
 {
-  tuning_.include(vertex.xyz, 1, sizeof(Vertex) / sizeof(double));
+  tuneFor(&vertex, 1);
   Inserter& inserter = *inserters_[0];
   inserter.retune(tuning_);
   inserter.lookForDuplicates();
@@ -196,6 +196,19 @@ std::vector<std::pair<VertId, VertId>> Triangulator::duplicates() const
   for (const auto& inserter : inserters_)
     all.insert(all.end(), inserter->duplicates().begin(), inserter->duplicates().end());
   return all;
+}
+
+void Triangulator::tuneFor(const Vertex* more, std::size_t count)
+{
+  tuning_.include(more[0].xyz, count, sizeof(Vertex) / sizeof(double));
+  Bounds box = staticBox_;
+  for (std::size_t i = 0; i < count; ++i)
+    box.include(more[i].xyz);
+  if (!(box == staticBox_))
+  {
+    staticBox_ = box;
+    tuning_.widenTo(staticBox_);
+  }
 }
 
 void Triangulator::adaptToWeights()

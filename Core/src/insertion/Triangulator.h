@@ -25,14 +25,14 @@ class Triangulator
 {
 public:
   /// `vertices` holds the normalized points by insertion rank (vertex id), all distinct, within
-  /// `box`, which the grid covers; `bounds` holds every point the mesh will ever have (added ones
-  /// too) and sets the predicates' static bounds. An inserter is made ready for each thread of
-  /// `team`, which records every parallel pass.
+  /// `box`, which the grid covers and which sets the predicates' static bounds until points
+  /// beyond it are added. An inserter is made ready for each thread of `team`, which records
+  /// every parallel pass.
   /// `anyMagnitude`: the points are not scaled into [-1, 1] (Predicates::allowAnyMagnitude()).
   /// `weights`, by vertex, in the frame's units, makes the mesh the regular tetrahedralization
   /// (Mesh::weights), inserted on one thread.
-  Triangulator(VertexArray vertices, const Bounds& box, const Bounds& bounds,
-    const Options& options, ThreadTeam& team, bool anyMagnitude, std::vector<double> weights = {});
+  Triangulator(VertexArray vertices, const Bounds& box, const Options& options, ThreadTeam& team,
+    bool anyMagnitude, std::vector<double> weights = {});
 
   /// Inserts every vertex, the rounds of `roundStarts` (first vertex of each BRIO round) after the
   /// first tetrahedron, vertices 0..3. `progress` is called from this thread only; returns false
@@ -40,7 +40,7 @@ public:
   bool insertAll(
     const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress);
   /// Appends `more` vertices (of `weights` on a weighted mesh, in the frame's units), distinct
-  /// from each other and within the bounds, and inserts them,
+  /// from each other and anywhere in the frame, and inserts them,
   /// in the rounds of `roundStarts` (indices into `more`). Those that repeat a vertex of the mesh
   /// are left out and listed in duplicates().
   bool insertMore(VertexArray more, std::vector<double> weights,
@@ -146,6 +146,9 @@ private:
   bool reportProgress(const std::function<bool(double)>& progress);
   /// The predicates' static bound of the power test, for the weights' spread so far.
   void adaptToWeights();
+  /// The predicates' tuning widened to `count` more vertices: their grid, and where they lie
+  /// beyond the box of those so far, the static bounds of the larger box.
+  void tuneFor(const Vertex* more, std::size_t count);
 
   static constexpr int kLockingPasses = 4;
   static constexpr const char* kLockingPassNames[kLockingPasses] = {"insertion locking pass 1",
@@ -163,6 +166,11 @@ private:
   Mesh mesh_;
   ThreadTeam& team_;
   Predicates tuning_; // adapted to every vertex so far; the inserters take copies
+  // The box of every vertex so far, which sets the static bounds: those of the points' own box,
+  // not of the frame's, which may hold points far beyond them that come later (a Voronoi run's
+  // far points): a bound for those would leave most tests of the first ones to the slower
+  // filters, which the power test has no relative one for.
+  Bounds staticBox_;
   std::vector<std::unique_ptr<SlotPool>> pools_;
   std::vector<std::unique_ptr<Inserter>> inserters_;
   std::size_t done_ = 0;                           // vertices handled, for progress
