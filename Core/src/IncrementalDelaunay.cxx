@@ -222,6 +222,8 @@ struct IncrementalDelaunay::Impl
   std::vector<double> heldWeights;
   std::vector<std::uint32_t> hiddenCopies;
 
+  /// The options and, for a weighted mesh, the first batch's weights.
+  void takeOptions(const Options& givenOptions, const double* givenWeights);
   /// The first batch, in a frame given by the caller.
   void start(const double* xyz, std::size_t count, const Options& givenOptions,
     const Frame& givenFrame, std::size_t givenRoom, const double* givenWeights);
@@ -605,16 +607,21 @@ void IncrementalDelaunay::Impl::writeRecordedPoints(double* xyz) const
       std::copy_n(xyz + 3 * std::size_t(original), 3, xyz + 3 * std::size_t(copy));
 }
 
+void IncrementalDelaunay::Impl::takeOptions(const Options& givenOptions, const double* givenWeights)
+{
+  options = givenOptions;
+  weights = givenWeights;
+  if (weights)
+    options.volumeThreshold = 0; // the regular tetrahedralization, exactly
+}
+
 void IncrementalDelaunay::Impl::start(const double* xyz, std::size_t count,
   const Options& givenOptions, const Frame& givenFrame, std::size_t givenRoom,
   const double* givenWeights)
 {
-  options = givenOptions;
+  takeOptions(givenOptions, givenWeights);
   frame = givenFrame;
   room = givenRoom;
-  weights = givenWeights;
-  if (weights)
-    options.volumeThreshold = 0; // the regular tetrahedralization, exactly
   insertFirst(xyz, count);
   if (!triangulator) // until the mesh can start
   {
@@ -636,11 +643,8 @@ IncrementalDelaunay::IncrementalDelaunay(
   const double* xyz, const double* weights, std::size_t count, const Options& options)
   : impl_(std::make_unique<Impl>())
 {
-  impl_->options = options;
+  impl_->takeOptions(options, weights);
   impl_->frameGiven = false;
-  impl_->weights = weights;
-  if (weights)
-    impl_->options.volumeThreshold = 0; // the regular tetrahedralization, exactly
   impl_->insertFirst(xyz, count);
 }
 
