@@ -16,7 +16,6 @@
 
 class vtkAlgorithm;
 class vtkDataArray;
-class vtkInformationVector;
 class vtkDataSet;
 class vtkPoints;
 
