@@ -11,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
@@ -34,20 +35,35 @@ double secondsSince(Clock::time_point start)
 
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
 /// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
-bool moveFirstTetrahedronToFront(const double* xyz, const Frame& frame, IdArray& order)
+bool moveFirstTetrahedronToFront(
+  const double* xyz, const Frame& frame, IdArray& order, const std::vector<ImageOf>& images)
 {
   Predicates predicates;
   if (frame.identity)
     predicates.allowAnyMagnitude();
   double p[4][3];
+  // Periodic images (by point id): the four candidates' own, for the exact stage.
+  PeriodicImages candidates;
+  if (!images.empty())
+  {
+    for (int k = 0; k < 4; ++k)
+      candidates.append(images[order[0]]);
+    candidates.locate(p[0], 3);
+    predicates.useImages(&candidates);
+  }
+  auto take = [&](std::size_t i, int k) {
+    toFrame(frame, xyz + 3 * std::size_t(order[i]), p[k]);
+    if (!images.empty())
+      candidates.at(k) = images[order[i]];
+  };
   std::size_t found[4] = {0, 0, 0, 0};
   int have = 1;
-  toFrame(frame, xyz + 3 * std::size_t(order[0]), p[0]);
+  take(0, 0);
   for (std::size_t i = 1; i < order.size() && have < 4; ++i)
   {
-    toFrame(frame, xyz + 3 * std::size_t(order[i]), p[have]);
+    take(i, have);
     bool independent = false;
-    if (have == 1)
+    if (have == 1) // distinct points, as the records of images are too
       independent = p[1][0] != p[0][0] || p[1][1] != p[0][1] || p[1][2] != p[0][2];
     else if (have == 2)
       independent = !predicates.collinear(p[0], p[1], p[2]);
@@ -221,6 +237,10 @@ struct IncrementalDelaunay::Impl
   bool weighted = false;
   std::vector<double> heldWeights;
   std::vector<std::uint32_t> hiddenCopies;
+  // A periodic mesh (ofImages()): the images of the batch at hand, by its point ids, in the
+  // input's units.
+  const ImageOf* images = nullptr;
+  bool periodic = false;
 
   /// The options and, for a weighted mesh, the first batch's weights.
   void takeOptions(const Options& givenOptions, const double* givenWeights);
@@ -250,6 +270,9 @@ private:
   Keys keys(const double* xyz, std::size_t count, const IdArray& ids) const;
   /// Weighted: the weights of `order` (point ids of the batch at hand) in the frame; else none.
   std::vector<double> framedWeights(const IdArray& order) const;
+  /// Periodic: the images of `order` (point ids of the batch at hand), their residuals in the
+  /// frame (exact: ofImages() chose a frame that scales every residual exactly); else none.
+  std::vector<ImageOf> framedImages(const IdArray& order) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
   VertexArray vertices(
@@ -294,6 +317,20 @@ std::vector<double> IncrementalDelaunay::Impl::framedWeights(const IdArray& orde
   const int twice = frame.identity ? 0 : 2 * std::ilogb(frame.scale);
   for (std::size_t i = 0; i < order.size(); ++i)
     out[i] = std::ldexp(weights[order[i]], twice);
+  return out;
+}
+
+std::vector<ImageOf> IncrementalDelaunay::Impl::framedImages(const IdArray& order) const
+{
+  if (!periodic)
+    return {};
+  std::vector<ImageOf> out(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    out[i] = images[order[i]];
+    for (double& r : out[i].residual)
+      r *= frame.identity ? 1.0 : frame.scale;
+  }
   return out;
 }
 
@@ -356,7 +393,14 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   duplicates = std::move(plan.duplicates);
   skipped = skipClosePoints(xyz, plan, options.tolerance);
   stats.closePointsSkipped = skipped.size();
-  if (!moveFirstTetrahedronToFront(xyz, frame, plan.order))
+  std::vector<ImageOf> imagesById;
+  if (periodic)
+  {
+    IdArray all(count);
+    std::iota(all.begin(), all.end(), 0u);
+    imagesById = framedImages(all);
+  }
+  if (!moveFirstTetrahedronToFront(xyz, frame, plan.order, imagesById))
   {
     status = plan.order.size() < 4 ? Status::TooFewPoints : Status::Degenerate;
     return;
@@ -364,6 +408,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   status = Status::Ok;
   VertexArray records = vertices(xyz, plan.order, 0, room);
   std::vector<double> vertexWeights = framedWeights(plan.order);
+  const std::vector<ImageOf> vertexImages = framedImages(plan.order);
   team->release(plan.order, "sort");
   team->release(key, "sort");
   if (takesPoints)
@@ -376,6 +421,8 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
 #endif
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box), options,
     *team, frame.identity, std::move(vertexWeights));
+  if (periodic)
+    triangulator->useImages(vertexImages);
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }
@@ -430,9 +477,10 @@ void IncrementalDelaunay::Impl::insertMore(
     stats.duplicatesMerged += plan.duplicates.size();
     VertexArray more = vertices(xyz, plan.order, points, 0);
     std::vector<double> moreFramed = framedWeights(plan.order);
+    const std::vector<ImageOf> moreImages = framedImages(plan.order);
     stats.secondsSort += secondsSince(start);
     if (!triangulator->insertMore(
-          std::move(more), std::move(moreFramed), plan.roundStarts, options.progress))
+          std::move(more), std::move(moreFramed), plan.roundStarts, options.progress, moreImages))
       status = Status::Aborted;
   }
   points += count;
@@ -657,6 +705,48 @@ IncrementalDelaunay::IncrementalDelaunay(Coordinates xyz, const Options& options
   impl_->takesPoints = true;
   impl_->held = std::move(xyz);
   impl_->start(impl_->held.data(), impl_->held.size() / 3, options, frame, room, weights);
+}
+
+IncrementalDelaunay::IncrementalDelaunay() : impl_(std::make_unique<Impl>()) {}
+
+std::unique_ptr<IncrementalDelaunay> IncrementalDelaunay::ofImages(const double* xyz,
+  const ImageOf* images, std::size_t count, const Options& options, const Frame& frame)
+{
+  std::unique_ptr<IncrementalDelaunay> mesh(new IncrementalDelaunay());
+  mesh->impl_->periodic = true;
+  mesh->impl_->images = images;
+  mesh->impl_->start(xyz, count, options, frame, 0, nullptr);
+  return mesh;
+}
+
+void IncrementalDelaunay::addImages(const double* xyz, const ImageOf* images, std::size_t count)
+{
+  if (!impl_->triangulator)
+    throw std::logic_error("fd3::IncrementalDelaunay::addImages: the mesh has not started");
+  impl_->images = images;
+  add(xyz, count);
+}
+
+void IncrementalDelaunay::visitTetrahedra(
+  const std::function<void(const std::uint32_t ids[4], unsigned hull)>& visit) const
+{
+  if (impl_->released || !impl_->triangulator)
+    return;
+  const TetMesh& mesh = impl_->triangulator->tetrahedra();
+  const VertexArray& vertices = impl_->triangulator->vertices();
+  for (TetId t = 0; t < mesh.slots(); ++t)
+  {
+    if (mesh.isDead(t) || mesh.isGhost(t))
+      continue;
+    std::uint32_t ids[4];
+    unsigned hull = 0;
+    for (int i = 0; i < 4; ++i)
+    {
+      ids[i] = vertices[mesh.vertex(t, i)].point;
+      hull |= unsigned(mesh.isGhost(tetOf(mesh.neighbor(t, i)))) << i;
+    }
+    visit(ids, hull);
+  }
 }
 
 IncrementalDelaunay::~IncrementalDelaunay() = default;

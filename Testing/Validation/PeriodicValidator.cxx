@@ -167,12 +167,10 @@ private:
     }
     if (periodicAxes_ == 0)
       fail("no axis is periodic: checkTriangulation() checks such a tetrahedralization");
-    for (std::size_t i = 0; i < 3 * count_; ++i)
-      if (!std::isfinite(xyz_[i]))
-      {
-        fail("point " + std::to_string(i / 3) + " is not finite");
-        return false;
-      }
+    finite_.resize(count_);
+    for (std::size_t i = 0; i < count_; ++i)
+      finite_[i] = std::isfinite(xyz_[3 * i]) && std::isfinite(xyz_[3 * i + 1]) &&
+        std::isfinite(xyz_[3 * i + 2]);
     return periodicAxes_ > 0;
   }
 
@@ -181,7 +179,7 @@ private:
   {
     wrapped_.resize(count_);
     for (std::size_t i = 0; i < count_; ++i)
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3 && finite_[i]; ++k)
       {
         Rational x(xyz_[3 * i + k]);
         if (domain_.periodic[k])
@@ -218,9 +216,10 @@ private:
     for (std::size_t t = 0; t < tets_.size(); ++t)
       for (int i = 0; i < 4; ++i)
       {
-        if (tets_[t].ids[i] >= count_)
+        if (tets_[t].ids[i] >= count_ || !finite_[tets_[t].ids[i]])
         {
-          fail("tetrahedron " + std::to_string(t) + " has an id out of range");
+          fail("tetrahedron " + std::to_string(t) + " has an id out of range or of a point " +
+            "that is not finite");
           idsValid = false;
         }
         for (int k = 0; k < 3; ++k)
@@ -326,6 +325,8 @@ private:
     // Its plane is invariant under the periods: the wrapped points stand for every image.
     for (std::size_t i = 0; i < count_; ++i)
     {
+      if (!finite_[i])
+        continue;
       const Position d = difference(wrapped_[i], a);
       if (sgn(normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2]) > 0)
       {
@@ -350,10 +351,11 @@ private:
         free[freeCount++] = k;
     }
     Rational expected = periods;
-    if (freeCount == 1 && count_ > 0)
+    const std::vector<Position> points = finitePlaces();
+    if (freeCount == 1 && !points.empty())
     {
-      Rational lowest = wrapped_[0][free[0]], highest = lowest;
-      for (const Position& p : wrapped_)
+      Rational lowest = points[0][free[0]], highest = lowest;
+      for (const Position& p : points)
       {
         lowest = std::min(lowest, p[free[0]]);
         highest = std::max(highest, p[free[0]]);
@@ -368,10 +370,19 @@ private:
   }
 
   /// The area of the convex hull of the points projected on axes (u, v): Andrew's monotone chain.
+  std::vector<Position> finitePlaces() const
+  {
+    std::vector<Position> out;
+    for (std::size_t i = 0; i < count_; ++i)
+      if (finite_[i])
+        out.push_back(wrapped_[i]);
+    return out;
+  }
+
   Rational hullArea(int u, int v) const
   {
     std::vector<std::array<Rational, 2>> q;
-    for (const Position& p : wrapped_)
+    for (const Position& p : finitePlaces())
       q.push_back({p[u], p[v]});
     std::sort(q.begin(), q.end());
     q.erase(std::unique(q.begin(), q.end()), q.end());
@@ -410,7 +421,8 @@ private:
         used[id] = true;
     std::map<Position, std::vector<std::uint32_t>> at;
     for (std::size_t i = 0; i < count_; ++i)
-      at[wrapped_[i]].push_back(static_cast<std::uint32_t>(i));
+      if (finite_[i])
+        at[wrapped_[i]].push_back(static_cast<std::uint32_t>(i));
     report_.distinctPoints = at.size();
     for (const auto& [position, ids] : at)
     {
@@ -431,6 +443,7 @@ private:
   ValidityReport& report_;
   Rational period_[3];
   int periodicAxes_ = 0;
+  std::vector<bool> finite_; // points that are not finite are left out
   std::vector<Position> wrapped_;
   Rational sixVolume_ = 0;
 };

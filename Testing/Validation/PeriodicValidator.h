@@ -39,7 +39,8 @@ struct PeriodicTetrahedron
 ///   (where an axis is not periodic) a hull face: its normal along the axes that are not periodic
 ///   only, with every point on its inner side;
 /// - the volumes sum to one period of the hull: the box's volume where every axis is periodic;
-/// - every distinct point (points that wrap to the same position are one) a vertex, by one id;
+/// - every distinct finite point (points that wrap to the same position are one) a vertex, by one
+///   id; points that are not finite are no vertices;
 /// - with `requireDelaunay`, every interior face locally Delaunay: the fourth point of either
 ///   tetrahedron, carried into the other's frame, not strictly inside its circumsphere.
 /// Positive orientation, paired faces and the volume make the translates a triangulation of the

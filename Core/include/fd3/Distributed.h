@@ -10,11 +10,15 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
 namespace fd3
 {
+
+struct ImageOf;         // a periodic image (Core's exact/PeriodicImages.h)
+class PeriodicDelaunay; // the periodic driver, which makes meshes of images
 
 /// The exact change of coordinates the kernel computes in, x -> (x - shift) * scale: scale is a
 /// power of two and every x - shift is exact, so that every predicate keeps its sign. Every point
@@ -144,6 +148,19 @@ public:
 private:
   friend Triangulation triangulate(
     const double* xyz, const double* weights, std::size_t count, const Options& options);
+  friend class PeriodicDelaunay;
+  IncrementalDelaunay();
+  /// A periodic mesh: each point the record of a periodic image, whose exact coordinates and
+  /// place in the perturbation's order are in `images` (one per point, residuals in the input's
+  /// units), and so for every addImages(). The points are distinct as exact images and as
+  /// records: the caller has merged the repeats.
+  static std::unique_ptr<IncrementalDelaunay> ofImages(const double* xyz, const ImageOf* images,
+    std::size_t count, const Options& options, const Frame& frame);
+  void addImages(const double* xyz, const ImageOf* images, std::size_t count);
+  /// Calls visit(ids, hull) for every live finite tetrahedron: its point ids, positively oriented,
+  /// and bit f of `hull` set where its face opposite vertex f is a hull face.
+  void visitTetrahedra(
+    const std::function<void(const std::uint32_t ids[4], unsigned hull)>& visit) const;
   /// triangulate()'s mesh: used once, in the frame of its own points, made from their bounds;
   /// weighted where `weights` is given.
   IncrementalDelaunay(

@@ -6,6 +6,7 @@
 #include <gmp.h>
 
 #include <algorithm>
+#include <cassert>
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -67,24 +68,41 @@ public:
   /// Rows x[i] - y, for N points x and the point y, counting a power of two no higher than
   /// 2^`highestScale`.
   IntegerRows(const double* const x[N], const double* y, int highestScale = INT_MAX)
+    : IntegerRows(x, y, nullptr, nullptr, highestScale)
+  {}
+  /// The same for points whose exact coordinates are x[i] + xr[i] and y + yr, each residual a
+  /// point or null for none (PeriodicImages.h).
+  IntegerRows(const double* const x[N], const double* y, const double* const xr[N],
+    const double* yr, int highestScale = INT_MAX)
   {
+    const double* const none = kZero;
     int lowest = highestScale;
+    auto lower = [&lowest](double v) {
+      if (v != 0)
+        lowest = std::min(lowest, unitExponent(v));
+    };
     for (int k = 0; k < 3; ++k)
     {
-      if (y[k] != 0)
-        lowest = std::min(lowest, unitExponent(y[k]));
+      lower(y[k]);
+      lower((yr ? yr : none)[k]);
       for (int i = 0; i < N; ++i)
-        if (x[i][k] != 0)
-          lowest = std::min(lowest, unitExponent(x[i][k]));
+      {
+        lower(x[i][k]);
+        lower((xr && xr[i] ? xr[i] : none)[k]);
+      }
     }
     lowest_ = lowest == INT_MAX ? 0 : lowest;
-    Integer origin;
+    Integer origin, part;
     for (int k = 0; k < 3; ++k)
     {
       set(origin, y[k], lowest);
+      set(part, (yr ? yr : none)[k], lowest);
+      mpz_add(origin.get(), origin.get(), part.get());
       for (int i = 0; i < N; ++i)
       {
         set(row_[i][k], x[i][k], lowest);
+        set(part, (xr && xr[i] ? xr[i] : none)[k], lowest);
+        mpz_add(row_[i][k].get(), row_[i][k].get(), part.get());
         mpz_sub(row_[i][k].get(), row_[i][k].get(), origin.get());
       }
     }
@@ -157,6 +175,7 @@ public:
   }
 
 private:
+  static constexpr double kZero[3] = {0, 0, 0};
   Integer row_[N][3];
   Integer t_;
   int lowest_ = 0;
@@ -299,22 +318,54 @@ void Predicates::widenTo(const Bounds& box)
 
 void Predicates::setBoxBounds(const Bounds& box)
 {
+  for (int k = 0; k < 3; ++k)
+    tuning_.extents[k] = box.extent(k);
+  tuning_.magnitude = std::max({std::fabs(box.lo[0]), std::fabs(box.lo[1]), std::fabs(box.lo[2]),
+    std::fabs(box.hi[0]), std::fabs(box.hi[1]), std::fabs(box.hi[2])});
+  applyBoxBounds();
+}
+
+void Predicates::applyBoxBounds()
+{
   // Static bounds: the semi-static ones with every difference at its largest possible value, the
   // box's extent on its axis (the 1% covers the rounding of the extents and of the differences).
   // Per axis, not the largest extent cubed: flat sets (terrain, slabs) get bounds as tight as
   // their thickness allows. Tiny extents, where products could underflow, keep the semi-static
   // filter with its underflow guard.
-  const double ex = box.extent(0), ey = box.extent(1), ez = box.extent(2);
+  const double* e = tuning_.extents;
+  // Records of images (useImages()) are within u |x| of the exact coordinates, so the differences
+  // of the exact points are within eps = 2 u M of the records', M the largest |x| (1% for the
+  // rounding of M). The float evaluation on the records errs by the bound at extents e + eps; the
+  // exact determinant differs from the records' by at most P(e + eps) - P(e), P the determinant
+  // with every term made positive (a polynomial in the differences with positive coefficients, so
+  // its growth bounds any change of them by at most eps): 6 ex ey ez for orient3d, and
+  // 24 (ex^2 + ey^2 + ez^2) ex ey ez for insphere (4 lifts, each with a 6-term minor).
+  const double eps = tuning_.images ? 2 * filter::kEpsilon * tuning_.magnitude * 1.01 : 0.0;
+  const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
   const double m = std::max({ex, ey, ez});
   const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
+  // The growths, summed from positive terms (no cancellation): P(e + eps) - P(e) for the product
+  // of the extents, and the sum of their squares.
+  const double productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
+    eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
+  const double squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
+  const double squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+  const double orientGrowth = 6 * productGrowth;
+  const double inSphereGrowth = 24 * (squaresGrowth * orientProduct + squares * productGrowth);
   const bool staticSafe = !tuning_.anyMagnitude && orientProduct > filter::kUnderflowGuard &&
     inSphereProduct > filter::kUnderflowGuard;
-  tuning_.extents[0] = ex;
-  tuning_.extents[1] = ey;
-  tuning_.extents[2] = ez;
-  tuning_.boxOrient = staticSafe ? filter::kOrientSemiStatic * orientProduct * 1.01 : HUGE_VAL;
+  tuning_.boxOrient =
+    staticSafe ? (filter::kOrientSemiStatic * orientProduct + orientGrowth) * 1.01 : HUGE_VAL;
   tuning_.boxInSphere =
-    staticSafe ? filter::kInSphereSemiStatic * inSphereProduct * 1.01 : HUGE_VAL;
+    staticSafe ? (filter::kInSphereSemiStatic * inSphereProduct + inSphereGrowth) * 1.01 : HUGE_VAL;
+}
+
+void Predicates::useImages(const PeriodicImages* images)
+{
+  tuning_.images = images;
+  liftsFirst_ = false;
+  applyBoxBounds();
+  applyGrid();
 }
 
 void Predicates::adaptToWeights(double lowest, double highest)
@@ -361,6 +412,16 @@ void Predicates::allowAnyMagnitude()
 void Predicates::applyGrid()
 {
   Tuning& t = tuning_;
+  if (t.images)
+  {
+    // The records' grid is not the exact images'.
+    t.inverseGridUnit = 0.0;
+    t.floatExactOrient = t.floatExactInSphere = false;
+    t.orientStatic = t.boxOrient;
+    t.inSphereStatic = t.boxInSphere;
+    t.powerStatic = HUGE_VAL;
+    return;
+  }
   if (t.anyMagnitude)
   {
     t.inverseGridUnit = 0.0;
@@ -549,6 +610,8 @@ bool Predicates::insideBeyondFirstFilter(
 int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
+  if (tuning_.images)
+    return inSphereOfImages(a, b, c, d, e);
   if (tuning_.inverseGridUnit > 0)
     return inSphereExact(a, b, c, d, e);
   const double* five[5] = {a, b, c, d, e};
@@ -651,6 +714,7 @@ int Predicates::inSphereExact(
 
 int Predicates::powerTest(const double* const p[4], const double* pe, const double w[4], double we)
 {
+  assert(!tuning_.images && "periodic images carry no weights");
   double d[4][3], lift[4], largest[3] = {0, 0, 0}, largestWeight = 0;
   for (int r = 0; r < 4; ++r)
   {
@@ -772,8 +836,40 @@ int Predicates::inCircleExact(const double* const p[4], int u, int v)
   return det.sign();
 }
 
+int Predicates::orient3dOfImages(const double* a, const double* b, const double* c, const double* d)
+{
+  ++exactOrientCalls;
+  ++integerExactCalls;
+  const double* rows[3] = {b, c, d};
+  const double* residuals[3] = {residualOf(b), residualOf(c), residualOf(d)};
+  IntegerRows<3> q(rows, a, residuals, residualOf(a));
+  Integer det;
+  q.minor3(0, 1, 2, det);
+  return mpz_sgn(det.get());
+}
+
+int Predicates::inSphereOfImages(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  ++exactInSphereCalls;
+  ++integerExactCalls;
+  const double* rows[4] = {a, b, c, d};
+  const double* residuals[4] = {residualOf(a), residualOf(b), residualOf(c), residualOf(d)};
+  IntegerRows<4> q(rows, e, residuals, residualOf(e));
+  return liftedDeterminantSign(q);
+}
+
+bool Predicates::collinearOfImages(const double* a, const double* b, const double* c)
+{
+  const double* rows[2] = {b, c};
+  const double* residuals[2] = {residualOf(b), residualOf(c)};
+  return IntegerRows<2>(rows, a, residuals, residualOf(a)).parallel(0, 1);
+}
+
 bool Predicates::collinear(const double* a, const double* b, const double* c)
 {
+  if (tuning_.images)
+    return collinearOfImages(a, b, c);
   if (tuning_.anyMagnitude)
   {
     const double* rows[2] = {b, c};
@@ -802,11 +898,22 @@ int Predicates::symbolicInSphere(const double* const p[4], const double* pe)
 {
   ++symbolicTies;
   // The keys are computed here, not stored with the vertices, which have no room left for them:
-  // most inputs tie rarely.
-  std::uint16_t key[4];
-  for (int i = 0; i < 4; ++i)
-    key[i] = perturbationKey(p[i], perturbationSeed_);
-  const std::uint16_t keyE = perturbationKey(pe, perturbationSeed_);
+  // most inputs tie rarely. Periodic images carry theirs, and go in their own order, the same for
+  // every translate of a configuration.
+  ImageOf image[5];
+  const double* const five[5] = {p[0], p[1], p[2], p[3], pe};
+  for (int i = 0; i < 5; ++i)
+  {
+    const ImageOf* found = tuning_.images ? tuning_.images->find(five[i]) : nullptr;
+    if (found)
+      image[i] = *found;
+    else
+    {
+      image[i] = ImageOf{{0, 0, 0}, {five[i][0], five[i][1], five[i][2]}, {0, 0, 0},
+        perturbationKey(five[i], perturbationSeed_)};
+    }
+  }
+  auto before = [&image](int i, int j) { return precedes(image[i], image[j]); };
   // Lowering the lift of point v by delta_v changes (plane - lift)(e) by
   //   delta_e - sum_{v in tet} delta_v * lambda_v(e),
   // lambda_v(e) being the barycentric coordinate of e, whose sign is orient3d(tet with v := e).
@@ -817,9 +924,9 @@ int Predicates::symbolicInSphere(const double* const p[4], const double* pe)
   {
     int k = -1;
     for (int i = 0; i < 4; ++i)
-      if (!(done >> i & 1u) && (k < 0 || precedes(key[i], p[i], key[k], p[k])))
+      if (!(done >> i & 1u) && (k < 0 || before(i, k)))
         k = i;
-    if (precedes(keyE, pe, key[k], p[k]))
+    if (before(4, k))
       return 1;
     const double* q[4] = {p[0], p[1], p[2], p[3]};
     q[k] = pe;

@@ -14,6 +14,7 @@
 #define fd3_Predicates_h
 
 #include "exact/Expansion.h"
+#include "exact/PeriodicImages.h"
 #include "fd3/Bounds.h"
 
 #include <algorithm>
@@ -185,8 +186,13 @@ public:
   void tuneLike(const Predicates& other)
   {
     tuning_ = other.tuning_;
-    liftsFirst_ = liftsFirst_ && !tuning_.anyMagnitude;
+    liftsFirst_ = liftsFirst_ && !tuning_.anyMagnitude && !tuning_.images;
   }
+  /// For the vertices of a periodic run, whose records hold images rounded (PeriodicImages.h): every
+  /// sign is then the exact images', and ties are broken in the images' order. The static filters
+  /// widen by the rounding of the records (applyBoxBounds()); every test they leave open is decided
+  /// exactly, with the residuals, in GMP integers. No grid, lifts' filter or power test then.
+  void useImages(const PeriodicImages* images);
   /// For coordinates of any finite magnitude, from the smallest subnormal to DBL_MAX (points that
   /// no scaled frame holds exactly): the float filters check that no operation overflowed or lost
   /// a rounding error to underflow, and the exact stage computes in GMP integers on the
@@ -199,7 +205,7 @@ public:
   /// test. It cannot help with exact ties (cospherical points, lattices), which
   /// neither filter decides. Which filter goes first never changes a sign.
   /// Not for any magnitude: its bound assumes that no rounding error is lost to underflow.
-  void preferLiftsFilter() { liftsFirst_ = !tuning_.anyMagnitude; }
+  void preferLiftsFilter() { liftsFirst_ = !tuning_.anyMagnitude && !tuning_.images; }
   bool prefersLiftsFilter() const { return liftsFirst_; }
   /// Insphere tests that the static filter left open and the lifts' filter decided, while the
   /// static one went first.
@@ -225,6 +231,17 @@ private:
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
   int powerTestExact(const double* const p[4], const double* pe, const double w[4], double we);
+  /// The exact stages of periodic images (useImages()).
+  int orient3dOfImages(const double* a, const double* b, const double* c, const double* d);
+  int inSphereOfImages(
+    const double* a, const double* b, const double* c, const double* d, const double* e);
+  bool collinearOfImages(const double* a, const double* b, const double* c);
+  /// p's residual where p is an image's record, else null.
+  const double* residualOf(const double* p) const
+  {
+    const ImageOf* image = tuning_.images->find(p);
+    return image ? image->residual : nullptr;
+  }
   static constexpr int kUndecided = 2;
   /// inSphereExact() of the tetrahedron five[0..3] and five[4] where four of the five share one
   /// coordinate exactly (a face of a structured grid, a layer, a ring): its sign from the fifth
@@ -261,13 +278,17 @@ private:
     double inSphereStatic = HUGE_VAL;
     double powerStatic = HUGE_VAL;                      // adaptToWeights()
     double extents[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}; // the box's, from adaptTo()
+    double magnitude = HUGE_VAL;                        // the largest |coordinate| in the box
     bool floatExactOrient = false;
     bool floatExactInSphere = false;
-    bool anyMagnitude = false; // allowAnyMagnitude()
+    bool anyMagnitude = false;              // allowAnyMagnitude()
+    const PeriodicImages* images = nullptr; // useImages()
   } tuning_;
   void applyGrid();
-  /// The static bounds from `box` alone (boxOrient, boxInSphere, extents).
+  /// The static bounds from `box` alone (boxOrient, boxInSphere, extents, magnitude).
   void setBoxBounds(const Bounds& box);
+  /// boxOrient and boxInSphere from the box's extents and magnitude.
+  void applyBoxBounds();
 };
 
 inline int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
@@ -282,6 +303,8 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
     return -filter::signOf(det);
   if (tuning_.floatExactOrient)
     return 0;
+  if (tuning_.images)
+    return orient3dOfImages(a, b, c, d);
   // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
   // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
   // filter::kOrientSemiStatic times that product.
@@ -493,6 +516,8 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
     return -filter::signOf(det);
   if (det > tuning_.inSphereStatic || -det > tuning_.inSphereStatic)
     return -filter::signOf(det);
+  if (tuning_.images)
+    return 0; // the relative filters do not bound the records' rounding
   if (tuning_.floatExactInSphere)
     return -filter::signOf(det);
   if (!liftsFirst_ && !tuning_.anyMagnitude && liftsFilterProves(det, lifts))

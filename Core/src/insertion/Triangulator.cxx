@@ -39,8 +39,19 @@ bool Triangulator::insertAll(
   return insertRounds(4, vertexCount(), roundStarts, true, progress);
 }
 
+void Triangulator::useImages(const std::vector<ImageOf>& images)
+{
+  for (const ImageOf& image : images)
+    images_.append(image);
+  images_.locate(mesh_.vertices[0].xyz, sizeof(Vertex) / sizeof(double));
+  tuning_.useImages(&images_);
+  for (auto& inserter : inserters_)
+    inserter->retune(tuning_);
+}
+
 bool Triangulator::insertMore(VertexArray more, std::vector<double> weights,
-  const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress)
+  const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress,
+  const std::vector<ImageOf>& images)
 {
   const std::size_t begin = vertexCount();
   tuneFor(more.data(), more.size());
@@ -55,6 +66,12 @@ bool Triangulator::insertMore(VertexArray more, std::vector<double> weights,
     inserter->lookForDuplicates();
   }
   mesh_.vertices.insert(mesh_.vertices.end(), more.begin(), more.end());
+  if (images_.size() > 0)
+  {
+    for (const ImageOf& image : images)
+      images_.append(image);
+    images_.locate(mesh_.vertices[0].xyz, sizeof(Vertex) / sizeof(double)); // they may have moved
+  }
   std::vector<std::size_t> starts(roundStarts);
   for (std::size_t& start : starts)
     start += begin;

@@ -42,9 +42,13 @@ public:
   /// Appends `more` vertices (of `weights` on a weighted mesh, in the frame's units), distinct
   /// from each other and anywhere in the frame, and inserts them,
   /// in the rounds of `roundStarts` (indices into `more`). Those that repeat a vertex of the mesh
-  /// are left out and listed in duplicates().
+  /// are left out and listed in duplicates(). A periodic mesh takes their `images` too.
   bool insertMore(VertexArray more, std::vector<double> weights,
-    const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress);
+    const std::vector<std::size_t>& roundStarts, const std::function<bool(double)>& progress,
+    const std::vector<ImageOf>& images = {});
+  /// Makes the mesh periodic, before any insertion: its vertices are the periodic images of
+  /// `images` (by vertex rank, in the frame's units), which the predicates then decide exactly.
+  void useImages(const std::vector<ImageOf>& images);
   /// Appends `vertex` and inserts it on this thread, appending the finite tetrahedra the insertion
   /// deleted and made to `deleted` and `made`; false, with no change, when it repeats a vertex
   /// (listed in duplicates()).
@@ -164,6 +168,7 @@ private:
   static constexpr double kPassMargin = 1.1;
 
   Mesh mesh_;
+  PeriodicImages images_; // of a periodic mesh's vertices; empty otherwise
   ThreadTeam& team_;
   Predicates tuning_; // adapted to every vertex so far; the inserters take copies
   // The box of every vertex so far, which sets the static bounds: those of the points' own box,

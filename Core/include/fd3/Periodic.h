@@ -1,0 +1,80 @@
+// FastDelaunay3D Core, periodic: the Delaunay tetrahedralization of a point set repeated along
+// some axes of a box (molecular dynamics, granular and cosmological simulation boxes). Plain
+// C++17, no VTK.
+#ifndef fd3_Periodic_h
+#define fd3_Periodic_h
+
+#include "fd3/Delaunay.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace fd3
+{
+
+/// The box [lo, hi) on each axis, repeated along the axes where `periodic` is set. The period of
+/// an axis is hi - lo; where that difference is no double, its rounding, and the box is then
+/// [lo, lo + period).
+struct PeriodicBox
+{
+  double lo[3] = {0, 0, 0};
+  double hi[3] = {1, 1, 1};
+  bool periodic[3] = {true, true, true};
+};
+
+/// The periodic tetrahedralization: every tetrahedron of the repeated points once, up to a
+/// translation by whole periods.
+struct PeriodicTriangulation
+{
+  Status status = Status::Ok;
+  /// Four input point ids per tetrahedron.
+  IdArray tetrahedra;
+  /// Three per vertex of each tetrahedron, twelve per tetrahedron: the periods its point, wrapped
+  /// into the box (`wraps`), is moved by. The tetrahedron is positive as placed. Its least vertex
+  /// (least id, then least offset) has offset 0, so the tetrahedra, each with its least vertex in
+  /// the box, fill one period exactly.
+  std::vector<std::int8_t> offsets;
+  /// Three per input point: the periods subtracted from it to wrap it into the box (0 for a point
+  /// in it, or not finite).
+  std::vector<std::int32_t> wraps;
+  /// Per input point: itself where it is a vertex; else the vertex it repeats once wrapped (an
+  /// exact copy, counted in stats.duplicatesMerged) or lies too close to for the box's doubles
+  /// to tell their images apart (within a unit in the last place of the box's coordinates on
+  /// every axis: stats.closePointsSkipped); kNoPoint for a point that is not finite.
+  IdArray representative;
+  /// insertedPoints counts the distinct points, tetrahedra the periodic tetrahedra.
+  Statistics stats;
+  /// How the tetrahedralization was found: the images of the points inserted around the box, in
+  /// a shell of `margin` (input units) on every periodic side, after `rounds` widenings of it.
+  std::size_t imagePoints = 0;
+  double margin = 0;
+  int rounds = 0;
+
+  std::size_t numberOfTetrahedra() const { return tetrahedra.size() / 4; }
+};
+
+/// The Delaunay tetrahedralization of the points (count triples of xyz) repeated along the
+/// periodic axes of `box`, exact as triangulate() is: predicates on the exact images (no image
+/// p + k L need be a double), ties broken by a perturbation that orders the images by point and
+/// then offset, so that a configuration and its translates break them alike. Points outside the
+/// box are wrapped into it, exactly. Along axes that are not periodic the points may lie
+/// anywhere, and the tetrahedralization ends at the hull of the repeated set (the planes of a
+/// slab's highest and lowest points).
+///
+/// Any number of points works, one included: the images of the points around the box are
+/// inserted in a shell that widens until every tetrahedron at a point of the box provably has its
+/// circumsphere within the points present (or the shell is as wide as any such sphere can
+/// reach), which also covers the sets too small for a single copy of the box to hold their
+/// tetrahedralization.
+///
+/// Options as for triangulate(), except that tolerance and volumeThreshold are not applied (0:
+/// exactly Delaunay, every distinct point a vertex). Throws std::invalid_argument for a box with
+/// no periodic axis or a periodic axis with hi <= lo or not finite. Status::OutOfRange where a
+/// point lies more than 2^30 periods from the box, or an image is no sum of two doubles.
+PeriodicTriangulation triangulatePeriodic(
+  const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options = Options());
+
+} // namespace fd3
+
+#endif
