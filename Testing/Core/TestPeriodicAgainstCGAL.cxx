@@ -1,10 +1,12 @@
-// The periodic validator, the oracle of the periodic tests, on periodic tetrahedralizations made
-// without it: CGAL's Periodic_3_Delaunay_triangulation_3 (a test-only peer) in the unit cube, and
-// for slabs, the Delaunay tetrahedralization of copies of points on a binary grid (whose
-// translates are exact doubles) cut to one period. Each passes, and each kind of damage fails.
+// CGAL's Periodic_3_Delaunay_triangulation_3 (a test-only peer), in the unit cube, against the
+// periodic validator and against Core. The validator passes it and, for slabs, the Delaunay
+// tetrahedralization of copies of points on a binary grid (whose translates are exact doubles)
+// cut to one period, and each kind of damage fails it. Core's periodic tetrahedra are CGAL's on
+// generic input, where the tetrahedralization is unique.
 #include "PeriodicValidator.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
+#include "fd3/Periodic.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Periodic_3_Delaunay_triangulation_3.h>
@@ -16,6 +18,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 #include <vector>
 
 namespace
@@ -275,6 +278,48 @@ TEST(PeriodicValidator, AcceptsSlabsAndColumnsAndChecksTheirHull)
     PeriodicDomain closed = domain;
     closed.periodic[2] = true;
     EXPECT_FALSE(fd3test::checkPeriodicTriangulation(p.data(), 300, closed, tets).valid());
+  }
+}
+
+/// A periodic tetrahedron up to translation: its (id, offset) vertices moved so that the least one
+/// has offset 0, sorted.
+std::array<std::array<int, 4>, 4> translated(const PeriodicTetrahedron& t)
+{
+  std::array<std::array<int, 4>, 4> v;
+  for (int i = 0; i < 4; ++i)
+    v[i] = {int(t.ids[i]), t.offsets[i][0], t.offsets[i][1], t.offsets[i][2]};
+  std::sort(v.begin(), v.end());
+  const std::array<int, 4> least = v[0];
+  for (auto& vertex : v)
+    for (int k = 1; k < 4; ++k)
+      vertex[k] -= least[k];
+  return v;
+}
+
+TEST(PeriodicAgainstCGAL, SameTetrahedraOnUniformPoints)
+{
+  for (std::size_t n : {50, 2000})
+  {
+    const Points p = fd3test::uniformCube(n, 21);
+    std::set<std::array<std::array<int, 4>, 4>> theirs, ours;
+    for (const PeriodicTetrahedron& t : cgalPeriodic(p))
+      theirs.insert(translated(t));
+    const fd3::PeriodicTriangulation core =
+      fd3::triangulatePeriodic(p.data(), n, fd3::PeriodicBox());
+    ASSERT_EQ(core.status, fd3::Status::Ok);
+    for (std::size_t c = 0; c < core.numberOfTetrahedra(); ++c)
+    {
+      PeriodicTetrahedron t;
+      for (int i = 0; i < 4; ++i)
+      {
+        t.ids[i] = core.tetrahedra[4 * c + i];
+        for (int k = 0; k < 3; ++k)
+          t.offsets[i][k] = core.offsets[12 * c + 3 * i + k];
+      }
+      ours.insert(translated(t));
+    }
+    EXPECT_EQ(core.numberOfTetrahedra(), ours.size()) << n;
+    EXPECT_EQ(ours, theirs) << n;
   }
 }
 
