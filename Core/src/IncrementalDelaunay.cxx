@@ -727,26 +727,34 @@ void IncrementalDelaunay::addImages(const double* xyz, const ImageOf* images, st
   add(xyz, count);
 }
 
-void IncrementalDelaunay::visitTetrahedra(
-  const std::function<void(const std::uint32_t ids[4], unsigned hull)>& visit) const
+void IncrementalDelaunay::visitTetrahedra(bool withHull,
+  const std::function<void(const std::uint32_t ids[4], const double* const xyz[4], unsigned hull)>&
+    visit) const
 {
   if (impl_->released || !impl_->triangulator)
     return;
   const TetMesh& mesh = impl_->triangulator->tetrahedra();
   const VertexArray& vertices = impl_->triangulator->vertices();
-  for (TetId t = 0; t < mesh.slots(); ++t)
-  {
-    if (mesh.isDead(t) || mesh.isGhost(t))
-      continue;
-    std::uint32_t ids[4];
-    unsigned hull = 0;
-    for (int i = 0; i < 4; ++i)
-    {
-      ids[i] = vertices[mesh.vertex(t, i)].point;
-      hull |= unsigned(mesh.isGhost(tetOf(mesh.neighbor(t, i)))) << i;
-    }
-    visit(ids, hull);
-  }
+  impl_->team->forRanges(
+    mesh.slots(), "visit", [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t t = begin; t < end; ++t)
+      {
+        if (mesh.isDead(TetId(t)) || mesh.isGhost(TetId(t)))
+          continue;
+        std::uint32_t ids[4];
+        const double* xyz[4];
+        unsigned hull = 0;
+        for (int i = 0; i < 4; ++i)
+        {
+          const Vertex& vertex = vertices[mesh.vertex(TetId(t), i)];
+          ids[i] = vertex.point;
+          xyz[i] = vertex.xyz;
+          if (withHull)
+            hull |= unsigned(mesh.isGhost(tetOf(mesh.neighbor(TetId(t), i)))) << i;
+        }
+        visit(ids, xyz, hull);
+      }
+    });
 }
 
 IncrementalDelaunay::~IncrementalDelaunay() = default;

@@ -157,10 +157,13 @@ private:
   static std::unique_ptr<IncrementalDelaunay> ofImages(const double* xyz, const ImageOf* images,
     std::size_t count, const Options& options, const Frame& frame);
   void addImages(const double* xyz, const ImageOf* images, std::size_t count);
-  /// Calls visit(ids, hull) for every live finite tetrahedron: its point ids, positively oriented,
-  /// and bit f of `hull` set where its face opposite vertex f is a hull face.
-  void visitTetrahedra(
-    const std::function<void(const std::uint32_t ids[4], unsigned hull)>& visit) const;
+  /// Calls visit(ids, xyz, hull) for every live finite tetrahedron: its point ids, positively
+  /// oriented, its vertices' coordinates in the frame and, `withHull`, bit f of `hull` set where
+  /// its face opposite vertex f is a hull face (else 0). On the mesh's threads at once: `visit`
+  /// must be safe to call concurrently.
+  void visitTetrahedra(bool withHull,
+    const std::function<void(
+      const std::uint32_t ids[4], const double* const xyz[4], unsigned hull)>& visit) const;
   /// triangulate()'s mesh: used once, in the frame of its own points, made from their bounds;
   /// weighted where `weights` is given.
   IncrementalDelaunay(

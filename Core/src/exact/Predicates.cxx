@@ -610,7 +610,7 @@ bool Predicates::insideBeyondFirstFilter(
 int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
-  if (tuning_.images)
+  if (tuning_.images && anyInexact(a, b, c, d, e))
     return inSphereOfImages(a, b, c, d, e);
   if (tuning_.inverseGridUnit > 0)
     return inSphereExact(a, b, c, d, e);
@@ -868,7 +868,7 @@ bool Predicates::collinearOfImages(const double* a, const double* b, const doubl
 
 bool Predicates::collinear(const double* a, const double* b, const double* c)
 {
-  if (tuning_.images)
+  if (tuning_.images && anyInexact(a, b, c))
     return collinearOfImages(a, b, c);
   if (tuning_.anyMagnitude)
   {

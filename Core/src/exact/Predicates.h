@@ -190,8 +190,9 @@ public:
   }
   /// For the vertices of a periodic run, whose records hold images rounded (PeriodicImages.h): every
   /// sign is then the exact images', and ties are broken in the images' order. The static filters
-  /// widen by the rounding of the records (applyBoxBounds()); every test they leave open is decided
-  /// exactly, with the residuals, in GMP integers. No grid, lifts' filter or power test then.
+  /// widen by the rounding of the records (applyBoxBounds()); every test they leave open on an
+  /// image that its record does not hold is decided exactly, with the residuals, in GMP
+  /// integers. No grid, lifts' filter or power test then.
   void useImages(const PeriodicImages* images);
   /// For coordinates of any finite magnitude, from the smallest subnormal to DBL_MAX (points that
   /// no scaled frame holds exactly): the float filters check that no operation overflowed or lost
@@ -241,6 +242,17 @@ private:
   {
     const ImageOf* image = tuning_.images->find(p);
     return image ? image->residual : nullptr;
+  }
+  /// Whether any of the points is an image that its record does not hold exactly: the others,
+  /// exact doubles, take the usual filters and exact stages.
+  template <typename... Points>
+  bool anyInexact(const Points*... p) const
+  {
+    auto inexact = [this](const double* q) {
+      const double* r = residualOf(q);
+      return r && (r[0] != 0 || r[1] != 0 || r[2] != 0);
+    };
+    return (inexact(p) || ...);
   }
   static constexpr int kUndecided = 2;
   /// inSphereExact() of the tetrahedron five[0..3] and five[4] where four of the five share one
@@ -303,7 +315,7 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
     return -filter::signOf(det);
   if (tuning_.floatExactOrient)
     return 0;
-  if (tuning_.images)
+  if (tuning_.images && anyInexact(a, b, c, d))
     return orient3dOfImages(a, b, c, d);
   // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
   // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
@@ -516,7 +528,7 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
     return -filter::signOf(det);
   if (det > tuning_.inSphereStatic || -det > tuning_.inSphereStatic)
     return -filter::signOf(det);
-  if (tuning_.images)
+  if (tuning_.images && anyInexact(a, b, c, d, e))
     return 0; // the relative filters do not bound the records' rounding
   if (tuning_.floatExactInSphere)
     return -filter::signOf(det);

@@ -4,6 +4,7 @@
 #include "exact/Predicates.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -14,11 +15,12 @@ namespace
 {
 // The farthest a point may lie from the box, in periods, and the widest offset of an image.
 constexpr double kMostPeriods = 0x1p30;
+constexpr int kMostOffset = 127; // an image's offset in periods, in the output's bytes
 // Shells widen by half at least, so that the rounds stay few.
 constexpr double kWidening = 1.5;
 // The first shell, in spacings of evenly spread points: wide enough for nearly every
 // tetrahedron of well-spread points, so that one round usually does.
-constexpr double kFirstShell = 2.5;
+constexpr double kFirstShell = 3.5;
 // Relative slack of the certificate's float evaluation: it only needs to be sufficient, and a
 // false failure only widens the shell.
 constexpr double kSlack = 1e-6;
@@ -36,6 +38,7 @@ PeriodicDelaunay::PeriodicDelaunay(
 {
   options_.tolerance = 0;
   options_.volumeThreshold = 0;
+  options_.computeNeighbors = false; // of the covering, which only gives up its tetrahedra
   for (int k = 0; k < 3; ++k)
   {
     period_[k] = box.hi[k] - box.lo[k];
@@ -65,6 +68,7 @@ bool PeriodicDelaunay::wrapPoints()
       continue;
     }
     representative_[i] = static_cast<std::uint32_t>(i);
+    points_.push_back(static_cast<std::uint32_t>(i));
     for (int k = 0; k < 3; ++k)
     {
       place_[i][k] = p[k];
@@ -105,47 +109,6 @@ bool PeriodicDelaunay::wrapPoints()
     }
   }
   return true;
-}
-
-void PeriodicDelaunay::choosePoints()
-{
-  std::vector<std::uint32_t> order;
-  for (std::size_t i = 0; i < count_; ++i)
-    if (representative_[i] != kNoPoint)
-      order.push_back(static_cast<std::uint32_t>(i));
-  // By record, then residual, then id: repeats of an exact place, and places whose records
-  // coincide, follow the first of them.
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    if (place_[a] != place_[b])
-      return place_[a] < place_[b];
-    if (placeResidual_[a] != placeResidual_[b])
-      return placeResidual_[a] < placeResidual_[b];
-    return a < b;
-  });
-  for (std::size_t i = 0; i < order.size();)
-  {
-    std::size_t end = i + 1;
-    while (end < order.size() && place_[order[end]] == place_[order[i]])
-      ++end;
-    const std::uint32_t first =
-      *std::min_element(order.begin() + long(i), order.begin() + long(end));
-    for (std::size_t j = i; j < end; ++j)
-    {
-      const std::uint32_t id = order[j];
-      if (id == first)
-        continue;
-      representative_[id] = first;
-      if (placeResidual_[id] == placeResidual_[first])
-        ++duplicates_;
-      else
-        ++close_;
-    }
-    i = end;
-  }
-  points_.clear();
-  for (std::size_t i = 0; i < count_; ++i)
-    if (representative_[i] == i)
-      points_.push_back(static_cast<std::uint32_t>(i));
 }
 
 void PeriodicDelaunay::chooseFrame()
@@ -203,18 +166,21 @@ void PeriodicDelaunay::chooseFrame()
 
 bool PeriodicDelaunay::addShell(double inner, double outer)
 {
+  std::vector<std::int8_t> along[3];
   for (const std::uint32_t id : points_)
   {
     // The offsets along each axis that bring the point into [lo - outer, hi + outer].
-    std::vector<std::int8_t> along[3];
     for (int k = 0; k < 3; ++k)
     {
+      along[k].clear();
       if (!box_.periodic[k])
       {
-        along[k] = {0};
+        along[k].push_back(0);
         continue;
       }
       const int most = static_cast<int>(std::ceil(outer / period_[k])) + 1;
+      if (most > kMostOffset)
+        return false;
       for (int j = -most; j <= most; ++j)
       {
         const double x = place_[id][k] + j * period_[k];
@@ -233,11 +199,11 @@ bool PeriodicDelaunay::addShell(double inner, double outer)
       }
       return true;
     };
-    for (const std::int8_t jx : along[0])
-      for (const std::int8_t jy : along[1])
-        for (const std::int8_t jz : along[2])
+    for (const std::int8_t x : along[0])
+      for (const std::int8_t y : along[1])
+        for (const std::int8_t z : along[2])
         {
-          const std::array<std::int8_t, 3> o = {jx, jy, jz};
+          const std::array<std::int8_t, 3> o = {x, y, z};
           if (within(o, inner))
             continue;
           ImageOf image;
@@ -254,137 +220,139 @@ bool PeriodicDelaunay::addShell(double inner, double outer)
           coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
           coveringImages_.push_back(image);
           covering_.push_back({id, o});
+          inBox_.push_back(o[0] == 0 && o[1] == 0 && o[2] == 0);
         }
   }
   return true;
 }
 
-bool PeriodicDelaunay::recordsCollide()
+bool PeriodicDelaunay::resolveMerged(const Triangulation& covering)
 {
-  std::vector<std::uint32_t> order(covering_.size());
-  std::iota(order.begin(), order.end(), 0u);
-  auto record = [&](std::uint32_t c) {
-    return std::array<double, 3>{
-      coveringXyz_[3 * c], coveringXyz_[3 * c + 1], coveringXyz_[3 * c + 2]};
-  };
-  std::sort(order.begin(), order.end(),
-    [&](std::uint32_t a, std::uint32_t b) { return record(a) < record(b); });
-  bool collide = false;
-  for (std::size_t i = 1; i < order.size(); ++i)
+  // A covering point that the mesh merged into another has its record: the same image of a point
+  // at the same place (a repeat), or an image of a point within a rounding of it (too close).
+  bool close = false;
+  for (std::size_t c = 0; c < covering_.size(); ++c)
   {
-    const CoveringPoint &a = covering_[order[i - 1]], &b = covering_[order[i]];
-    if (record(order[i - 1]) != record(order[i]) || a.owner == b.owner)
+    const std::uint32_t kept = covering.representative[c];
+    if (kept == c)
       continue;
-    // Distinct places (the points were chosen so): the later owner goes.
-    const std::uint32_t later = std::max(a.owner, b.owner);
+    const std::uint32_t a = covering_[c].owner, b = covering_[kept].owner;
+    const std::uint32_t later = std::max(a, b);
+    const bool repeat = place_[a] == place_[b] && placeResidual_[a] == placeResidual_[b];
     if (representative_[later] == later)
-      ++close_;
-    representative_[later] = std::min(a.owner, b.owner);
-    collide = true;
+      ++(repeat ? duplicates_ : close_);
+    representative_[later] = std::min(a, b);
+    close = close || !repeat;
   }
-  if (collide)
-  {
-    for (std::uint32_t& id : representative_)
-      if (id != kNoPoint)
-        while (representative_[id] != id)
-          id = representative_[id];
-    points_.erase(std::remove_if(points_.begin(), points_.end(),
-                    [&](std::uint32_t id) { return representative_[id] != id; }),
-      points_.end());
-  }
-  return collide;
+  for (std::uint32_t& id : representative_)
+    if (id != kNoPoint)
+      while (representative_[id] != id)
+        id = representative_[id];
+  points_.erase(std::remove_if(points_.begin(), points_.end(),
+                  [&](std::uint32_t id) { return representative_[id] != id; }),
+    points_.end());
+  return close;
 }
 
 double PeriodicDelaunay::neededMargin(const IncrementalDelaunay& mesh) const
 {
-  // The points' extent along the axes that are not periodic.
+  // In the frame, where the records are: the box, the shell and the points' extent along the
+  // axes that are not periodic.
   Bounds extent;
   for (const std::uint32_t id : points_)
     extent.include(place_[id].data());
-  double needed = margin_;
-  mesh.visitTetrahedra([&](const std::uint32_t ids[4], unsigned hull) {
-    bool inBox = false;
-    for (int i = 0; i < 4; ++i)
-    {
-      const auto& o = covering_[ids[i]].offset;
-      inBox = inBox || (o[0] == 0 && o[1] == 0 && o[2] == 0);
-    }
-    if (!inBox)
-      return;
-    if (hull != 0)
-    {
-      static constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-      for (int f = 0; f < 4; ++f)
+  extent = toFrame(frame_, extent);
+  Bounds box;
+  std::copy(box_.lo, box_.lo + 3, box.lo);
+  std::copy(box_.hi, box_.hi + 3, box.hi);
+  box = toFrame(frame_, box);
+  const double scale = frame_.identity ? 1.0 : frame_.scale;
+  const double margin = margin_ * scale;
+  // Raised rarely, from every thread of the visit.
+  std::atomic<double> needed{margin_};
+  auto raise = [&needed](double value) {
+    double seen = needed.load(std::memory_order_relaxed);
+    while (value > seen && !needed.compare_exchange_weak(seen, value, std::memory_order_relaxed))
+    {}
+  };
+  const bool withHull = periodicAxes_ < 3;
+  mesh.visitTetrahedra(
+    withHull, [&](const std::uint32_t ids[4], const double* const xyz[4], unsigned hull) {
+      if (!(inBox_[ids[0]] | inBox_[ids[1]] | inBox_[ids[2]] | inBox_[ids[3]]))
+        return;
+      if (hull != 0)
       {
-        if (!(hull >> f & 1u))
-          continue;
-        const std::uint32_t face[3] = {
-          ids[kOutward[f][0]], ids[kOutward[f][1]], ids[kOutward[f][2]]};
-        // A hull face of the covering that a point of the box is on must be one of the repeated
-        // set: across the periodic axes, its half-space would take in images.
-        const bool atBox = std::any_of(face, face + 3, [&](std::uint32_t c) {
-          const auto& o = covering_[c].offset;
-          return o[0] == 0 && o[1] == 0 && o[2] == 0;
-        });
-        if (atBox && (periodicAxes_ == 3 || !parallelToPeriods(face)))
-          needed = std::max(needed, kWidening * margin_);
+        static constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+        for (int f = 0; f < 4; ++f)
+        {
+          if (!(hull >> f & 1u))
+            continue;
+          const std::uint32_t face[3] = {
+            ids[kOutward[f][0]], ids[kOutward[f][1]], ids[kOutward[f][2]]};
+          // A hull face of the covering that a point of the box is on must be one of the repeated
+          // set: across the periodic axes, its half-space would take in images.
+          const bool atBox = inBox_[face[0]] | inBox_[face[1]] | inBox_[face[2]];
+          if (atBox && !parallelToPeriods(face))
+            raise(kWidening * margin_);
+        }
       }
-    }
-    // The circumsphere, relative to vertex 0, in floats.
-    const double* a = &coveringXyz_[3 * ids[0]];
-    double u[3][3];
-    for (int i = 0; i < 3; ++i)
+      // The circumsphere, relative to vertex 0, in floats.
+      const double* a = xyz[0];
+      double u[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+          u[i][k] = xyz[i + 1][k] - a[k];
+      double lift[3], cross[3][3];
+      for (int i = 0; i < 3; ++i)
+      {
+        lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
+        const double* v = u[(i + 1) % 3];
+        const double* w = u[(i + 2) % 3];
+        cross[i][0] = v[1] * w[2] - v[2] * w[1];
+        cross[i][1] = v[2] * w[0] - v[0] * w[2];
+        cross[i][2] = v[0] * w[1] - v[1] * w[0];
+      }
+      const double det =
+        2 * (u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2]);
+      double c[3];
       for (int k = 0; k < 3; ++k)
-        u[i][k] = coveringXyz_[3 * ids[i + 1] + k] - a[k];
-    double lift[3], cross[3][3];
-    for (int i = 0; i < 3; ++i)
-    {
-      lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
-      const double* v = u[(i + 1) % 3];
-      const double* w = u[(i + 2) % 3];
-      cross[i][0] = v[1] * w[2] - v[2] * w[1];
-      cross[i][1] = v[2] * w[0] - v[0] * w[2];
-      cross[i][2] = v[0] * w[1] - v[1] * w[0];
-    }
-    const double det = 2 * (u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2]);
-    double c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = (lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k]) / det;
-    const double r = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) * (1 + kSlack);
-    if (!std::isfinite(r))
-    {
-      needed = widest_;
-      return;
-    }
-    // Where the sphere meets the points' extent along the other axes, its reach along the
-    // periodic ones.
-    double far = 0;
-    for (int k = 0; k < 3; ++k)
-      if (!box_.periodic[k])
+        c[k] = a[k] + (lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k]) / det;
+      const double r2 = (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1]) +
+        (c[2] - a[2]) * (c[2] - a[2]);
+      if (!std::isfinite(r2))
       {
-        const double x = a[k] + c[k];
-        const double gap = std::max({extent.lo[k] - x, x - extent.hi[k], 0.0});
-        far += gap * gap;
+        raise(widest_);
+        return;
       }
-    const double reach2 = r * r - far * (1 - kSlack);
-    if (reach2 <= 0)
-      return;
-    const double reach = std::sqrt(reach2) * (1 + kSlack);
-    for (int k = 0; k < 3; ++k)
-      if (box_.periodic[k])
-      {
-        const double x = a[k] + c[k];
-        const double beyond = std::max(box_.lo[k] - (x - reach), (x + reach) - box_.hi[k]);
-        const double slack = kSlack * (std::fabs(x) + reach + period_[k]);
-        if (beyond + slack >= margin_)
-          needed = std::max(needed, beyond + slack + spacing_);
-      }
-  });
-  return needed;
+      // Where the sphere meets the points' extent along the other axes, its reach along the
+      // periodic ones.
+      double far = 0;
+      for (int k = 0; k < 3; ++k)
+        if (!box_.periodic[k])
+        {
+          const double gap = std::max({extent.lo[k] - c[k], c[k] - extent.hi[k], 0.0});
+          far += gap * gap;
+        }
+      const double reach2 = r2 * (1 + kSlack) - far * (1 - kSlack);
+      if (reach2 <= 0)
+        return;
+      const double reach = std::sqrt(reach2) * (1 + kSlack);
+      for (int k = 0; k < 3; ++k)
+        if (box_.periodic[k])
+        {
+          const double beyond = std::max(box.lo[k] - (c[k] - reach), (c[k] + reach) - box.hi[k]);
+          const double slack = kSlack * (std::fabs(c[k]) + reach + (box.hi[k] - box.lo[k]));
+          if (beyond + slack >= margin)
+            raise((beyond + slack) / scale + spacing_);
+        }
+    });
+  return needed.load();
 }
 
 bool PeriodicDelaunay::parallelToPeriods(const std::uint32_t face[3]) const
 {
+  if (periodicAxes_ == 3)
+    return false;
   // The normal's component along axis k vanishes where the face's projection across k is a
   // segment: three collinear points, decided exactly on the images.
   for (int k = 0; k < 3; ++k)
@@ -412,23 +380,29 @@ bool PeriodicDelaunay::parallelToPeriods(const std::uint32_t face[3]) const
 
 void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulation& out) const
 {
+  // The copy of each tetrahedron whose least vertex is in the box: as many as the box's points
+  // have tetrahedra, about a quarter of them each.
   const std::size_t n = covering.numberOfTetrahedra();
+  out.tetrahedra.reserve(4 * (n - n / 8));
+  out.offsets.reserve(12 * (n - n / 8));
   for (std::size_t t = 0; t < n; ++t)
   {
     const std::uint32_t* ids = &covering.tetrahedra[4 * t];
-    // The copy whose least vertex is in the box.
-    std::array<std::int64_t, 4> least = {INT64_MAX, 0, 0, 0};
-    for (int i = 0; i < 4; ++i)
+    if (!(inBox_[ids[0]] | inBox_[ids[1]] | inBox_[ids[2]] | inBox_[ids[3]]))
+      continue;
+    int least = 0;
+    for (int i = 1; i < 4; ++i)
     {
-      const CoveringPoint& p = covering_[ids[i]];
-      least = std::min(least, {p.owner, p.offset[0], p.offset[1], p.offset[2]});
+      const CoveringPoint &p = covering_[ids[i]], &q = covering_[ids[least]];
+      if (p.owner < q.owner || (p.owner == q.owner && p.offset < q.offset))
+        least = i;
     }
-    if (least[1] != 0 || least[2] != 0 || least[3] != 0)
+    if (!inBox_[ids[least]])
       continue;
     for (int i = 0; i < 4; ++i)
     {
       const CoveringPoint& p = covering_[ids[i]];
-      out.tetrahedra.push_back(p.owner);
+      out.tetrahedra.push_back(representative_[p.owner]); // the first of repeats
       out.offsets.insert(out.offsets.end(), p.offset.begin(), p.offset.end());
     }
   }
@@ -439,14 +413,10 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   coveringXyz_.clear();
   coveringImages_.clear();
   covering_.clear();
+  inBox_.clear();
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
   if (!addShell(-1, margin_))
-  {
-    out.status = Status::OutOfRange;
-    return nullptr;
-  }
-  if (recordsCollide())
     return nullptr;
   auto mesh = IncrementalDelaunay::ofImages(
     coveringXyz_.data(), coveringImages_.data(), covering_.size(), options_, frame_);
@@ -458,14 +428,9 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
       break;
     const double wider = std::min(std::max(needed, kWidening * margin_), widest_);
     if (!addShell(margin_, wider))
-    {
-      out.status = Status::OutOfRange;
       return nullptr;
-    }
     margin_ = wider;
     ++out.rounds;
-    if (recordsCollide())
-      return nullptr;
     mesh->addImages(
       &coveringXyz_[3 * inserted], &coveringImages_[inserted], covering_.size() - inserted);
     inserted = covering_.size();
@@ -482,7 +447,6 @@ PeriodicTriangulation PeriodicDelaunay::run()
     out.status = Status::OutOfRange;
     return out;
   }
-  choosePoints();
   out.stats.nonFinitePoints = nonFinite_;
   if (points_.empty())
   {
@@ -490,12 +454,19 @@ PeriodicTriangulation PeriodicDelaunay::run()
     return out;
   }
   chooseFrame();
-  std::unique_ptr<IncrementalDelaunay> mesh;
-  while (!mesh && out.status == Status::Ok)
-    mesh = cover(out);
-  if (!mesh)
-    return out;
-  const Triangulation covering = mesh->release();
+  Triangulation covering;
+  for (bool again = true; again;)
+  {
+    const std::unique_ptr<IncrementalDelaunay> mesh = cover(out);
+    if (!mesh)
+    {
+      out.status = Status::OutOfRange;
+      return out;
+    }
+    covering = mesh->release();
+    // Rare: points within a rounding of each other, whose images' records coincide.
+    again = covering.status == Status::Ok && resolveMerged(covering);
+  }
   out.status = covering.status;
   out.stats = covering.stats;
   out.stats.inputPoints = count_;
@@ -503,7 +474,7 @@ PeriodicTriangulation PeriodicDelaunay::run()
   out.stats.duplicatesMerged = duplicates_;
   out.stats.closePointsSkipped = close_;
   out.stats.insertedPoints = points_.size();
-  out.imagePoints = covering_.size() - points_.size();
+  out.imagePoints = std::size_t(std::count(inBox_.begin(), inBox_.end(), 0));
   out.margin = margin_;
   if (out.status == Status::Ok)
     extract(covering, out);

@@ -45,25 +45,23 @@ private:
     std::array<std::int8_t, 3> offset;
   };
 
-  /// Wraps every finite point into the box (wraps, and each one's exact place); false where one
-  /// lies too far.
+  /// Wraps every finite point into the box (wraps, and each one's exact place), each a point of
+  /// the box until its images show it repeats another; false where one lies too far.
   bool wrapPoints();
-  /// The points of the box, each place once: the first id of each exact place, and of the places
-  /// whose records coincide (too close to tell their images apart).
-  void choosePoints();
   /// The frame of the covering at its widest: the box and the widest shell, or the points'
   /// extent along the axes that are not periodic.
   void chooseFrame();
   /// Appends the images of the box's points within `outer` of the box and not within `inner` (the
   /// points themselves too for inner < 0); false where an image is no sum of two doubles.
   bool addShell(double inner, double outer);
-  /// The covering's mesh, shell by shell until the certificate holds. Null where the records of
-  /// two points' images coincide (the later point has left points_: build again) or an image is
-  /// out of range (out.status says so).
+  /// The covering's mesh, shell by shell until the certificate holds; null where an image is no
+  /// sum of two doubles.
   std::unique_ptr<IncrementalDelaunay> cover(PeriodicTriangulation& out);
-  /// Whether the owners of two covering points have records that coincide: the later one is then
-  /// skipped, and the covering starts again without it.
-  bool recordsCollide();
+  /// The points whose images the mesh merged into another's, which share their records: repeats
+  /// of a place, and points within a rounding of another, whose images the covering then lacks.
+  /// Each gets the earlier point as its representative; returns whether any was too close, to
+  /// build again without it.
+  bool resolveMerged(const Triangulation& covering);
   /// The shell width that the mesh's tetrahedra at points of the box need, from their spheres:
   /// `margin_` where the certificate holds.
   double neededMargin(const IncrementalDelaunay& mesh) const;
@@ -93,6 +91,7 @@ private:
   std::vector<double> coveringXyz_;
   std::vector<ImageOf> coveringImages_;
   std::vector<CoveringPoint> covering_;
+  std::vector<std::uint8_t> inBox_; // whether each covering point is a point of the box
 };
 
 } // namespace fd3
