@@ -238,7 +238,7 @@ struct IncrementalDelaunay::Impl
   std::vector<double> heldWeights;
   std::vector<std::uint32_t> hiddenCopies;
   // A periodic mesh (ofImages()): the images of the batch at hand, by its point ids, in the
-  // input's units.
+  // input's units; null for a batch of points that are no images.
   const ImageOf* images = nullptr;
   bool periodic = false;
 
@@ -271,7 +271,8 @@ private:
   /// Weighted: the weights of `order` (point ids of the batch at hand) in the frame; else none.
   std::vector<double> framedWeights(const IdArray& order) const;
   /// Periodic: the images of `order` (point ids of the batch at hand), their residuals in the
-  /// frame (exact: ofImages() chose a frame that scales every residual exactly); else none.
+  /// frame (exact: ofImages() chose a frame that scales every residual exactly); else, and for a
+  /// batch of points that are no images, none.
   std::vector<ImageOf> framedImages(const IdArray& order) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
@@ -322,7 +323,7 @@ std::vector<double> IncrementalDelaunay::Impl::framedWeights(const IdArray& orde
 
 std::vector<ImageOf> IncrementalDelaunay::Impl::framedImages(const IdArray& order) const
 {
-  if (!periodic)
+  if (!periodic || !images)
     return {};
   std::vector<ImageOf> out(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
@@ -709,14 +710,24 @@ IncrementalDelaunay::IncrementalDelaunay(Coordinates xyz, const Options& options
 
 IncrementalDelaunay::IncrementalDelaunay() : impl_(std::make_unique<Impl>()) {}
 
-std::unique_ptr<IncrementalDelaunay> IncrementalDelaunay::ofImages(const double* xyz,
-  const ImageOf* images, std::size_t count, const Options& options, const Frame& frame)
+std::unique_ptr<IncrementalDelaunay> IncrementalDelaunay::ofImages(
+  Coordinates xyz, const ImageOf* images, const Options& options, const Frame& frame)
 {
   std::unique_ptr<IncrementalDelaunay> mesh(new IncrementalDelaunay());
-  mesh->impl_->periodic = true;
-  mesh->impl_->images = images;
-  mesh->impl_->start(xyz, count, options, frame, 0, nullptr);
+  Impl& impl = *mesh->impl_;
+  impl.periodic = true;
+  impl.images = images;
+  impl.takesPoints = true;
+  impl.held = std::move(xyz);
+  impl.start(impl.held.data(), impl.held.size() / 3, options, frame, 0, nullptr);
+  impl.images = nullptr; // the caller's, read during the call only
   return mesh;
+}
+
+std::size_t IncrementalDelaunay::mergedPoints() const
+{
+  return impl_->stats.duplicatesMerged +
+    (impl_->triangulator ? impl_->triangulator->duplicates().size() : 0);
 }
 
 void IncrementalDelaunay::addImages(const double* xyz, const ImageOf* images, std::size_t count)
@@ -725,6 +736,7 @@ void IncrementalDelaunay::addImages(const double* xyz, const ImageOf* images, st
     throw std::logic_error("fd3::IncrementalDelaunay::addImages: the mesh has not started");
   impl_->images = images;
   add(xyz, count);
+  impl_->images = nullptr;
 }
 
 void IncrementalDelaunay::visitTetrahedra(bool withHull,

@@ -1,10 +1,14 @@
 // The periodic tetrahedralization (fd3/Periodic.h), decided by the exact periodic validator:
 // uniform points, lattices commensurate with the box (ties across its faces, with images that no
 // double holds), a handful of points in a large box, slabs and columns, points outside the box,
-// repeats, any thread count, and bad input.
+// repeats, any thread count, and bad input. Then the periodic Voronoi cells: their volumes fill
+// the box and equal Voro++'s periodic containers'.
 #include "PeriodicValidator.h"
 #include "PointSets.h"
 #include "fd3/Periodic.h"
+#ifdef FD3_TEST_WITH_VOROPP
+#include "VoroppVolumes.h"
+#endif
 
 #include <gtest/gtest.h>
 
@@ -12,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -259,5 +264,134 @@ TEST(Periodic, BadInput)
   slab.periodic[2] = false;
   EXPECT_EQ(fd3::triangulatePeriodic(flat.data(), 50, slab).status, fd3::Status::Degenerate);
 }
+
+double sum(const fd3::VoronoiCells::Doubles& values)
+{
+  double total = 0;
+  for (const double v : values)
+    total += v;
+  return total;
+}
+
+/// Each face's neighbour has a face back to the cell (as many faces each way: a point's own
+/// images make faces to itself).
+void expectSymmetricNeighbours(const fd3::VoronoiCells& cells)
+{
+  std::vector<std::size_t> cellOf(
+    *std::max_element(cells.generators.begin(), cells.generators.end()) + 1);
+  for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
+    cellOf[cells.generators[c]] = c;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> faces;
+  for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
+    for (std::size_t f = cells.cellFaces[c]; f < cells.cellFaces[c + 1]; ++f)
+      if (cells.faceNeighbors[f] < fd3::kBoxFace)
+        ++faces[{cells.generators[c], cells.faceNeighbors[f]}];
+  for (const auto& [pair, n] : faces)
+  {
+    const auto back = faces.find({pair.second, pair.first});
+    ASSERT_NE(back, faces.end());
+    EXPECT_EQ(back->second, n);
+  }
+}
+
+TEST(PeriodicVoronoi, CellsFillTheBox)
+{
+  const Points p = fd3test::uniformCube(3000, 16);
+  const fd3::VoronoiCells cells = fd3::voronoiCellsPeriodic(p.data(), 3000, fd3::PeriodicBox());
+  ASSERT_EQ(cells.status, fd3::Status::Ok);
+  ASSERT_EQ(cells.numberOfCells(), 3000u);
+  EXPECT_NEAR(sum(cells.volumes), 1.0, 1e-12);
+  expectSymmetricNeighbours(cells);
+  for (std::size_t c = 0; c < cells.numberOfCells(); ++c)
+    EXPECT_EQ(cells.numberOfNeighbors(c), cells.numberOfFaces(c)); // no face on the box
+  // The cells' polyhedra hold their generators' places.
+  const std::vector<std::size_t> none;
+  for (std::size_t c = 0; c < 20; ++c)
+  {
+    double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+    for (std::size_t i = cells.cellPointStart[c]; i < cells.cellPointStart[c + 1]; ++i)
+      for (int k = 0; k < 3; ++k)
+      {
+        lo[k] = std::min(lo[k], cells.points[3 * cells.cellPoints[i] + k]);
+        hi[k] = std::max(hi[k], cells.points[3 * cells.cellPoints[i] + k]);
+      }
+    for (int k = 0; k < 3; ++k)
+    {
+      EXPECT_LE(lo[k], p[3 * cells.generators[c] + k]);
+      EXPECT_GE(hi[k], p[3 * cells.generators[c] + k]);
+    }
+  }
+}
+
+// The lattice's ties, broken alike in every copy: the cells are cubes (with faces of no area
+// where the perturbation splits a vertex of eight cells), and each point's density, from its
+// whole star, sums as the box's: the sum of 1/density is the stars' volumes over 4, the box's.
+TEST(PeriodicVoronoi, LatticeCellsAreEqualCubes)
+{
+  const Points p = cubicLattice(10, 0.1);
+  fd3::VoronoiOptions options;
+  options.density = true;
+  const fd3::VoronoiCells cells =
+    fd3::voronoiCellsPeriodic(p.data(), 1000, fd3::PeriodicBox(), options);
+  ASSERT_EQ(cells.status, fd3::Status::Ok);
+  ASSERT_EQ(cells.numberOfCells(), 1000u);
+  double inverseDensities = 0;
+  for (std::size_t c = 0; c < 1000; ++c)
+  {
+    EXPECT_NEAR(cells.volumes[c], 1e-3, 1e-15) << c;
+    EXPECT_GE(cells.numberOfNeighbors(c), 6u) << c;
+    inverseDensities += 1 / cells.densities[c];
+  }
+  EXPECT_NEAR(sum(cells.volumes), 1.0, 1e-12);
+  EXPECT_NEAR(inverseDensities, 1.0, 1e-12);
+  expectSymmetricNeighbours(cells);
+}
+
+TEST(PeriodicVoronoi, OnePointFillsTheBox)
+{
+  fd3::PeriodicBox box;
+  std::fill(box.hi, box.hi + 3, 10.0);
+  const Points p = {2.5, 7.0, 1.0};
+  const fd3::VoronoiCells cells = fd3::voronoiCellsPeriodic(p.data(), 1, box);
+  ASSERT_EQ(cells.status, fd3::Status::Ok);
+  ASSERT_EQ(cells.numberOfCells(), 1u);
+  EXPECT_NEAR(cells.volumes[0], 1000.0, 1e-9);
+  // Itself, across each side (and across the edges and corners that the perturbation's split
+  // of the cube's vertices makes faces of no area).
+  EXPECT_GE(cells.numberOfNeighbors(0), 6u);
+  for (const std::uint32_t n : cells.faceNeighbors)
+    EXPECT_EQ(n, 0u);
+}
+
+#ifdef FD3_TEST_WITH_VOROPP
+// Against Voro++'s container with the same axes periodic (a non-periodic axis is clipped to the
+// box by both), to 1e-9 of each volume.
+TEST(PeriodicVoronoi, SameVolumesAsVoropp)
+{
+  const Points p = fd3test::uniformCube(4000, 17);
+  for (const auto& axes : {std::array<bool, 3>{true, true, true},
+         std::array<bool, 3>{true, true, false}, std::array<bool, 3>{false, true, false}})
+  {
+    fd3::PeriodicBox box;
+    std::copy(axes.begin(), axes.end(), box.periodic);
+    const fd3::VoronoiCells cells = fd3::voronoiCellsPeriodic(p.data(), 4000, box);
+    ASSERT_EQ(cells.status, fd3::Status::Ok);
+    ASSERT_EQ(cells.numberOfCells(), 4000u);
+    const int blocks = fd3test::voroppBlocks(4000);
+    voro::container container(
+      0, 1, 0, 1, 0, 1, blocks, blocks, blocks, axes[0], axes[1], axes[2], 8);
+    for (std::size_t i = 0; i < 4000; ++i)
+      container.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    const std::vector<double> expected = fd3test::voroppVolumes(container, 4000);
+    for (std::size_t c = 0; c < 4000; ++c)
+    {
+      const double reference = expected[cells.generators[c]];
+      EXPECT_NEAR(cells.volumes[c], reference, 1e-9 * reference) << cells.generators[c];
+    }
+    EXPECT_NEAR(sum(cells.volumes), 1.0, 1e-12);
+    expectSymmetricNeighbours(cells);
+  }
+}
+#endif
 
 } // namespace

@@ -150,13 +150,17 @@ private:
     const double* xyz, const double* weights, std::size_t count, const Options& options);
   friend class PeriodicDelaunay;
   IncrementalDelaunay();
-  /// A periodic mesh: each point the record of a periodic image, whose exact coordinates and
-  /// place in the perturbation's order are in `images` (one per point, residuals in the input's
-  /// units), and so for every addImages(). The points are distinct as exact images and as
-  /// records: the caller has merged the repeats.
-  static std::unique_ptr<IncrementalDelaunay> ofImages(const double* xyz, const ImageOf* images,
-    std::size_t count, const Options& options, const Frame& frame);
+  /// A periodic mesh, which takes its points: each the record of a periodic image, whose exact
+  /// coordinates and place in the perturbation's order are in `images` (one per point, residuals
+  /// in the input's units), and so for every addImages(). Points with the same record are merged
+  /// as repeats, whatever their residuals: the caller tells them apart (mergedPoints(), then
+  /// Triangulation::representative). add() inserts points that are no images (the Voronoi
+  /// cells' far points).
+  static std::unique_ptr<IncrementalDelaunay> ofImages(
+    Coordinates xyz, const ImageOf* images, const Options& options, const Frame& frame);
   void addImages(const double* xyz, const ImageOf* images, std::size_t count);
+  /// How many points so far were merged into another.
+  std::size_t mergedPoints() const;
   /// Calls visit(ids, xyz, hull) for every live finite tetrahedron: its point ids, positively
   /// oriented, its vertices' coordinates in the frame and, `withHull`, bit f of `hull` set where
   /// its face opposite vertex f is a hull face (else 0). On the mesh's threads at once: `visit`

@@ -5,6 +5,7 @@
 #define fd3_Periodic_h
 
 #include "fd3/Delaunay.h"
+#include "fd3/Voronoi.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -76,6 +77,17 @@ struct PeriodicTriangulation
 /// than wide).
 PeriodicTriangulation triangulatePeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options = Options());
+
+/// The Voronoi cells of the points repeated along the periodic axes of `box`: one per distinct
+/// point (as triangulatePeriodic() merges them), around its place in the box, whole along the
+/// periodic axes, so that the cells of a box periodic along every axis fill it exactly once;
+/// along the others clipped to the box (where it is one there; else to the points' extent). A
+/// face's neighbour is the input id of the point across it, also across the box's sides (a
+/// point's own image, in a box of few points). options.box and options.generators are not used;
+/// options.density gives each point the periodic Delaunay tessellation field estimate, from its
+/// whole star. Statuses as triangulatePeriodic().
+VoronoiCells voronoiCellsPeriodic(
+  const double* xyz, std::size_t count, const PeriodicBox& box, const VoronoiOptions& options = {});
 
 } // namespace fd3
 

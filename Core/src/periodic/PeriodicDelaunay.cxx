@@ -134,17 +134,30 @@ void PeriodicDelaunay::chooseFrame()
   halfDiagonal = std::sqrt(halfDiagonal);
   widest_ = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal);
   spacing_ = std::pow(volume / double(std::max<std::size_t>(points_.size(), 1)), 1.0 / dimensions);
-  Bounds frameBox = extent;
+  coverBounds_ = extent;
   bool shifts[3] = {true, true, true};
   for (int k = 0; k < 3; ++k)
     if (box_.periodic[k])
     {
-      // The shell's images, a little beyond it for the rounding of their records.
+      // The widest shell's images, a little beyond it for the rounding of their records.
       const double reach = widest_ * (1 + kSlack) + period_[k];
-      frameBox.lo[k] = box_.lo[k] - reach;
-      frameBox.hi[k] = box_.lo[k] + period_[k] + reach;
+      coverBounds_.lo[k] = box_.lo[k] - reach;
+      coverBounds_.hi[k] = box_.lo[k] + period_[k] + reach;
       shifts[k] = false; // images are not among the points checked
     }
+  // The cells' clipping box: the widest shell along the periodic axes (no cell of a point of the
+  // box reaches it), the box along the others, where it is one, else the points' extent.
+  clipBox_ = coverBounds_;
+  for (int k = 0; k < 3; ++k)
+    if (!box_.periodic[k] && box_.lo[k] < box_.hi[k] && std::isfinite(box_.hi[k] - box_.lo[k]))
+    {
+      clipBox_.lo[k] = box_.lo[k];
+      clipBox_.hi[k] = box_.hi[k];
+    }
+  Bounds frameBox = coverBounds_;
+  const std::vector<double> far = voronoiFarPoints(coverBounds_, clipBox_);
+  for (std::size_t i = 0; i < far.size(); i += 3)
+    frameBox.include(&far[i]);
   std::vector<double> places;
   for (const std::uint32_t id : points_)
     places.insert(places.end(), place_[id].begin(), place_[id].end());
@@ -162,6 +175,25 @@ void PeriodicDelaunay::chooseFrame()
     }
   if (!fits)
     frame_ = identityFrame(frameBox);
+}
+
+void PeriodicDelaunay::addPoints()
+{
+  for (const std::uint32_t id : points_)
+  {
+    ImageOf image;
+    for (int k = 0; k < 3; ++k)
+    {
+      image.source[k] = xyz_[3 * id + k];
+      image.offset[k] = -wraps_[3 * id + k];
+      image.residual[k] = placeResidual_[id][k];
+    }
+    image.key = perturbationKey(image.source, options_.randomSeed);
+    coveringXyz_.insert(coveringXyz_.end(), place_[id].begin(), place_[id].end());
+    coveringImages_.push_back(image);
+    covering_.push_back({id, {0, 0, 0}});
+    inBox_.push_back(1);
+  }
 }
 
 bool PeriodicDelaunay::addShell(double inner, double outer)
@@ -204,7 +236,7 @@ bool PeriodicDelaunay::addShell(double inner, double outer)
         for (const std::int8_t z : along[2])
         {
           const std::array<std::int8_t, 3> o = {x, y, z};
-          if (within(o, inner))
+          if ((x == 0 && y == 0 && z == 0) || within(o, inner))
             continue;
           ImageOf image;
           double at[3];
@@ -220,7 +252,7 @@ bool PeriodicDelaunay::addShell(double inner, double outer)
           coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
           coveringImages_.push_back(image);
           covering_.push_back({id, o});
-          inBox_.push_back(o[0] == 0 && o[1] == 0 && o[2] == 0);
+          inBox_.push_back(0);
         }
   }
   return true;
@@ -416,10 +448,11 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   inBox_.clear();
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
+  addPoints(); // first, the cells' generators
   if (!addShell(-1, margin_))
     return nullptr;
-  auto mesh = IncrementalDelaunay::ofImages(
-    coveringXyz_.data(), coveringImages_.data(), covering_.size(), options_, frame_);
+  auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
+    coveringImages_.data(), options_, frame_);
   std::size_t inserted = covering_.size();
   while (mesh->status() == Status::Ok && margin_ < widest_)
   {
@@ -482,6 +515,70 @@ PeriodicTriangulation PeriodicDelaunay::run()
   out.wraps = wraps_;
   out.representative.assign(representative_.begin(), representative_.end());
   return out;
+}
+
+VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
+{
+  VoronoiCells out;
+  out.cellFaces.assign(1, 0);
+  out.faceStart.assign(1, 0);
+  out.cellPointStart.assign(1, 0);
+  out.stats.inputPoints = count_;
+  options_.threads = options.threads;
+  options_.progress = options.progress;
+  PeriodicTriangulation run;
+  if (!wrapPoints())
+  {
+    out.status = Status::OutOfRange;
+    return out;
+  }
+  if (points_.empty())
+  {
+    out.status = Status::Empty;
+    out.stats.nonFinitePoints = nonFinite_;
+    return out;
+  }
+  chooseFrame();
+  std::unique_ptr<IncrementalDelaunay> mesh;
+  while (!mesh)
+  {
+    mesh = cover(run);
+    if (!mesh)
+    {
+      out.status = Status::OutOfRange;
+      return out;
+    }
+    if (mesh->status() == Status::Ok && mesh->mergedPoints() > 0)
+    {
+      // Repeats, or points too close: without them, none are merged.
+      resolveMerged(mesh->release());
+      mesh.reset();
+    }
+  }
+  VoronoiOptions own = options;
+  own.box = clipBox_;
+  own.generators = points_.size(); // the covering's first points
+  Coordinates xyz;
+  out = voronoiCells(*mesh, coverBounds_, own, xyz);
+  // From the covering's points to the input's.
+  for (std::uint32_t& g : out.generators)
+    g = representative_[covering_[g].owner];
+  for (std::uint32_t& n : out.faceNeighbors)
+    if (n < kBoxFace)
+      n = representative_[covering_[n].owner];
+  out.box = clipBox_;
+  out.stats.inputPoints = count_;
+  out.stats.nonFinitePoints = nonFinite_;
+  out.stats.duplicatesMerged = duplicates_;
+  out.stats.closePointsSkipped = close_;
+  out.stats.insertedPoints = points_.size();
+  return out;
+}
+
+VoronoiCells voronoiCellsPeriodic(
+  const double* xyz, std::size_t count, const PeriodicBox& box, const VoronoiOptions& options)
+{
+  return PeriodicDelaunay(xyz, count, box, Options()).cells(options);
 }
 
 PeriodicTriangulation triangulatePeriodic(

@@ -18,6 +18,7 @@
 #include "exact/PeriodicImages.h"
 #include "fd3/Distributed.h"
 #include "fd3/Periodic.h"
+#include "fd3/Voronoi.h"
 
 #include <array>
 #include <cstdint>
@@ -35,6 +36,8 @@ public:
   PeriodicDelaunay(
     const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options);
   PeriodicTriangulation run();
+  /// The cells of the box's points (voronoiCellsPeriodic()).
+  VoronoiCells cells(const VoronoiOptions& options);
 
 private:
   /// A point of the covering: the image of input point `owner` (a vertex of the box), moved by
@@ -51,8 +54,11 @@ private:
   /// The frame of the covering at its widest: the box and the widest shell, or the points'
   /// extent along the axes that are not periodic.
   void chooseFrame();
-  /// Appends the images of the box's points within `outer` of the box and not within `inner` (the
-  /// points themselves too for inner < 0); false where an image is no sum of two doubles.
+  /// Appends the box's points, each at its place (offset 0).
+  void addPoints();
+  /// Appends the images of the box's points within `outer` of the box and not within `inner`
+  /// (none for inner < 0), the points themselves left out; false where an image is no sum of two
+  /// doubles.
   bool addShell(double inner, double outer);
   /// The covering's mesh, shell by shell until the certificate holds; null where an image is no
   /// sum of two doubles.
@@ -80,6 +86,9 @@ private:
   double spacing_ = 0; // of the points, were they spread evenly
   double margin_ = 0;  // the shell's width so far
   Frame frame_;
+  // The covering's points at the widest shell, and the cells' clipping box (cells()): the frame
+  // holds both, and the far points about them.
+  Bounds coverBounds_, clipBox_;
   // By input point: its place in the box (the rounding and the residual), its key, and what
   // represents it.
   std::vector<std::array<double, 3>> place_, placeResidual_;
