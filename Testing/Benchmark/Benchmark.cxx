@@ -21,10 +21,15 @@
 //             [--csv FILE] [--markdown FILE]
 //                                            weighted points: CGAL's regular triangulation, Voro++'s
 //                                            radical cells (WeightedBench.cxx)
+//   Benchmark --periodic [--sizes N] [--repeat K] [--methods Core,plain,CGAL,cells,Voro++]
+//             [--csv FILE] [--markdown FILE]
+//                                            the periodic unit box: CGAL's periodic triangulation,
+//                                            Voro++'s periodic container (PeriodicBench.cxx)
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
 // child resets it) and a crash or a time-out costs one row, not the run.
 #include "Measure.h"
+#include "PeriodicBench.h"
 #include "Scaling.h"
 #include "VoronoiBench.h"
 #include "VtkTestUtilities.h"
@@ -480,6 +485,8 @@ int main(int argc, char* argv[])
     return voronoiMain(argc, argv, runVoronoiFilter);
   if (given("--weighted"))
     return weightedMain(argc, argv);
+  if (given("--periodic"))
+    return periodicMain(argc, argv);
   Settings settings;
   if (!parse(argc, argv, settings))
     return 2;

@@ -1,0 +1,217 @@
+// Uniform points in the periodic unit box, one thread, each run in a forked child with its own
+// peak memory, the methods run in turn `repeat` times and each one's fastest kept:
+//   Core    fd3::triangulatePeriodic: each periodic tetrahedron once, with its images
+//   plain   fd3::triangulate of the same points, not periodic: what the periodic run adds
+//   CGAL    Periodic_3_Delaunay_triangulation_3 (Epick), its own spatial sort, points made
+//           beforehand
+//   cells   fd3::voronoiCellsPeriodic without polyhedra: each cell's volume, area and neighbours
+//   Voro++  its periodic container: each cell's volume, area and neighbours
+#include "PeriodicBench.h"
+
+#include "Measure.h"
+#include "PointSets.h"
+#include "fd3/Periodic.h"
+
+#ifdef FD3_BENCHMARK_WITH_CGAL
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Periodic_3_Delaunay_triangulation_3.h>
+#include <CGAL/Periodic_3_Delaunay_triangulation_traits_3.h>
+#endif
+#ifdef FD3_BENCHMARK_WITH_VOROPP
+#include "VoroppRun.h"
+#endif
+
+#include <algorithm>
+#include <functional>
+#include <numeric>
+
+namespace fd3bench
+{
+namespace
+{
+using Points = fd3test::Points;
+
+// figures: the periodic tetrahedra (or tetrahedra), or the volumes' sum and the cells.
+Measurement runCore(const Points& p)
+{
+  const auto t0 = Clock::now();
+  const fd3::PeriodicTriangulation t =
+    fd3::triangulatePeriodic(p.data(), p.size() / 3, fd3::PeriodicBox());
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = t.status == fd3::Status::Ok;
+  m.tetrahedra = double(t.numberOfTetrahedra());
+  m.peakMiB = peakSoFarMiB();
+  m.figures = {double(t.imagePoints) / double(p.size() / 3)};
+  return m;
+}
+
+Measurement runPlain(const Points& p)
+{
+  const auto t0 = Clock::now();
+  const fd3::Triangulation t = fd3::triangulate(p.data(), p.size() / 3, fd3::Options());
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = t.status == fd3::Status::Ok;
+  m.tetrahedra = double(t.numberOfTetrahedra());
+  m.peakMiB = peakSoFarMiB();
+  return m;
+}
+
+Measurement runCells(const Points& p)
+{
+  fd3::VoronoiOptions options;
+  options.polyhedra = false;
+  const auto t0 = Clock::now();
+  const fd3::VoronoiCells cells =
+    fd3::voronoiCellsPeriodic(p.data(), p.size() / 3, fd3::PeriodicBox(), options);
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = cells.status == fd3::Status::Ok;
+  m.peakMiB = peakSoFarMiB();
+  m.figures = {std::accumulate(cells.volumes.begin(), cells.volumes.end(), 0.0),
+    double(cells.numberOfCells())};
+  return m;
+}
+
+#ifdef FD3_BENCHMARK_WITH_CGAL
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using PeriodicCgal = CGAL::Periodic_3_Delaunay_triangulation_3<
+  CGAL::Periodic_3_Delaunay_triangulation_traits_3<Kernel>>;
+
+Measurement runCgal(const Points& p)
+{
+  std::vector<PeriodicCgal::Point> points;
+  points.reserve(p.size() / 3);
+  for (std::size_t i = 0; i < p.size(); i += 3)
+    points.emplace_back(p[i], p[i + 1], p[i + 2]);
+  const auto t0 = Clock::now();
+  PeriodicCgal periodic(points.begin(), points.end(), PeriodicCgal::Iso_cuboid(0, 0, 0, 1, 1, 1));
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = periodic.is_1_cover();
+  m.tetrahedra = double(periodic.number_of_cells());
+  m.peakMiB = peakSoFarMiB();
+  return m;
+}
+#endif
+
+#ifdef FD3_BENCHMARK_WITH_VOROPP
+Measurement runVoropp(const Points& p)
+{
+  const std::size_t n = p.size() / 3;
+  fd3::Bounds unit;
+  std::fill(unit.lo, unit.lo + 3, 0.0);
+  std::fill(unit.hi, unit.hi + 3, 1.0);
+  const std::array<int, 3> blocks = voroppBlocks(unit, n);
+  const auto t0 = Clock::now();
+  voro::container box(0, 1, 0, 1, 0, 1, blocks[0], blocks[1], blocks[2], true, true, true, 8);
+  for (std::size_t i = 0; i < n; ++i)
+    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  const VoroppSweep sweep = sweepCells(box, false);
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = true;
+  m.peakMiB = peakSoFarMiB();
+  m.figures = {sweep.volume, double(sweep.cells)};
+  return m;
+}
+#endif
+
+struct Method
+{
+  std::string name;
+  std::function<Measurement(const Points&)> run; ///< empty where not built
+};
+
+std::vector<Method> methods(const std::vector<std::string>& wanted)
+{
+  std::vector<Method> all = {{"Core", runCore}, {"plain", runPlain}, {"CGAL", nullptr},
+    {"cells", runCells}, {"Voro++", nullptr}};
+#ifdef FD3_BENCHMARK_WITH_CGAL
+  all[2].run = runCgal;
+#endif
+#ifdef FD3_BENCHMARK_WITH_VOROPP
+  all[4].run = runVoropp;
+#endif
+  if (wanted.empty())
+    return all;
+  std::vector<Method> chosen;
+  for (const Method& m : all)
+    if (std::find(wanted.begin(), wanted.end(), m.name) != wanted.end())
+      chosen.push_back(m);
+  return chosen;
+}
+
+/// How many times faster m is than other.
+std::string ratio(const Measurement& m, const Measurement& other)
+{
+  return m.ran && other.ran ? cell(m, "%.2fx", other.seconds / m.seconds) : std::string("-");
+}
+} // namespace
+
+int periodicMain(int argc, char* argv[])
+{
+  RunSettings settings;
+  settings.sizes = {100000, 1000000};
+  if (!parseRunSettings(argc, argv, "--periodic", settings))
+    return 2;
+  const std::vector<Method> chosen = methods(settings.methods);
+  std::ostringstream md, csv;
+  md << "Machine: " << machineName() << ". Uniform points in the periodic unit box; one thread; "
+     << "best of " << settings.repeat
+     << " interleaved runs; peak memory each run's own. Core "
+        "and CGAL: the periodic Delaunay tetrahedralization (images: Core's shell, per point); "
+        "plain: Core on the same points, not periodic. cells and Voro++: each periodic cell's "
+        "volume, area and neighbours.\n\n"
+     << "| n | method | seconds | peak MiB | tetrahedra or cells | images | vs CGAL | vs plain | "
+        "vs Voro++ |\n"
+     << "|---:|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  csv << "n,method,seconds,peak_mib,count\n";
+  for (const std::size_t n : settings.sizes)
+  {
+    const Points p = fd3test::uniformCube(n, 1);
+    std::vector<Measurement> best(chosen.size());
+    for (int r = 0; r < settings.repeat; ++r)
+      for (std::size_t i = 0; i < chosen.size(); ++i)
+      {
+        if (!chosen[i].run)
+        {
+          best[i].note = "not built";
+          continue;
+        }
+        const Measurement m = measure([&] { return chosen[i].run(p); }, settings.limit);
+        if (m.ran && (!best[i].ran || m.seconds < best[i].seconds))
+          best[i] = m;
+        std::cerr << n << " " << chosen[i].name << ": " << (m.ran ? m.seconds : -1.0) << " s\n";
+      }
+    auto byName = [&](const char* name) {
+      for (std::size_t i = 0; i < chosen.size(); ++i)
+        if (chosen[i].name == name)
+          return best[i];
+      return Measurement();
+    };
+    const Measurement cgal = byName("CGAL"), plain = byName("plain"), voropp = byName("Voro++");
+    for (std::size_t i = 0; i < chosen.size(); ++i)
+    {
+      const Measurement& m = best[i];
+      const std::string& name = chosen[i].name;
+      const bool cells = name == "cells" || name == "Voro++";
+      const double count = cells ? (m.figures.size() > 1 ? m.figures[1] : -1) : m.tetrahedra;
+      const std::string images =
+        name == "Core" && !m.figures.empty() ? cell(m, "%.3f", m.figures[0]) : "-";
+      // The plain run is the periodic one's baseline: its column says what periodic costs.
+      const std::string vsPlain =
+        name == "Core" && plain.ran && m.ran ? cell(m, "%.2fx", m.seconds / plain.seconds) : "-";
+      md << "| " << n << " | " << name << " | " << cell(m, "%.3f", m.seconds) << " | "
+         << cell(m, "%.0f", m.peakMiB) << " | " << cell(m, "%.0f", count) << " | " << images
+         << " | " << (name == "Core" ? ratio(m, cgal) : "-") << " | " << vsPlain << " | "
+         << (name == "cells" ? ratio(m, voropp) : "-") << " |\n";
+      csv << n << ',' << name << ',' << (m.ran ? m.seconds : -1) << ',' << m.peakMiB << ',' << count
+          << '\n';
+    }
+  }
+  writeReport(md, csv, settings.markdownFile, settings.csvFile);
+  return 0;
+}
+} // namespace fd3bench
