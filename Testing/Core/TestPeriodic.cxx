@@ -166,6 +166,15 @@ TEST(Periodic, SlabsAndColumns)
     const auto t = checked(p, box);
     EXPECT_EQ(t.stats.insertedPoints, 800u);
   }
+  // A slab's tetrahedra under its highest and lowest planes reach a period across; the images
+  // they need are those of the few points in their thin caps, not a period's shell of them all.
+  {
+    const Points many = fd3test::uniformCube(6000, 18);
+    fd3::PeriodicBox slab;
+    slab.periodic[2] = false;
+    const auto t = checked(many, slab);
+    EXPECT_LT(t.imagePoints, 2 * 6000u);
+  }
   // Points of a slab far from the box along its free axis: only the periodic axes wrap.
   fd3::PeriodicBox slab;
   slab.periodic[2] = false;

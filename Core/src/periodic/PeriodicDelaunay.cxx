@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 
@@ -18,6 +19,8 @@ constexpr double kMostPeriods = 0x1p30;
 constexpr int kMostOffset = 127; // an image's offset in periods, in the output's bytes
 // Shells widen by half at least, so that the rounds stay few.
 constexpr double kWidening = 1.5;
+// Rounds that add the images inside failed spheres only, before the shell widens all round.
+constexpr int kTargetedRounds = 6;
 // The first shell, in spacings of evenly spread points: wide enough for nearly every
 // tetrahedron of well-spread points, so that one round usually does.
 constexpr double kFirstShell = 3.5;
@@ -196,6 +199,81 @@ void PeriodicDelaunay::addPoints()
   }
 }
 
+bool PeriodicDelaunay::inShell(
+  std::uint32_t id, const std::array<std::int8_t, 3>& o, double margin) const
+{
+  if (margin < 0)
+    return false;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double x = place_[id][k] + o[k] * period_[k];
+    if (box_.periodic[k] && !(x >= box_.lo[k] - margin && x <= box_.hi[k] + margin))
+      return false;
+  }
+  return true;
+}
+
+bool PeriodicDelaunay::addImage(std::uint32_t id, const std::array<std::int8_t, 3>& o)
+{
+  ImageOf image;
+  double at[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    image.source[k] = xyz_[3 * id + k];
+    image.offset[k] = o[k] - wraps_[3 * id + k];
+    if (!translateExactly(image.source[k], image.offset[k], period_[k], at[k], image.residual[k]))
+      return false;
+  }
+  image.key = perturbationKey(image.source, options_.randomSeed);
+  coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
+  coveringImages_.push_back(image);
+  covering_.push_back({id, o});
+  inBox_.push_back(0);
+  return true;
+}
+
+bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
+{
+  for (const std::uint32_t id : points_)
+    for (const Bounds& region : regions)
+    {
+      // The offsets along each axis that bring the point into the region.
+      int first[3], last[3];
+      bool inside = true;
+      for (int k = 0; k < 3 && inside; ++k)
+      {
+        const double x = place_[id][k];
+        if (!box_.periodic[k])
+        {
+          first[k] = last[k] = 0;
+          inside = x >= region.lo[k] && x <= region.hi[k];
+          continue;
+        }
+        first[k] = static_cast<int>(std::ceil((region.lo[k] - x) / period_[k]));
+        last[k] = static_cast<int>(std::floor((region.hi[k] - x) / period_[k]));
+        if (std::max(std::abs(first[k]), std::abs(last[k])) > kMostOffset)
+          return false;
+        inside = first[k] <= last[k];
+      }
+      if (!inside)
+        continue;
+      for (int x = first[0]; x <= last[0]; ++x)
+        for (int y = first[1]; y <= last[1]; ++y)
+          for (int z = first[2]; z <= last[2]; ++z)
+          {
+            const std::array<std::int8_t, 3> o = {static_cast<std::int8_t>(x),
+              static_cast<std::int8_t>(y), static_cast<std::int8_t>(z)};
+            if ((x == 0 && y == 0 && z == 0) || inShell(id, o, margin_) ||
+              !present_.insert(keyOf(id, o)).second)
+              continue;
+            if (!addImage(id, o))
+              return false;
+          }
+    }
+  regions_.insert(regions_.end(), regions.begin(), regions.end());
+  return true;
+}
+
 bool PeriodicDelaunay::addShell(double inner, double outer)
 {
   std::vector<std::int8_t> along[3];
@@ -221,38 +299,17 @@ bool PeriodicDelaunay::addShell(double inner, double outer)
       }
     }
     auto within = [&](const std::array<std::int8_t, 3>& o, double margin) {
-      if (margin < 0)
-        return false;
-      for (int k = 0; k < 3; ++k)
-      {
-        const double x = place_[id][k] + o[k] * period_[k];
-        if (box_.periodic[k] && !(x >= box_.lo[k] - margin && x <= box_.hi[k] + margin))
-          return false;
-      }
-      return true;
+      return inShell(id, o, margin);
     };
     for (const std::int8_t x : along[0])
       for (const std::int8_t y : along[1])
         for (const std::int8_t z : along[2])
         {
           const std::array<std::int8_t, 3> o = {x, y, z};
-          if ((x == 0 && y == 0 && z == 0) || within(o, inner))
+          if ((x == 0 && y == 0 && z == 0) || within(o, inner) || present_.count(keyOf(id, o)))
             continue;
-          ImageOf image;
-          double at[3];
-          for (int k = 0; k < 3; ++k)
-          {
-            image.source[k] = xyz_[3 * id + k];
-            image.offset[k] = o[k] - wraps_[3 * id + k];
-            if (!translateExactly(
-                  image.source[k], image.offset[k], period_[k], at[k], image.residual[k]))
-              return false;
-          }
-          image.key = perturbationKey(image.source, options_.randomSeed);
-          coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
-          coveringImages_.push_back(image);
-          covering_.push_back({id, o});
-          inBox_.push_back(0);
+          if (!addImage(id, o))
+            return false;
         }
   }
   return true;
@@ -286,10 +343,10 @@ bool PeriodicDelaunay::resolveMerged(const Triangulation& covering)
   return close;
 }
 
-double PeriodicDelaunay::neededMargin(const IncrementalDelaunay& mesh) const
+PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay& mesh) const
 {
-  // In the frame, where the records are: the box, the shell and the points' extent along the
-  // axes that are not periodic.
+  // In the frame, where the records are: the box, the shell, the regions and the points' extent
+  // along the axes that are not periodic.
   Bounds extent;
   for (const std::uint32_t id : points_)
     extent.include(place_[id].data());
@@ -298,14 +355,28 @@ double PeriodicDelaunay::neededMargin(const IncrementalDelaunay& mesh) const
   std::copy(box_.lo, box_.lo + 3, box.lo);
   std::copy(box_.hi, box_.hi + 3, box.hi);
   box = toFrame(frame_, box);
+  std::vector<Bounds> regions;
+  for (const Bounds& region : regions_)
+    regions.push_back(toFrame(frame_, region));
   const double scale = frame_.identity ? 1.0 : frame_.scale;
-  const double margin = margin_ * scale;
-  // Raised rarely, from every thread of the visit.
-  std::atomic<double> needed{margin_};
-  auto raise = [&needed](double value) {
-    double seen = needed.load(std::memory_order_relaxed);
-    while (value > seen && !needed.compare_exchange_weak(seen, value, std::memory_order_relaxed))
-    {}
+  const double margin = margin_ * scale, spacing = spacing_ * scale;
+  Failures out;
+  std::mutex failed; // rare, from every thread of the visit
+  auto fail = [&](Bounds region, std::vector<Bounds>& list) {
+    // Within the widest shell, beyond which no image is needed: a sphere that reaches farther
+    // belongs to a tetrahedron that the images within it will take apart.
+    for (int k = 0; k < 3; ++k)
+    {
+      region.lo[k] = fromFrame(frame_, region.lo[k], k);
+      region.hi[k] = fromFrame(frame_, region.hi[k], k);
+      if (box_.periodic[k])
+      {
+        region.lo[k] = std::max(region.lo[k], box_.lo[k] - widest_);
+        region.hi[k] = std::min(region.hi[k], box_.hi[k] + widest_);
+      }
+    }
+    const std::lock_guard<std::mutex> lock(failed);
+    list.push_back(region);
   };
   const bool withHull = periodicAxes_ < 3;
   mesh.visitTetrahedra(
@@ -322,10 +393,35 @@ double PeriodicDelaunay::neededMargin(const IncrementalDelaunay& mesh) const
           const std::uint32_t face[3] = {
             ids[kOutward[f][0]], ids[kOutward[f][1]], ids[kOutward[f][2]]};
           // A hull face of the covering that a point of the box is on must be one of the repeated
-          // set: across the periodic axes, its half-space would take in images.
+          // set: across the periodic axes, its half-space would take in images. What it lacks are
+          // images of the points on its outer side, within a period of it.
           const bool atBox = inBox_[face[0]] | inBox_[face[1]] | inBox_[face[2]];
-          if (atBox && !parallelToPeriods(face))
-            raise(kWidening * margin_);
+          if (!atBox || parallelToPeriods(face))
+            continue;
+          Bounds region;
+          for (int i = 0; i < 3; ++i)
+            region.include(xyz[kOutward[f][i]]);
+          const double* a = xyz[kOutward[f][0]];
+          const double* b = xyz[kOutward[f][1]];
+          const double* c = xyz[kOutward[f][2]];
+          for (int k = 0; k < 3; ++k)
+          {
+            if (box_.periodic[k])
+            {
+              const double period = box.hi[k] - box.lo[k];
+              region.lo[k] -= period;
+              region.hi[k] += period;
+              continue;
+            }
+            // The normal's component along k (its sign picks the outer side).
+            const int u = (k + 1) % 3, v = (k + 2) % 3;
+            const double normal = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+            if (normal > 0)
+              region.hi[k] = extent.hi[k];
+            else
+              region.lo[k] = extent.lo[k];
+          }
+          fail(region, out.hull);
         }
       }
       // The circumsphere, relative to vertex 0, in floats.
@@ -353,32 +449,74 @@ double PeriodicDelaunay::neededMargin(const IncrementalDelaunay& mesh) const
         (c[2] - a[2]) * (c[2] - a[2]);
       if (!std::isfinite(r2))
       {
-        raise(widest_);
+        // Flat in floats: the images within half a period of it.
+        Bounds around;
+        for (int i = 0; i < 4; ++i)
+          around.include(xyz[i]);
+        for (int k = 0; k < 3; ++k)
+        {
+          const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
+          around.lo[k] -= grow;
+          around.hi[k] += grow;
+        }
+        fail(around, out.spheres);
         return;
       }
-      // Where the sphere meets the points' extent along the other axes, its reach along the
-      // periodic ones.
-      double far = 0;
+      // The box about the sphere where it meets the points' extent along the other axes: its reach
+      // along the periodic ones, r^2 less the squared gaps to the extent along the others. Summed
+      // from terms that are never negative (the sphere passes through vertex a, within the extent):
+      // r^2 - gap^2 along axis k is (c_k - a_k)^2 - (c_k - e)^2 = (a_k - e)(a_k + e - 2 c_k), e the
+      // extent's side nearest c, which a cap far from the centre needs (r and the gap then agree to
+      // many digits).
+      double reach2 = 0;
       for (int k = 0; k < 3; ++k)
-        if (!box_.periodic[k])
-        {
-          const double gap = std::max({extent.lo[k] - c[k], c[k] - extent.hi[k], 0.0});
-          far += gap * gap;
-        }
-      const double reach2 = r2 * (1 + kSlack) - far * (1 - kSlack);
+      {
+        const double e = c[k] < extent.lo[k] ? extent.lo[k]
+          : c[k] > extent.hi[k]              ? extent.hi[k]
+                                             : c[k];
+        if (box_.periodic[k] || e == c[k])
+          reach2 += (c[k] - a[k]) * (c[k] - a[k]);
+        else
+          reach2 += (a[k] - e) * (a[k] + e - 2 * c[k]);
+      }
       if (reach2 <= 0)
         return;
       const double reach = std::sqrt(reach2) * (1 + kSlack);
+      const double radius = std::sqrt(r2) * (1 + kSlack);
+      Bounds sphere;
+      bool inShell = true;
       for (int k = 0; k < 3; ++k)
+      {
+        const double slack = kSlack * (std::fabs(c[k]) + radius + (box.hi[k] - box.lo[k]));
         if (box_.periodic[k])
         {
-          const double beyond = std::max(box.lo[k] - (c[k] - reach), (c[k] + reach) - box.hi[k]);
-          const double slack = kSlack * (std::fabs(c[k]) + reach + (box.hi[k] - box.lo[k]));
-          if (beyond + slack >= margin)
-            raise((beyond + slack) / scale + spacing_);
+          sphere.lo[k] = c[k] - reach - slack;
+          sphere.hi[k] = c[k] + reach + slack;
+          inShell =
+            inShell && sphere.lo[k] > box.lo[k] - margin && sphere.hi[k] < box.hi[k] + margin;
         }
+        else
+        {
+          sphere.lo[k] = std::max(c[k] - radius - slack, extent.lo[k]);
+          sphere.hi[k] = std::min(c[k] + radius + slack, extent.hi[k]);
+        }
+      }
+      if (inShell || std::any_of(regions.begin(), regions.end(), [&](const Bounds& region) {
+            for (int k = 0; k < 3; ++k)
+              if (!(sphere.lo[k] >= region.lo[k] && sphere.hi[k] <= region.hi[k]))
+                return false;
+            return true;
+          }))
+        return;
+      // A region a spacing wider, so that the tetrahedra that replace this one fit it too.
+      for (int k = 0; k < 3; ++k)
+      {
+        sphere.lo[k] -= spacing;
+        sphere.hi[k] += spacing;
+      }
+      fail(sphere, out.spheres);
     });
-  return needed.load();
+  return out;
 }
 
 bool PeriodicDelaunay::parallelToPeriods(const std::uint32_t face[3]) const
@@ -446,6 +584,8 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   coveringImages_.clear();
   covering_.clear();
   inBox_.clear();
+  regions_.clear();
+  present_.clear();
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
   addPoints(); // first, the cells' generators
@@ -454,18 +594,31 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
     coveringImages_.data(), options_, frame_);
   std::size_t inserted = covering_.size();
-  while (mesh->status() == Status::Ok && margin_ < widest_)
+  for (int targeted = 0; mesh->status() == Status::Ok && margin_ < widest_;)
   {
-    const double needed = neededMargin(*mesh);
-    if (needed <= margin_)
+    const Failures failed = failures(*mesh);
+    if (failed.hull.empty() && failed.spheres.empty())
       break;
-    const double wider = std::min(std::max(needed, kWidening * margin_), widest_);
-    if (!addShell(margin_, wider))
-      return nullptr;
-    margin_ = wider;
+    // The images inside the failed regions, a few times; then a wider shell all round. A slab's
+    // hull first: where the images of its highest and lowest points are missing, the spheres
+    // under it are wrong too, and would ask for far more.
+    if (targeted < kTargetedRounds)
+    {
+      ++targeted;
+      if (!addRegions(failed.hull.empty() ? failed.spheres : failed.hull))
+        return nullptr;
+    }
+    else
+    {
+      const double wider = std::min(kWidening * margin_, widest_);
+      if (!addShell(margin_, wider))
+        return nullptr;
+      margin_ = wider;
+    }
     ++out.rounds;
-    mesh->addImages(
-      &coveringXyz_[3 * inserted], &coveringImages_[inserted], covering_.size() - inserted);
+    if (covering_.size() > inserted)
+      mesh->addImages(
+        &coveringXyz_[3 * inserted], &coveringImages_[inserted], covering_.size() - inserted);
     inserted = covering_.size();
   }
   return mesh;

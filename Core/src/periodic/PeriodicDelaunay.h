@@ -1,11 +1,16 @@
 // The periodic tetrahedralization (fd3/Periodic.h) from the ordinary one of a covering: the points
 // wrapped into the box, and their images in a shell around it, inserted into one mesh whose
-// predicates decide the exact images (PeriodicImages.h). The shell widens until a certificate
+// predicates decide the exact images (PeriodicImages.h). Images are added until a certificate
 // holds: every tetrahedron with a vertex in the box has its circumsphere, where it meets the
-// points' extent along the axes that are not periodic, inside the shell, so that no point missing
-// from the covering could lie in it. Those tetrahedra are then exactly the periodic ones at the
-// box's points (their stars are complete), and each periodic tetrahedron is taken once, by the
-// copy whose least vertex lies in the box.
+// points' extent along the axes that are not periodic, inside the shell or inside one region
+// whose images are all present, so that no point missing from the covering could lie in it (and
+// a slab's hull faces there are parallel to the periods). Those tetrahedra are then exactly the
+// periodic ones at the box's points (their stars are complete), and each periodic tetrahedron is
+// taken once, by the copy whose least vertex lies in the box. The regions are the failed spheres'
+// (and the outer sides of the failed hull faces, first): a slab's tetrahedra under its highest
+// and lowest planes reach a period across, but only as thin caps, whose few points' images a
+// region adds where a wider shell would add every point's. After a few such rounds the shell
+// widens all round instead.
 //
 // A shell of width m* = h + sqrt(h^2 + H^2) needs no certificate, h being half the diagonal of a
 // period and H the diagonal of the points' extent along the axes that are not periodic: the
@@ -23,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <unordered_set>
 #include <vector>
 
 namespace fd3
@@ -68,9 +74,28 @@ private:
   /// Each gets the earlier point as its representative; returns whether any was too close, to
   /// build again without it.
   bool resolveMerged(const Triangulation& covering);
-  /// The shell width that the mesh's tetrahedra at points of the box need, from their spheres:
-  /// `margin_` where the certificate holds.
-  double neededMargin(const IncrementalDelaunay& mesh) const;
+  /// Where the certificate fails: the regions (input units) whose images the covering lacks,
+  /// each within the widest shell. `hull`: about the hull faces at points of the box that are
+  /// not parallel to the periods, on their outer side. `spheres`: about the spheres of
+  /// tetrahedra at points of the box that reach beyond the shell and every region so far (where
+  /// they meet the points' extent along the free axes), and about tetrahedra flat in floats.
+  struct Failures
+  {
+    std::vector<Bounds> hull, spheres;
+  };
+  Failures failures(const IncrementalDelaunay& mesh) const;
+  /// Appends the images inside `regions` that the covering lacks, and keeps the regions: every
+  /// image in them is then present. False where an image is out of range.
+  bool addRegions(const std::vector<Bounds>& regions);
+  /// Appends the image of point id moved by offset o; false where it is no sum of two doubles.
+  bool addImage(std::uint32_t id, const std::array<std::int8_t, 3>& o);
+  /// Whether that image lies within `margin` of the box along every periodic axis.
+  bool inShell(std::uint32_t id, const std::array<std::int8_t, 3>& o, double margin) const;
+  static std::uint64_t keyOf(std::uint32_t id, const std::array<std::int8_t, 3>& o)
+  {
+    return std::uint64_t(id) << 24 | std::uint64_t(std::uint8_t(o[0])) << 16 |
+      std::uint64_t(std::uint8_t(o[1])) << 8 | std::uint64_t(std::uint8_t(o[2]));
+  }
   /// Whether the hull face (a, b, c) of covering points is parallel to every periodic axis,
   /// exactly.
   bool parallelToPeriods(const std::uint32_t face[3]) const;
@@ -101,6 +126,9 @@ private:
   std::vector<ImageOf> coveringImages_;
   std::vector<CoveringPoint> covering_;
   std::vector<std::uint8_t> inBox_; // whether each covering point is a point of the box
+  // Beyond the shell, the regions whose images are all present, and those images (keyOf()).
+  std::vector<Bounds> regions_;
+  std::unordered_set<std::uint64_t> present_;
 };
 
 } // namespace fd3
