@@ -40,14 +40,16 @@ struct PeriodicTriangulation
   /// in it, or not finite).
   std::vector<std::int32_t> wraps;
   /// Per input point: itself where it is a vertex; else the vertex it repeats once wrapped (an
-  /// exact copy, counted in stats.duplicatesMerged) or lies too close to for the box's doubles
-  /// to tell their images apart (within a unit in the last place of the box's coordinates on
-  /// every axis: stats.closePointsSkipped); kNoPoint for a point that is not finite.
+  /// exact copy, counted in stats.duplicatesMerged) or lies too close to for the doubles to tell
+  /// their images apart (an image of each rounds to the same double on every axis, which takes
+  /// points within about a unit in the last place of the images' coordinates:
+  /// stats.closePointsSkipped); kNoPoint for a point that is not finite.
   IdArray representative;
   /// insertedPoints counts the distinct points, tetrahedra the periodic tetrahedra.
   Statistics stats;
   /// How the tetrahedralization was found: the images of the points inserted around the box, in
-  /// a shell of `margin` (input units) on every periodic side, after `rounds` widenings of it.
+  /// a shell of `margin` (input units) on every periodic side and in regions about the spheres
+  /// that reached beyond it, after `rounds` rounds that added regions or widened the shell.
   std::size_t imagePoints = 0;
   double margin = 0;
   int rounds = 0;
@@ -63,14 +65,13 @@ struct PeriodicTriangulation
 /// anywhere, and the tetrahedralization ends at the hull of the repeated set (the planes of a
 /// slab's highest and lowest points).
 ///
-/// Any number of points works, one included: the images of the points around the box are
-/// inserted in a shell that widens until every tetrahedron at a point of the box provably has its
-/// circumsphere within the points present (or the shell is as wide as any such sphere can
-/// reach), which also covers the sets too small for a single copy of the box to hold their
-/// tetrahedralization.
+/// Any number of points works, one included: images of the points around the box are inserted
+/// until every tetrahedron at a point of the box provably has its circumsphere within the points
+/// present (or the shell is as wide as any such sphere can reach), which also covers the sets too
+/// small for a single copy of the box to hold their tetrahedralization.
 ///
 /// Options as for triangulate(), except that tolerance and volumeThreshold are not applied (0:
-/// exactly Delaunay, every distinct point a vertex). Throws std::invalid_argument for a box with
+/// exactly Delaunay, every distinct point a vertex) and no neighbours are given. Throws std::invalid_argument for a box with
 /// no periodic axis or a periodic axis with hi <= lo or not finite. Status::OutOfRange where a
 /// point lies more than 2^30 periods from the box, an image is no sum of two doubles, or a
 /// tetrahedron would span more than 127 periods (a few points in a box thousands of times longer
@@ -84,6 +85,7 @@ PeriodicTriangulation triangulatePeriodic(
 /// along the others clipped to the box (where it is one there; else to the points' extent). A
 /// face's neighbour is the input id of the point across it, also across the box's sides (a
 /// point's own image, in a box of few points). options.box and options.generators are not used;
+/// threads and progress are as for the tetrahedralization;
 /// options.density gives each point the periodic Delaunay tessellation field estimate, from its
 /// whole star. Statuses as triangulatePeriodic().
 VoronoiCells voronoiCellsPeriodic(
