@@ -11,7 +11,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
@@ -33,18 +32,26 @@ double secondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// The scale of residuals in `frame`: exact where the frame holds them (PeriodicDelaunay chose it
+/// so).
+double residualScale(const Frame& frame)
+{
+  return frame.identity ? 1.0 : frame.scale;
+}
+
 /// Moves the first four affinely independent points of `order` to its front, keeping the rest in
 /// order. Returns false when there are none (fewer than 4 distinct points, or all coplanar).
+/// `images`, where given, are the points' periodic images (by point id, in the input's units).
 bool moveFirstTetrahedronToFront(
-  const double* xyz, const Frame& frame, IdArray& order, const std::vector<ImageOf>& images)
+  const double* xyz, const Frame& frame, IdArray& order, const ImageOf* images)
 {
   Predicates predicates;
   if (frame.identity)
     predicates.allowAnyMagnitude();
   double p[4][3];
-  // Periodic images (by point id): the four candidates' own, for the exact stage.
+  // Periodic images: the four candidates' own, in the frame, for the exact stage.
   PeriodicImages candidates;
-  if (!images.empty())
+  if (images)
   {
     for (int k = 0; k < 4; ++k)
       candidates.append(images[order[0]]);
@@ -53,8 +60,13 @@ bool moveFirstTetrahedronToFront(
   }
   auto take = [&](std::size_t i, int k) {
     toFrame(frame, xyz + 3 * std::size_t(order[i]), p[k]);
-    if (!images.empty())
-      candidates.at(k) = images[order[i]];
+    if (images)
+    {
+      ImageOf& image = candidates.at(k);
+      image = images[order[i]];
+      for (double& r : image.residual)
+        r *= residualScale(frame);
+    }
   };
   std::size_t found[4] = {0, 0, 0, 0};
   int have = 1;
@@ -238,9 +250,8 @@ struct IncrementalDelaunay::Impl
   std::vector<double> heldWeights;
   std::vector<std::uint32_t> hiddenCopies;
   // A periodic mesh (ofImages()): the images of the batch at hand, by its point ids, in the
-  // input's units; null for a batch of points that are no images.
+  // input's units; null for a batch of points that are no images, and on any other mesh.
   const ImageOf* images = nullptr;
-  bool periodic = false;
 
   /// The options and, for a weighted mesh, the first batch's weights.
   void takeOptions(const Options& givenOptions, const double* givenWeights);
@@ -270,9 +281,9 @@ private:
   Keys keys(const double* xyz, std::size_t count, const IdArray& ids) const;
   /// Weighted: the weights of `order` (point ids of the batch at hand) in the frame; else none.
   std::vector<double> framedWeights(const IdArray& order) const;
-  /// Periodic: the images of `order` (point ids of the batch at hand), their residuals in the
-  /// frame (exact: ofImages() chose a frame that scales every residual exactly); else, and for a
-  /// batch of points that are no images, none.
+  /// The images of `order` (point ids of the batch at hand), their residuals in the frame (exact:
+  /// the periodic driver chose a frame that scales every residual exactly); none for a batch
+  /// without images.
   std::vector<ImageOf> framedImages(const IdArray& order) const;
   /// Vertex records of `order` (point ids, local to xyz, whose first is point id `firstPoint`) in
   /// the frame, with capacity for `extra` more.
@@ -323,14 +334,14 @@ std::vector<double> IncrementalDelaunay::Impl::framedWeights(const IdArray& orde
 
 std::vector<ImageOf> IncrementalDelaunay::Impl::framedImages(const IdArray& order) const
 {
-  if (!periodic || !images)
+  if (!images)
     return {};
   std::vector<ImageOf> out(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
   {
     out[i] = images[order[i]];
     for (double& r : out[i].residual)
-      r *= frame.identity ? 1.0 : frame.scale;
+      r *= residualScale(frame);
   }
   return out;
 }
@@ -394,14 +405,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   duplicates = std::move(plan.duplicates);
   skipped = skipClosePoints(xyz, plan, options.tolerance);
   stats.closePointsSkipped = skipped.size();
-  std::vector<ImageOf> imagesById;
-  if (periodic)
-  {
-    IdArray all(count);
-    std::iota(all.begin(), all.end(), 0u);
-    imagesById = framedImages(all);
-  }
-  if (!moveFirstTetrahedronToFront(xyz, frame, plan.order, imagesById))
+  if (!moveFirstTetrahedronToFront(xyz, frame, plan.order, images))
   {
     status = plan.order.size() < 4 ? Status::TooFewPoints : Status::Degenerate;
     return;
@@ -422,7 +426,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
 #endif
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box), options,
     *team, frame.identity, std::move(vertexWeights));
-  if (periodic)
+  if (images)
     triangulator->useImages(vertexImages);
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
@@ -715,7 +719,6 @@ std::unique_ptr<IncrementalDelaunay> IncrementalDelaunay::ofImages(
 {
   std::unique_ptr<IncrementalDelaunay> mesh(new IncrementalDelaunay());
   Impl& impl = *mesh->impl_;
-  impl.periodic = true;
   impl.images = images;
   impl.takesPoints = true;
   impl.held = std::move(xyz);

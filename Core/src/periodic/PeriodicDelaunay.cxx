@@ -1,5 +1,6 @@
 #include "periodic/PeriodicDelaunay.h"
 
+#include "TetMesh.h"
 #include "exact/Frame.h"
 #include "exact/Predicates.h"
 
@@ -183,20 +184,7 @@ void PeriodicDelaunay::chooseFrame()
 void PeriodicDelaunay::addPoints()
 {
   for (const std::uint32_t id : points_)
-  {
-    ImageOf image;
-    for (int k = 0; k < 3; ++k)
-    {
-      image.source[k] = xyz_[3 * id + k];
-      image.offset[k] = -wraps_[3 * id + k];
-      image.residual[k] = placeResidual_[id][k];
-    }
-    image.key = perturbationKey(image.source, options_.randomSeed);
-    coveringXyz_.insert(coveringXyz_.end(), place_[id].begin(), place_[id].end());
-    coveringImages_.push_back(image);
-    covering_.push_back({id, {0, 0, 0}});
-    inBox_.push_back(1);
-  }
+    addImage(id, {0, 0, 0}); // its place, which wrapPoints() found a sum of two doubles
 }
 
 bool PeriodicDelaunay::inShell(
@@ -228,7 +216,7 @@ bool PeriodicDelaunay::addImage(std::uint32_t id, const std::array<std::int8_t, 
   coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
   coveringImages_.push_back(image);
   covering_.push_back({id, o});
-  inBox_.push_back(0);
+  inBox_.push_back(o[0] == 0 && o[1] == 0 && o[2] == 0);
   return true;
 }
 
@@ -385,13 +373,12 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
         return;
       if (hull != 0)
       {
-        static constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
         for (int f = 0; f < 4; ++f)
         {
           if (!(hull >> f & 1u))
             continue;
           const std::uint32_t face[3] = {
-            ids[kOutward[f][0]], ids[kOutward[f][1]], ids[kOutward[f][2]]};
+            ids[kFaceVertices[f][0]], ids[kFaceVertices[f][1]], ids[kFaceVertices[f][2]]};
           // A hull face of the covering that a point of the box is on must be one of the repeated
           // set: across the periodic axes, its half-space would take in images. What it lacks are
           // images of the points on its outer side, within a period of it.
@@ -400,10 +387,10 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
             continue;
           Bounds region;
           for (int i = 0; i < 3; ++i)
-            region.include(xyz[kOutward[f][i]]);
-          const double* a = xyz[kOutward[f][0]];
-          const double* b = xyz[kOutward[f][1]];
-          const double* c = xyz[kOutward[f][2]];
+            region.include(xyz[kFaceVertices[f][i]]);
+          const double* a = xyz[kFaceVertices[f][0]];
+          const double* b = xyz[kFaceVertices[f][1]];
+          const double* c = xyz[kFaceVertices[f][2]];
           for (int k = 0; k < 3; ++k)
           {
             if (box_.periodic[k])
@@ -624,22 +611,33 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   return mesh;
 }
 
+Status PeriodicDelaunay::prepare(Statistics& stats)
+{
+  stats.inputPoints = count_;
+  if (!wrapPoints())
+    return Status::OutOfRange;
+  stats.nonFinitePoints = nonFinite_;
+  if (points_.empty())
+    return Status::Empty;
+  chooseFrame();
+  return Status::Ok;
+}
+
+void PeriodicDelaunay::countPoints(Statistics& stats) const
+{
+  stats.inputPoints = count_;
+  stats.nonFinitePoints = nonFinite_;
+  stats.duplicatesMerged = duplicates_;
+  stats.closePointsSkipped = close_;
+  stats.insertedPoints = points_.size();
+}
+
 PeriodicTriangulation PeriodicDelaunay::run()
 {
   PeriodicTriangulation out;
-  out.stats.inputPoints = count_;
-  if (!wrapPoints())
-  {
-    out.status = Status::OutOfRange;
+  out.status = prepare(out.stats);
+  if (out.status != Status::Ok)
     return out;
-  }
-  out.stats.nonFinitePoints = nonFinite_;
-  if (points_.empty())
-  {
-    out.status = Status::Empty;
-    return out;
-  }
-  chooseFrame();
   Triangulation covering;
   for (bool again = true; again;)
   {
@@ -655,11 +653,7 @@ PeriodicTriangulation PeriodicDelaunay::run()
   }
   out.status = covering.status;
   out.stats = covering.stats;
-  out.stats.inputPoints = count_;
-  out.stats.nonFinitePoints = nonFinite_;
-  out.stats.duplicatesMerged = duplicates_;
-  out.stats.closePointsSkipped = close_;
-  out.stats.insertedPoints = points_.size();
+  countPoints(out.stats);
   out.imagePoints = std::size_t(std::count(inBox_.begin(), inBox_.end(), 0));
   out.margin = margin_;
   if (out.status == Status::Ok)
@@ -676,22 +670,12 @@ VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
   out.cellFaces.assign(1, 0);
   out.faceStart.assign(1, 0);
   out.cellPointStart.assign(1, 0);
-  out.stats.inputPoints = count_;
   options_.threads = options.threads;
   options_.progress = options.progress;
+  out.status = prepare(out.stats);
+  if (out.status != Status::Ok)
+    return out;
   PeriodicTriangulation run;
-  if (!wrapPoints())
-  {
-    out.status = Status::OutOfRange;
-    return out;
-  }
-  if (points_.empty())
-  {
-    out.status = Status::Empty;
-    out.stats.nonFinitePoints = nonFinite_;
-    return out;
-  }
-  chooseFrame();
   std::unique_ptr<IncrementalDelaunay> mesh;
   while (!mesh)
   {
@@ -720,11 +704,7 @@ VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
     if (n < kBoxFace)
       n = representative_[covering_[n].owner];
   out.box = clipBox_;
-  out.stats.inputPoints = count_;
-  out.stats.nonFinitePoints = nonFinite_;
-  out.stats.duplicatesMerged = duplicates_;
-  out.stats.closePointsSkipped = close_;
-  out.stats.insertedPoints = points_.size();
+  countPoints(out.stats);
   return out;
 }
 

@@ -54,6 +54,11 @@ private:
     std::array<std::int8_t, 3> offset;
   };
 
+  /// Wraps the points and chooses the frame: OutOfRange where a point lies too far, Empty where
+  /// none is finite, else Ok; `stats` gets the points counted so far.
+  Status prepare(Statistics& stats);
+  /// The points' figures: input, not finite, repeats, too close, and those of the box.
+  void countPoints(Statistics& stats) const;
   /// Wraps every finite point into the box (wraps, and each one's exact place), each a point of
   /// the box until its images show it repeats another; false where one lies too far.
   bool wrapPoints();
@@ -125,7 +130,9 @@ private:
   std::vector<double> coveringXyz_;
   std::vector<ImageOf> coveringImages_;
   std::vector<CoveringPoint> covering_;
-  std::vector<std::uint8_t> inBox_; // whether each covering point is a point of the box
+  // Whether each covering point is a point of the box (offset 0): a byte each, for the
+  // certificate's and the extraction's reads in the mesh's order.
+  std::vector<std::uint8_t> inBox_;
   // Beyond the shell, the regions whose images are all present, and those images (keyOf()).
   std::vector<Bounds> regions_;
   std::unordered_set<std::uint64_t> present_;
