@@ -18,6 +18,9 @@ using Offset = std::array<std::int32_t, 3>;
 /// (id, offset) of one vertex, comparable: the order that makes keys of faces and tetrahedra.
 using Image = std::array<std::int64_t, 4>;
 
+// The face of a tetrahedron opposite vertex i, ordered so that its normal points away from i.
+constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
 Image imageOf(std::uint32_t id, const Offset& offset)
 {
   return {id, offset[0], offset[1], offset[2]};
@@ -250,7 +253,6 @@ private:
 
   void checkFaces()
   {
-    static constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     std::map<std::array<Image, 3>, std::vector<FaceUse>> faces;
     for (std::size_t t = 0; t < tets_.size(); ++t)
       for (int f = 0; f < 4; ++f)
@@ -308,7 +310,6 @@ private:
       fail("a face of tetrahedron " + std::to_string(use.tet) + " has no tetrahedron across it");
       return;
     }
-    static constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     const auto p = positions(use.tet);
     const Position& a = p[kOutward[use.opposite][0]];
     const Position u = difference(p[kOutward[use.opposite][1]], a);
