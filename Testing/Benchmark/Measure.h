@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -201,7 +203,8 @@ inline std::string cell(const Measurement& m, const char* format, double value)
   return text;
 }
 
-/// The options that `--scaling`, `--voronoi` and `--weighted` share; defaults are each mode's.
+/// The options that `--scaling`, `--voronoi`, `--weighted` and `--periodic` share; defaults are
+/// each mode's.
 struct RunSettings
 {
   std::vector<std::string> kinds;
@@ -251,6 +254,71 @@ inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettin
     }
   }
   return true;
+}
+
+/// A method of a benchmark mode: its name and its run on the mode's input; `run` is empty where
+/// the benchmark was built without it.
+template <typename Input>
+struct ModeMethod
+{
+  std::string name;
+  std::function<Measurement(const Input&)> run;
+};
+
+/// The methods of `all` that `wanted` names, in the order of `all`; all of them where it names
+/// none.
+template <typename Input>
+std::vector<ModeMethod<Input>> chooseMethods(
+  std::vector<ModeMethod<Input>> all, const std::vector<std::string>& wanted)
+{
+  if (wanted.empty())
+    return all;
+  std::vector<ModeMethod<Input>> chosen;
+  for (const ModeMethod<Input>& m : all)
+    if (std::find(wanted.begin(), wanted.end(), m.name) != wanted.end())
+      chosen.push_back(m);
+  return chosen;
+}
+
+/// Each method's fastest of settings.repeat rounds on `input` in which every method runs once in
+/// turn (interleaved), each run measured in a forked child; "not built" where a method has no
+/// run. Every run's time goes to stderr after `size`.
+template <typename Input>
+std::vector<Measurement> bestOfInterleaved(const std::vector<ModeMethod<Input>>& methods,
+  const Input& input, std::size_t size, const RunSettings& settings)
+{
+  std::vector<Measurement> best(methods.size());
+  for (int r = 0; r < settings.repeat; ++r)
+    for (std::size_t i = 0; i < methods.size(); ++i)
+    {
+      if (!methods[i].run)
+      {
+        best[i].note = "not built";
+        continue;
+      }
+      const Measurement m = measure([&] { return methods[i].run(input); }, settings.limit);
+      if (m.ran && (!best[i].ran || m.seconds < best[i].seconds))
+        best[i] = m;
+      std::cerr << size << " " << methods[i].name << ": " << (m.ran ? m.seconds : -1.0) << " s\n";
+    }
+  return best;
+}
+
+/// The measurement in `best` of the method called `name`, or an empty one where none is.
+template <typename Input>
+Measurement measurementOf(const std::vector<ModeMethod<Input>>& methods,
+  const std::vector<Measurement>& best, const std::string& name)
+{
+  for (std::size_t i = 0; i < methods.size(); ++i)
+    if (methods[i].name == name)
+      return best[i];
+  return Measurement();
+}
+
+/// How many times faster m ran than other, or "-" where either did not run.
+inline std::string speedup(const Measurement& m, const Measurement& other)
+{
+  return m.ran && other.ran ? cell(m, "%.2fx", other.seconds / m.seconds) : std::string("-");
 }
 
 /// CPU model, hardware threads and memory.

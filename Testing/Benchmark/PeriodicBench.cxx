@@ -99,34 +99,16 @@ Measurement runCgal(const Points& p)
 #ifdef FD3_BENCHMARK_WITH_VOROPP
 Measurement runVoropp(const Points& p)
 {
-  const std::size_t n = p.size() / 3;
   fd3::Bounds unit;
   std::fill(unit.lo, unit.lo + 3, 0.0);
   std::fill(unit.hi, unit.hi + 3, 1.0);
-  const std::array<int, 3> blocks = voroppBlocks(unit, n);
-  const auto t0 = Clock::now();
-  voro::container box(0, 1, 0, 1, 0, 1, blocks[0], blocks[1], blocks[2], true, true, true, 8);
-  for (std::size_t i = 0; i < n; ++i)
-    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-  const VoroppSweep sweep = sweepCells(box, false);
-  Measurement m;
-  m.seconds = since(t0);
-  m.ran = true;
-  m.peakMiB = peakSoFarMiB();
-  m.figures = {sweep.volume, double(sweep.cells)};
-  return m;
+  return runVoroppContainer(p, unit, {true, true, true}, false);
 }
 #endif
 
-struct Method
+std::vector<ModeMethod<Points>> methods(const std::vector<std::string>& wanted)
 {
-  std::string name;
-  std::function<Measurement(const Points&)> run; ///< empty where not built
-};
-
-std::vector<Method> methods(const std::vector<std::string>& wanted)
-{
-  std::vector<Method> all = {{"Core", runCore}, {"plain", runPlain}, {"CGAL", nullptr},
+  std::vector<ModeMethod<Points>> all = {{"Core", runCore}, {"plain", runPlain}, {"CGAL", nullptr},
     {"cells", runCells}, {"Voro++", nullptr}};
 #ifdef FD3_BENCHMARK_WITH_CGAL
   all[2].run = runCgal;
@@ -134,20 +116,9 @@ std::vector<Method> methods(const std::vector<std::string>& wanted)
 #ifdef FD3_BENCHMARK_WITH_VOROPP
   all[4].run = runVoropp;
 #endif
-  if (wanted.empty())
-    return all;
-  std::vector<Method> chosen;
-  for (const Method& m : all)
-    if (std::find(wanted.begin(), wanted.end(), m.name) != wanted.end())
-      chosen.push_back(m);
-  return chosen;
+  return chooseMethods(std::move(all), wanted);
 }
 
-/// How many times faster m is than other.
-std::string ratio(const Measurement& m, const Measurement& other)
-{
-  return m.ran && other.ran ? cell(m, "%.2fx", other.seconds / m.seconds) : std::string("-");
-}
 } // namespace
 
 int periodicMain(int argc, char* argv[])
@@ -156,7 +127,7 @@ int periodicMain(int argc, char* argv[])
   settings.sizes = {100000, 1000000};
   if (!parseRunSettings(argc, argv, "--periodic", settings))
     return 2;
-  const std::vector<Method> chosen = methods(settings.methods);
+  const std::vector<ModeMethod<Points>> chosen = methods(settings.methods);
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". Uniform points in the periodic unit box; one thread; "
      << "best of " << settings.repeat
@@ -171,26 +142,8 @@ int periodicMain(int argc, char* argv[])
   for (const std::size_t n : settings.sizes)
   {
     const Points p = fd3test::uniformCube(n, 1);
-    std::vector<Measurement> best(chosen.size());
-    for (int r = 0; r < settings.repeat; ++r)
-      for (std::size_t i = 0; i < chosen.size(); ++i)
-      {
-        if (!chosen[i].run)
-        {
-          best[i].note = "not built";
-          continue;
-        }
-        const Measurement m = measure([&] { return chosen[i].run(p); }, settings.limit);
-        if (m.ran && (!best[i].ran || m.seconds < best[i].seconds))
-          best[i] = m;
-        std::cerr << n << " " << chosen[i].name << ": " << (m.ran ? m.seconds : -1.0) << " s\n";
-      }
-    auto byName = [&](const char* name) {
-      for (std::size_t i = 0; i < chosen.size(); ++i)
-        if (chosen[i].name == name)
-          return best[i];
-      return Measurement();
-    };
+    const std::vector<Measurement> best = bestOfInterleaved(chosen, p, n, settings);
+    auto byName = [&](const char* name) { return measurementOf(chosen, best, name); };
     const Measurement cgal = byName("CGAL"), plain = byName("plain"), voropp = byName("Voro++");
     for (std::size_t i = 0; i < chosen.size(); ++i)
     {
@@ -205,8 +158,8 @@ int periodicMain(int argc, char* argv[])
         name == "Core" && plain.ran && m.ran ? cell(m, "%.2fx", m.seconds / plain.seconds) : "-";
       md << "| " << n << " | " << name << " | " << cell(m, "%.3f", m.seconds) << " | "
          << cell(m, "%.0f", m.peakMiB) << " | " << cell(m, "%.0f", count) << " | " << images
-         << " | " << (name == "Core" ? ratio(m, cgal) : "-") << " | " << vsPlain << " | "
-         << (name == "cells" ? ratio(m, voropp) : "-") << " |\n";
+         << " | " << (name == "Core" ? speedup(m, cgal) : "-") << " | " << vsPlain << " | "
+         << (name == "cells" ? speedup(m, voropp) : "-") << " |\n";
       csv << n << ',' << name << ',' << (m.ran ? m.seconds : -1) << ',' << m.peakMiB << ',' << count
           << '\n';
     }

@@ -48,20 +48,8 @@ Measurement runCore(const fd3test::Points& p, int threads, bool polyhedra)
 /// Voro++'s cells (sweepCells()), with their polyhedra where asked.
 Measurement runVoropp(const fd3test::Points& p, bool polyhedra)
 {
-  const std::size_t n = p.size() / 3;
-  const fd3::Bounds b = fd3::finiteBounds(p.data(), n);
-  const std::array<int, 3> blocks = voroppBlocks(b, n);
-  const auto t0 = Clock::now();
-  voro::container box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0], blocks[1],
-    blocks[2], false, false, false, 8);
-  for (std::size_t i = 0; i < n; ++i)
-    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-  const VoroppSweep sweep = sweepCells(box, polyhedra);
-  Measurement m;
-  m.seconds = since(t0);
-  m.ran = true;
-  m.figures = {sweep.volume, double(sweep.cells)};
-  return m;
+  return runVoroppContainer(
+    p, fd3::finiteBounds(p.data(), p.size() / 3), {false, false, false}, polyhedra);
 }
 #endif
 

@@ -1,8 +1,10 @@
-// Voro++'s side of the Voronoi and power-cell benchmarks: the blocks of its container, and one
-// sweep over the cells of any container (plain or radical) that computes what Core's cells give.
+// Voro++'s side of the Voronoi and power-cell benchmarks: the blocks of its container, one sweep
+// over the cells of any container (plain or radical) that computes what Core's cells give, and
+// the timed run of a plain container, periodic or not.
 #ifndef fd3_benchmark_VoroppRun_h
 #define fd3_benchmark_VoroppRun_h
 
+#include "Measure.h"
 #include "fd3/Bounds.h"
 
 #include <voro++/voro++.hh>
@@ -73,6 +75,27 @@ VoroppSweep sweepCells(Container& container, bool polyhedra)
       }
     while (loop.inc());
   return sweep;
+}
+
+/// Voro++'s cells of the points of p (x, y, z each) in box b, periodic along the axes where
+/// `periodic` is set: a container (voroppBlocks()) made and filled, then sweepCells(), timed from
+/// the container's making. Figures: the volumes' sum and the cells made.
+inline Measurement runVoroppContainer(const std::vector<double>& p, const fd3::Bounds& b,
+  const std::array<bool, 3>& periodic, bool polyhedra)
+{
+  const std::size_t n = p.size() / 3;
+  const std::array<int, 3> blocks = voroppBlocks(b, n);
+  const auto t0 = Clock::now();
+  voro::container box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0], blocks[1],
+    blocks[2], periodic[0], periodic[1], periodic[2], 8);
+  for (std::size_t i = 0; i < n; ++i)
+    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  const VoroppSweep sweep = sweepCells(box, polyhedra);
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = true;
+  m.figures = {sweep.volume, double(sweep.cells)};
+  return m;
 }
 } // namespace fd3bench
 

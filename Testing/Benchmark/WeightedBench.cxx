@@ -130,15 +130,9 @@ Measurement runVoropp(const WeightedPoints& p)
 }
 #endif
 
-struct Method
+std::vector<ModeMethod<WeightedPoints>> methods(const std::vector<std::string>& wanted)
 {
-  std::string name;
-  std::function<Measurement(const WeightedPoints&)> run; ///< empty where not built
-};
-
-std::vector<Method> methods(const std::vector<std::string>& wanted)
-{
-  std::vector<Method> all = {
+  std::vector<ModeMethod<WeightedPoints>> all = {
     {"Core", runCore}, {"CGAL", nullptr}, {"cells", runCells}, {"Voro++", nullptr}};
 #ifdef FD3_BENCHMARK_WITH_CGAL
   all[1].run = runCgal;
@@ -146,19 +140,9 @@ std::vector<Method> methods(const std::vector<std::string>& wanted)
 #ifdef FD3_BENCHMARK_WITH_VOROPP
   all[3].run = runVoropp;
 #endif
-  if (wanted.empty())
-    return all;
-  std::vector<Method> chosen;
-  for (const Method& m : all)
-    if (std::find(wanted.begin(), wanted.end(), m.name) != wanted.end())
-      chosen.push_back(m);
-  return chosen;
+  return chooseMethods(std::move(all), wanted);
 }
 
-std::string ratio(const Measurement& m, const Measurement& other)
-{
-  return m.ran && other.ran ? cell(m, "%.2fx", other.seconds / m.seconds) : std::string("-");
-}
 } // namespace
 
 int weightedMain(int argc, char* argv[])
@@ -178,7 +162,7 @@ int weightedMain(int argc, char* argv[])
       rest.push_back(argv[i]);
   if (!parseRunSettings(int(rest.size()), rest.data(), "--weighted", settings))
     return 2;
-  const std::vector<Method> chosen = methods(settings.methods);
+  const std::vector<ModeMethod<WeightedPoints>> chosen = methods(settings.methods);
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". Uniform points in the unit cube, radii uniform in ["
      << lo << ", " << hi << "] (weight r^2); one thread; best of " << settings.repeat
@@ -191,26 +175,8 @@ int weightedMain(int argc, char* argv[])
   for (const std::size_t n : settings.sizes)
   {
     const WeightedPoints p = uniformWithRadii(n, lo, hi);
-    std::vector<Measurement> best(chosen.size());
-    for (int r = 0; r < settings.repeat; ++r)
-      for (std::size_t i = 0; i < chosen.size(); ++i)
-      {
-        if (!chosen[i].run)
-        {
-          best[i].note = "not built";
-          continue;
-        }
-        const Measurement m = measure([&] { return chosen[i].run(p); }, settings.limit);
-        if (m.ran && (!best[i].ran || m.seconds < best[i].seconds))
-          best[i] = m;
-        std::cerr << n << " " << chosen[i].name << ": " << (m.ran ? m.seconds : -1.0) << " s\n";
-      }
-    auto byName = [&](const char* name) {
-      for (std::size_t i = 0; i < chosen.size(); ++i)
-        if (chosen[i].name == name)
-          return best[i];
-      return Measurement();
-    };
+    const std::vector<Measurement> best = bestOfInterleaved(chosen, p, n, settings);
+    auto byName = [&](const char* name) { return measurementOf(chosen, best, name); };
     const Measurement cgal = byName("CGAL"), voropp = byName("Voro++");
     for (std::size_t i = 0; i < chosen.size(); ++i)
     {
@@ -219,8 +185,8 @@ int weightedMain(int argc, char* argv[])
       const bool cells = chosen[i].name == "cells" || chosen[i].name == "Voro++";
       md << "| " << n << " | " << chosen[i].name << " | " << cell(m, "%.3f", m.seconds) << " | "
          << cell(m, "%.0f", m.peakMiB) << " | " << cell(m, "%.0f", m.peakMiB * 1048576.0 / n)
-         << " | " << cell(m, "%.0f", figure) << " | " << (cells ? "-" : ratio(m, cgal)) << " | "
-         << (cells ? ratio(m, voropp) : "-") << " |\n";
+         << " | " << cell(m, "%.0f", figure) << " | " << (cells ? "-" : speedup(m, cgal)) << " | "
+         << (cells ? speedup(m, voropp) : "-") << " |\n";
       csv << n << ',' << chosen[i].name << ',' << (m.ran ? m.seconds : -1) << ',' << m.peakMiB
           << ',' << figure << '\n';
     }
