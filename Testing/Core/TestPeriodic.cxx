@@ -1,8 +1,9 @@
 // The periodic tetrahedralization (fd3/Periodic.h), decided by the exact periodic validator:
 // uniform points, lattices commensurate with the box (ties across its faces, with images that no
 // double holds), a handful of points in a large box, slabs and columns, points outside the box,
-// repeats, any thread count, and bad input. Then the periodic Voronoi cells: their volumes fill
-// the box and equal Voro++'s periodic containers'.
+// repeats, any thread count, and bad input; the tetrahedra placed for drawing, and the periodic
+// density. Then the periodic Voronoi cells: their volumes fill the box and equal Voro++'s
+// periodic containers'.
 #include "PeriodicValidator.h"
 #include "PointSets.h"
 #include "fd3/Periodic.h"
@@ -272,6 +273,119 @@ TEST(Periodic, BadInput)
   fd3::PeriodicBox slab;
   slab.periodic[2] = false;
   EXPECT_EQ(fd3::triangulatePeriodic(flat.data(), 50, slab).status, fd3::Status::Degenerate);
+}
+
+/// Six times the volume of a placed tetrahedron.
+double placedSixVolume(const fd3::PeriodicPlacement& placed, const Points& p, std::size_t t)
+{
+  const std::size_t count = p.size() / 3;
+  const double* q[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    const std::uint32_t v = placed.tetrahedra[4 * t + i];
+    q[i] = v < count ? &p[3 * v] : &placed.imagePoints[3 * (v - count)];
+  }
+  double e[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+      e[i][k] = q[i + 1][k] - q[0][k];
+  return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+    e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+    e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+}
+
+// Placed as drawn, the periodic tetrahedra tile one period: positive, their volumes the box's,
+// each image a whole number of periods from its input point (points outside the box included),
+// one image per point and shift.
+TEST(Periodic, PlacedTetrahedraTileOnePeriod)
+{
+  Points p = fd3test::uniformCube(2000, 21);
+  for (std::size_t i = 0; i < 2000; i += 9)
+    p[3 * i] += (i % 2 ? 3.0 : -2.0); // outside the box, by whole periods in x
+  fd3::PeriodicBox box;
+  std::fill(box.hi, box.hi + 3, 2.0);
+  for (double& x : p)
+    x *= 2;
+  const auto t = checked(p, box);
+  const fd3::PeriodicPlacement placed = fd3::placePeriodic(p.data(), 2000, t, box);
+  ASSERT_EQ(placed.tetrahedra.size(), t.tetrahedra.size());
+  ASSERT_EQ(placed.imagePoints.size(), 3 * placed.numberOfImages());
+  ASSERT_EQ(placed.imageShifts.size(), 3 * placed.numberOfImages());
+  double volume = 0;
+  for (std::size_t c = 0; c < t.numberOfTetrahedra(); ++c)
+  {
+    const double six = placedSixVolume(placed, p, c);
+    EXPECT_GT(six, 0);
+    volume += six / 6;
+  }
+  EXPECT_NEAR(volume, 8.0, 8.0 * 1e-12);
+  std::set<std::array<std::int64_t, 4>> distinct;
+  for (std::size_t k = 0; k < placed.numberOfImages(); ++k)
+  {
+    const std::uint32_t source = placed.imageSources[k];
+    bool moved = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::int32_t shift = placed.imageShifts[3 * k + a];
+      moved = moved || shift != 0;
+      EXPECT_EQ(placed.imagePoints[3 * k + a], p[3 * source + a] + 2.0 * shift);
+    }
+    EXPECT_TRUE(moved);
+    distinct.insert({source, placed.imageShifts[3 * k], placed.imageShifts[3 * k + 1],
+      placed.imageShifts[3 * k + 2]});
+  }
+  EXPECT_EQ(distinct.size(), placed.numberOfImages());
+  // An input point outside the box is drawn only as its images.
+  const auto used = std::count(placed.tetrahedra.begin(), placed.tetrahedra.end(), 0u);
+  EXPECT_EQ(used, 0);
+}
+
+// The periodic DTFE has no boundary: its field integrates over the box to the number of points,
+// whatever the points' distance to the box's sides.
+TEST(Periodic, DensityHasNoBoundaryEffect)
+{
+  const Points p = fd3test::uniformCube(3000, 22);
+  const auto t = checked(p, fd3::PeriodicBox());
+  const auto placed = fd3::placePeriodic(p.data(), 3000, t, fd3::PeriodicBox());
+  const std::vector<double> density = fd3::densities(p.data(), 3000, t, placed);
+  double integral = 0;
+  for (std::size_t c = 0; c < t.numberOfTetrahedra(); ++c)
+  {
+    double mean = 0;
+    for (int i = 0; i < 4; ++i)
+      mean += density[t.tetrahedra[4 * c + i]] / 4;
+    integral += mean * placedSixVolume(placed, p, c) / 6;
+  }
+  EXPECT_NEAR(integral, 3000.0, 3000.0 * 1e-12);
+  // Points by the box's sides have whole stars: their mean volume per point, 1 / density, is the
+  // others' (without the repeats, the hull's points would have part of a star).
+  const Points many = fd3test::uniformCube(20000, 23);
+  const auto m = fd3::triangulatePeriodic(many.data(), 20000, fd3::PeriodicBox());
+  const std::vector<double> rho =
+    fd3::densities(many.data(), 20000, m, fd3::placePeriodic(many.data(), 20000, m, {}));
+  double mean[2] = {0, 0};
+  std::size_t n[2] = {0, 0};
+  for (std::size_t i = 0; i < 20000; ++i)
+  {
+    double side = 1;
+    for (int a = 0; a < 3; ++a)
+      side = std::min({side, many[3 * i + a], 1 - many[3 * i + a]});
+    mean[side < 0.02] += 1 / rho[i];
+    ++n[side < 0.02];
+  }
+  EXPECT_NEAR(mean[1] / n[1], mean[0] / n[0], 0.05 * mean[0] / n[0]);
+
+  Points lattice;
+  for (int i = 0; i < 1000; ++i)
+    lattice.insert(lattice.end(), {0.1 * (i % 10), 0.1 * (i / 10 % 10), 0.1 * (i / 100)});
+  const auto l = checked(lattice, fd3::PeriodicBox());
+  const auto lrho =
+    fd3::densities(lattice.data(), 1000, l, fd3::placePeriodic(lattice.data(), 1000, l, {}));
+  // The stars fill the box four times over, where a boundary would leave them short.
+  double cells = 0;
+  for (const double value : lrho)
+    cells += 1 / value;
+  EXPECT_NEAR(cells, 1.0, 1e-12);
 }
 
 double sum(const fd3::VoronoiCells::Doubles& values)

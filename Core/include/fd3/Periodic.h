@@ -79,6 +79,40 @@ struct PeriodicTriangulation
 PeriodicTriangulation triangulatePeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options = Options());
 
+/// The periodic tetrahedra placed as one draws them: each tetrahedron of a PeriodicTriangulation,
+/// in its order, with its vertices where its offsets put them, so that together they tile one
+/// period. A vertex at its input point's own position keeps the input id; one elsewhere (an image
+/// across the box, or an input point outside the box moved into it) is an image point of its own,
+/// one per input point and shift however many tetrahedra use it.
+struct PeriodicPlacement
+{
+  /// Four ids per tetrahedron: below the input count, that input point; count + k, image k.
+  IdArray tetrahedra;
+  /// Per image: the input point it copies.
+  std::vector<std::uint32_t> imageSources;
+  /// Three per image: the periods it lies from its input point (the vertex's offset less the
+  /// point's wraps).
+  std::vector<std::int32_t> imageShifts;
+  /// x,y,z per image: its input point moved by its shifts times the periods, rounded to doubles.
+  std::vector<double> imagePoints;
+
+  std::size_t numberOfImages() const { return imageSources.size(); }
+};
+
+/// The tetrahedra of `triangulation` (triangulatePeriodic() of the same points and box) placed:
+/// their volumes add up to a period's (for a box periodic on every axis, the box's), up to the
+/// rounding of the images' coordinates. Images are numbered in the order the tetrahedra first use
+/// them, so the placement is as deterministic as the tetrahedra.
+PeriodicPlacement placePeriodic(const double* xyz, std::size_t count,
+  const PeriodicTriangulation& triangulation, const PeriodicBox& box);
+
+/// The periodic Delaunay tessellation field estimate, per input point, as densities() defines it
+/// but from each vertex's whole periodic star (`placement` of `triangulation`): no boundary
+/// effect along the periodic axes, and the field integrates over one period to the number of
+/// finite points. NaN for a point on no tetrahedron.
+std::vector<double> densities(const double* xyz, std::size_t count,
+  const PeriodicTriangulation& triangulation, const PeriodicPlacement& placement);
+
 /// The Voronoi cells of the points repeated along the periodic axes of `box`: one per distinct
 /// point (as triangulatePeriodic() merges them), around its place in the box, whole along the
 /// periodic axes, so that the cells of a box periodic along every axis fill it exactly once;

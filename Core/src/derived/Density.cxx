@@ -8,6 +8,7 @@
 // one order, whatever the mesh's, so that every run (and every MPI rank) computes it alike.
 #include "exact/Predicates.h"
 #include "fd3/Delaunay.h"
+#include "fd3/Periodic.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,40 +75,63 @@ void sixVolumeScaled(const double* const vertices[4], double& mantissa, int& exp
   if (mantissa < 1e-8 * size)
     exactSixVolume(p[0], p[1], p[2], p[3], mantissa, exponent);
 }
+
+/// The estimate from tetrahedra `tets` on vertices at corner(v), each vertex counted at its input
+/// point source(v).
+template <typename Corner, typename Source>
+std::vector<double> densitiesOf(std::size_t count, const IdArray& tets,
+  const IdArray& representative, Corner corner, Source source)
+{
+  std::vector<ScaledSum> star(count);
+  std::vector<double> mass(count, 0);
+  for (std::size_t t = 0; t < tets.size() / 4; ++t)
+  {
+    const std::uint32_t* v = &tets[4 * t];
+    const double* p[4] = {corner(v[0]), corner(v[1]), corner(v[2]), corner(v[3])};
+    double mantissa;
+    int exponent;
+    sixVolumeScaled(p, mantissa, exponent);
+    for (int k = 0; k < 4; ++k)
+      star[source(v[k])].add(mantissa, exponent);
+  }
+  // A point merged into a vertex (an exact duplicate, or one within the tolerance) adds to its
+  // mass, and has its density.
+  for (std::size_t i = 0; i < count; ++i)
+    if (representative[i] != kNoPoint)
+      mass[representative[i]] += 1;
+  std::vector<double> density(count, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const std::uint32_t v = representative[i];
+    if (v != kNoPoint && star[v].mantissa > 0) // 4 m / (six volume / 6)
+      density[i] = std::ldexp(24 * mass[v] / star[v].mantissa, -star[v].exponent);
+  }
+  return density;
+}
 } // namespace
 
 std::vector<double> densities(
   const double* xyz, std::size_t count, const Triangulation& triangulation)
 {
-  std::vector<double> density(count, std::numeric_limits<double>::quiet_NaN());
   if (triangulation.status != Status::Ok)
-    return density;
-  std::vector<ScaledSum> star(count);
-  std::vector<double> mass(count, 0);
-  const std::uint32_t* t4 = triangulation.tetrahedra.data();
-  for (std::size_t t = 0; t < triangulation.numberOfTetrahedra(); ++t)
-  {
-    const std::uint32_t* v = t4 + 4 * t;
-    const double* p[4] = {&xyz[3 * std::size_t(v[0])], &xyz[3 * std::size_t(v[1])],
-      &xyz[3 * std::size_t(v[2])], &xyz[3 * std::size_t(v[3])]};
-    double mantissa;
-    int exponent;
-    sixVolumeScaled(p, mantissa, exponent);
-    for (int k = 0; k < 4; ++k)
-      star[v[k]].add(mantissa, exponent);
-  }
-  // A point merged into a vertex (an exact duplicate, or one within the tolerance) adds to its
-  // mass, and has its density.
-  for (std::size_t i = 0; i < count; ++i)
-    if (triangulation.representative[i] != kNoPoint)
-      mass[triangulation.representative[i]] += 1;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const std::uint32_t v = triangulation.representative[i];
-    if (v != kNoPoint && star[v].mantissa > 0) // 4 m / (six volume / 6)
-      density[i] = std::ldexp(24 * mass[v] / star[v].mantissa, -star[v].exponent);
-  }
-  return density;
+    return std::vector<double>(count, std::numeric_limits<double>::quiet_NaN());
+  return densitiesOf(
+    count, triangulation.tetrahedra, triangulation.representative,
+    [xyz](std::uint32_t v) { return xyz + 3 * std::size_t(v); }, [](std::uint32_t v) { return v; });
+}
+
+std::vector<double> densities(const double* xyz, std::size_t count,
+  const PeriodicTriangulation& triangulation, const PeriodicPlacement& placement)
+{
+  if (triangulation.status != Status::Ok)
+    return std::vector<double>(count, std::numeric_limits<double>::quiet_NaN());
+  const double* images = placement.imagePoints.data();
+  const std::uint32_t* sources = placement.imageSources.data();
+  return densitiesOf(
+    count, placement.tetrahedra, triangulation.representative,
+    [=](
+      std::uint32_t v) { return v < count ? xyz + 3 * std::size_t(v) : images + 3 * (v - count); },
+    [=](std::uint32_t v) { return v < count ? v : sources[v - count]; });
 }
 
 } // namespace fd3
