@@ -5,6 +5,7 @@
 #include "vtkFastDelaunay3D.h"
 
 #include "FilterArrays.h"
+#include "FilterBox.h"
 #include "FilterCells.h"
 #include "FilterInput.h"
 #include "PointInsertion.h"
@@ -39,6 +40,7 @@
 #include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Measures.h"
+#include "fd3/Periodic.h"
 
 #include <algorithm>
 #include <chrono>
@@ -161,6 +163,52 @@ std::string LeftOutPoints(const fd3::Statistics& stats, bool weighted)
                         : " with NaN or infinite coordinates (no position to triangulate)");
   }
   return causes.str();
+}
+
+/// The output's points: the input's `points`, then the placement's images, in their precision.
+void SetPointsAndImages(
+  vtkUnstructuredGrid* output, vtkPoints* points, const fd3::PeriodicPlacement& placement)
+{
+  const vtkIdType count = points->GetNumberOfPoints();
+  const vtkIdType images = static_cast<vtkIdType>(placement.numberOfImages());
+  vtkNew<vtkPoints> all;
+  all->SetDataType(points->GetDataType());
+  all->SetNumberOfPoints(count + images);
+  all->GetData()->InsertTuples(0, count, 0, points->GetData());
+  for (vtkIdType k = 0; k < images; ++k)
+  {
+    all->SetPoint(count + k, &placement.imagePoints[3 * static_cast<std::size_t>(k)]);
+  }
+  output->SetPoints(all);
+}
+
+/// The input's point data on its points, each image with its input point's values, and
+/// "SourcePointId": the input point each output point copies.
+void SetPointDataAndImages(
+  vtkPointData* out, vtkPointData* in, vtkIdType count, const fd3::PeriodicPlacement& placement)
+{
+  const vtkIdType images = static_cast<vtkIdType>(placement.numberOfImages());
+  vtkNew<vtkIdList> sources, targets;
+  sources->SetNumberOfIds(images);
+  targets->SetNumberOfIds(images);
+  auto sourceId = fd3vtk::NamedArray<vtkIdTypeArray>("SourcePointId", count + images);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    sourceId->SetValue(i, i);
+  }
+  for (vtkIdType k = 0; k < images; ++k)
+  {
+    sources->SetId(k, placement.imageSources[k]);
+    targets->SetId(k, count + k);
+    sourceId->SetValue(count + k, placement.imageSources[k]);
+  }
+  if (in)
+  {
+    out->CopyAllocate(in, count + images);
+    out->CopyData(in, 0, count, 0);
+    out->CopyData(in, sources, targets);
+  }
+  out->AddArray(sourceId);
 }
 
 using fd3vtk::AddFieldValue;
@@ -331,22 +379,35 @@ int vtkFastDelaunay3D::RequestData(
 
   // VTK points in -> Core -> VTK cells out. The kernel triangulates the output's own coordinates,
   // so the result is exact for what is written.
+  const bool periodic = fd3vtk::AnyPeriodic(this->Periodic);
+  const bool octahedron = this->BoundingTriangulation && !periodic;
   vtkSmartPointer<vtkPoints> points =
-    PointsInPrecision(input, this->OutputPointsPrecision, this->BoundingTriangulation ? 6 : 0);
+    PointsInPrecision(input, this->OutputPointsPrecision, octahedron ? 6 : 0);
   std::vector<double> converted;
   const double* xyz = CoordinatesAsDoubles(points, converted);
   const fd3::Bounds bounds = fd3::finiteBounds(
     xyz, static_cast<std::size_t>(numberOfPoints), ThreadCount(this->NumberOfThreads));
-  if (this->BoundingTriangulation)
+  if (octahedron)
   {
     SetOctahedron(points, numberOfPoints, bounds, this->Offset);
     xyz = CoordinatesAsDoubles(points, converted); // the octahedron in the output's precision
   }
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
-  vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
+  vtkPointData* pointData = octahedron ? nullptr : input->GetPointData();
   std::vector<double> weights;
   vtkDataArray* weightArray =
     fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+  if (periodic)
+  {
+    if (weightArray)
+    {
+      vtkErrorMacro("Cannot triangulate: weights are not available in a periodic box yet; the "
+                    "output holds the points and no cells");
+      SetPointsWithoutCells(output, points, pointData);
+      return 0;
+    }
+    return this->TriangulatePeriodic(output, points, xyz, bounds, pointData);
+  }
   if (weightArray)
   {
     std::string problem;
@@ -410,6 +471,84 @@ int vtkFastDelaunay3D::RequestData(
   {
     AddDensity(output, density);
   }
+  this->OutputSeconds +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
+  this->AddFigures(output->GetFieldData());
+  return 1;
+}
+
+int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoints* points,
+  const double* xyz, const fd3::Bounds& bounds, vtkPointData* pointData)
+{
+  const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(
+    fd3vtk::BoxInUse(this, this->UseInputBounds, this->Bounds, bounds), this->Periodic);
+  const std::string problem = fd3vtk::PeriodicBoxProblem(box);
+  if (!problem.empty())
+  {
+    vtkWarningMacro(
+      "Cannot triangulate: " << problem << "; the output holds the points and no cells");
+    SetPointsWithoutCells(output, points, pointData);
+    return 1;
+  }
+  const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
+  fd3::PeriodicTriangulation result;
+  fd3::PeriodicPlacement placement;
+  try
+  {
+    result = fd3::triangulatePeriodic(xyz, count, box, this->KernelOptions(bounds.diagonal()));
+    if (result.status == fd3::Status::Ok)
+    {
+      placement = fd3::placePeriodic(xyz, count, result, box);
+    }
+  }
+  catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
+  {
+    vtkErrorMacro(
+      "Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
+    SetPointsWithoutCells(output, points, pointData);
+    return 0;
+  }
+  if (result.status == fd3::Status::Aborted)
+  {
+    output->Initialize();
+    return 1;
+  }
+  this->RecordFigures(result.stats);
+  if (!this->ReportOnInput(result.status, result.stats, static_cast<vtkIdType>(count)))
+  {
+    SetPointsWithoutCells(output, points, pointData);
+    return 1;
+  }
+
+  const auto conversionStart = std::chrono::steady_clock::now();
+  const vtkIdType images = static_cast<vtkIdType>(placement.numberOfImages());
+  SetPointsAndImages(output, points, placement);
+  SetPointDataAndImages(
+    output->GetPointData(), pointData, static_cast<vtkIdType>(count), placement);
+  std::vector<double> converted;
+  const double* placed = CoordinatesAsDoubles(output->GetPoints(), converted);
+  if (this->Alpha > 0)
+  {
+    vtkWarningMacro("In a periodic box the alpha shape's tetrahedra are output, not yet its "
+                    "triangles, lines and vertices");
+    KeepCells(placement.tetrahedra, 4, [&](const std::uint32_t* ids) {
+      return std::sqrt(fd3::tetrahedronCircumradius2(placed + 3 * ids[0], placed + 3 * ids[1],
+               placed + 3 * ids[2], placed + 3 * ids[3])) <= this->Alpha;
+    });
+    fd3::releaseSpareCapacity(placement.tetrahedra);
+  }
+  if (this->ComputeDensity)
+  {
+    std::vector<double> density = fd3::densities(xyz, count, result, placement);
+    density.resize(count + static_cast<std::size_t>(images));
+    for (vtkIdType k = 0; k < images; ++k)
+    {
+      density[count + k] = density[placement.imageSources[k]];
+    }
+    AddDensity(output, density);
+  }
+  SetTetrahedra(output, std::move(placement.tetrahedra));
+  this->AddCellArrays(output, placed);
   this->OutputSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
@@ -686,6 +825,11 @@ void vtkFastDelaunay3D::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeRadiusEdgeRatio: " << this->ComputeRadiusEdgeRatio << "\n";
   os << indent << "ComputeStatistics: " << this->ComputeStatistics << "\n";
   os << indent << "WeightsAreRadii: " << this->WeightsAreRadii << "\n";
+  os << indent << "Periodic: " << this->Periodic[0] << " " << this->Periodic[1] << " "
+     << this->Periodic[2] << "\n";
+  os << indent << "UseInputBounds: " << this->UseInputBounds << "\n";
+  os << indent << "Bounds: " << this->Bounds[0] << " " << this->Bounds[1] << " " << this->Bounds[2]
+     << " " << this->Bounds[3] << " " << this->Bounds[4] << " " << this->Bounds[5] << "\n";
   for (const Figure& figure : this->Figures())
   {
     os << indent << figure.Name << ": " << figure.Value << "\n";

@@ -326,6 +326,45 @@ public:
 
   ///@{
   /**
+   * Periodic boxes: Periodic (three switches, x, y and z; all off by default) repeats the points
+   * along the axes switched on, across the box that UseInputBounds and Bounds give, and the
+   * output is the Delaunay tetrahedralization of the repeated points, each periodic tetrahedron
+   * once. A tetrahedron is placed so that together they tile one period: its least vertex is an
+   * input point in the box, and a vertex that falls elsewhere (across the box, or an input point
+   * outside the box, wrapped into it) is an image point, appended after the input points with a
+   * copy of its input point's data. The point array "SourcePointId" names the input point each
+   * output point copies (itself for the input's). Where every axis is periodic, the tetrahedra's
+   * volumes add up to the box's; along an axis that is not, the tetrahedralization ends at the
+   * points' extent. Density is the periodic estimate, from each point's whole star. Any number
+   * of points works, one included. Exact duplicates are merged once wrapped, and points too
+   * close for the doubles to tell their images apart are skipped (NumberOfSkippedPoints).
+   * Tolerance, VolumeThreshold, the Locator and BoundingTriangulation do not apply. With Alpha,
+   * only the alpha shape's tetrahedra are output (its triangles, lines and vertices not yet).
+   * Weights, and several MPI ranks, are not available in a periodic box yet.
+   */
+  vtkSetVector3Macro(Periodic, vtkTypeBool);
+  vtkGetVector3Macro(Periodic, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * The box of Periodic: by default (UseInputBounds on) the bounding box of the input's finite
+   * points; with UseInputBounds off, Bounds (xmin, xmax, ymin, ymax, zmin, zmax; default the unit
+   * cube). A simulation box is usually not its points' bounding box: set it with
+   * UseInputBounds off. The box is [min, max) along each periodic axis: a point at its maximum
+   * is the same as one at its minimum. A Bounds with a minimum above its maximum or a bound that
+   * is not finite is no box: a warning, and the input's bounds are used. Without Periodic, the
+   * box is not used.
+   */
+  vtkSetMacro(UseInputBounds, vtkTypeBool);
+  vtkGetMacro(UseInputBounds, vtkTypeBool);
+  vtkBooleanMacro(UseInputBounds, vtkTypeBool);
+  vtkSetVector6Macro(Bounds, double);
+  vtkGetVector6Macro(Bounds, double);
+  ///@}
+
+  ///@{
+  /**
    * Figures of the last execution: distinct points inserted, exact duplicates merged, points
    * skipped for Tolerance, points with NaN/Inf coordinates (or weight), weighted points hidden,
    * tetrahedra produced; the mean and
@@ -381,6 +420,9 @@ protected:
   vtkTypeBool ComputeDensity = 0;
   vtkTypeBool ComputeStatistics = 0;
   vtkTypeBool WeightsAreRadii = 1;
+  vtkTypeBool Periodic[3] = { 0, 0, 0 };
+  vtkTypeBool UseInputBounds = 1;
+  double Bounds[6] = { 0, 1, 0, 1, 0, 1 };
   vtkSmartPointer<vtkIncrementalPointLocator> Locator;
 
   vtkIdType NumberOfInsertedPoints = 0;
@@ -408,6 +450,11 @@ protected:
   /// given.
   fd3::Triangulation Triangulate(const double* xyz, const double* weights, std::size_t count,
     vtkIdType inputPoints, const fd3::Bounds& bounds);
+  /// The output of a periodic box (Periodic): the tetrahedra of the input's `points` (kernel
+  /// coordinates `xyz`, finite points' bounds `bounds`) and their image points. Returns as
+  /// RequestData does.
+  int TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoints* points, const double* xyz,
+    const fd3::Bounds& bounds, vtkPointData* pointData);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   /// (`weighted`: the points had weights, whose NaN or Inf leaves a point out too.)

@@ -5,6 +5,7 @@
 #include "vtkFastVoronoi3D.h"
 
 #include "FilterArrays.h"
+#include "FilterBox.h"
 #include "FilterCells.h"
 #include "FilterInput.h"
 
@@ -30,6 +31,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "fd3/Periodic.h"
 #include "fd3/Voronoi.h"
 #include "fd3/Workers.h"
 
@@ -38,6 +40,8 @@
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkFastVoronoi3D);
@@ -120,12 +124,13 @@ int vtkFastVoronoi3D::RequestData(
   try
   {
     const auto kernelStart = std::chrono::steady_clock::now();
-    cells = fd3::voronoiCells(xyz, weights.empty() ? nullptr : weights.data(),
-      static_cast<std::size_t>(numberOfPoints), this->KernelOptions());
+    cells = this->ComputeCells(
+      xyz, weights.empty() ? nullptr : weights.data(), static_cast<std::size_t>(numberOfPoints));
     this->KernelSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
   }
-  catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
+  catch (
+    const std::exception& failure) // out of memory, more points than 32-bit ids hold, no period
   {
     vtkErrorMacro("Voronoi cells failed: " << failure.what() << "; the output is empty");
     return 0;
@@ -157,10 +162,38 @@ int vtkFastVoronoi3D::RequestData(
   return 1;
 }
 
+fd3::VoronoiCells vtkFastVoronoi3D::ComputeCells(
+  const double* xyz, const double* weights, std::size_t count)
+{
+  if (!fd3vtk::AnyPeriodic(this->Periodic))
+  {
+    return fd3::voronoiCells(xyz, weights, count, this->KernelOptions());
+  }
+  const fd3::Bounds inputBounds =
+    fd3::finiteBounds(xyz, count, fd3vtk::ThreadCount(this->NumberOfThreads));
+  const fd3::VoronoiOptions options = this->KernelOptions(inputBounds);
+  const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(options.box, this->Periodic);
+  std::string problem = fd3vtk::PeriodicBoxProblem(box);
+  if (weights)
+  {
+    problem = "weights are not available in a periodic box yet";
+  }
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  return fd3::voronoiCellsPeriodic(xyz, count, box, options);
+}
+
 fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()
 {
+  return this->KernelOptions(fd3::Bounds()); // empty: the kernel bounds the points
+}
+
+fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions(const fd3::Bounds& inputBounds)
+{
   fd3::VoronoiOptions options;
-  options.box = fd3::Bounds::fromMinMax(this->Bounds);
+  options.box = fd3vtk::BoxInUse(this, this->UseInputBounds, this->Bounds, inputBounds);
   options.threads = fd3vtk::ThreadCount(this->NumberOfThreads);
   options.density = this->ComputeDensity;
   options.polyhedra = this->GeneratePolyhedra || this->GenerateFaces;
@@ -376,6 +409,9 @@ void vtkFastVoronoi3D::AddFigures(vtkFieldData* fields) const
 void vtkFastVoronoi3D::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "UseInputBounds: " << this->UseInputBounds << "\n";
+  os << indent << "Periodic: " << this->Periodic[0] << " " << this->Periodic[1] << " "
+     << this->Periodic[2] << "\n";
   os << indent << "Bounds: (" << this->Bounds[0] << ", " << this->Bounds[1] << ", "
      << this->Bounds[2] << ", " << this->Bounds[3] << ", " << this->Bounds[4] << ", "
      << this->Bounds[5] << ")\n";

@@ -7,7 +7,8 @@
  * @brief   Voronoi cells of the input points, clipped to a box, as polyhedra
  *
  * vtkFastVoronoi3D outputs one VTK_POLYHEDRON cell per distinct finite input point: the part of
- * that point's Voronoi region (the space nearer to it than to any other point) inside Bounds.
+ * that point's Voronoi region (the space nearer to it than to any other point) inside a box
+ * (Bounds, or the input's bounds), or its periodic cell (Periodic).
  * The cells are the dual of the exact Delaunay tetrahedralization of vtkFastDelaunay3D: each face
  * is a Delaunay edge, each face vertex the circumcentre of a tetrahedron around it, so the
  * topology is exact, ties (cospherical points, lattices) are broken as the tetrahedralization
@@ -67,12 +68,33 @@ public:
 
   ///@{
   /**
-   * The clipping box (xmin, xmax, ymin, ymax, zmin, zmax). A box whose minimum exceeds its
-   * maximum on an axis, as the default (0, -1, 0, -1, 0, -1), is the bounding box of the input's
-   * finite points. A box of no volume (coplanar points with the default) gives empty cells.
+   * The box: by default (UseInputBounds on) the bounding box of the input's finite points; with
+   * UseInputBounds off, Bounds (xmin, xmax, ymin, ymax, zmin, zmax; default the unit cube). The
+   * cells are clipped to it. A Bounds with a minimum above its maximum or a bound that is not
+   * finite is no box: a warning, and the input's bounds are used. A box of no volume (coplanar
+   * points with the input's bounds) gives empty cells.
    */
+  vtkSetMacro(UseInputBounds, vtkTypeBool);
+  vtkGetMacro(UseInputBounds, vtkTypeBool);
+  vtkBooleanMacro(UseInputBounds, vtkTypeBool);
   vtkSetVector6Macro(Bounds, double);
   vtkGetVector6Macro(Bounds, double);
+  ///@}
+
+  ///@{
+  /**
+   * Periodic boxes: Periodic (three switches, x, y and z; all off by default) repeats the points
+   * along the axes switched on, across the box, [min, max) on each (a simulation box is usually
+   * not its points' bounding box: set Bounds with UseInputBounds off). Each distinct point then
+   * has its periodic cell once, a polyhedron around the point's place in the box (an input point
+   * outside the box is wrapped into it), whole across the box's periodic sides and clipped to it
+   * along the other axes. Where every axis is periodic, the volumes add up to the box's.
+   * NumberOfNeighbors counts the neighbours across the box's sides, and a face's neighbour may
+   * be the cell's own point (a box of few points). Density is the periodic estimate, from whole
+   * stars. Weights, and several MPI ranks, are not available in a periodic box yet.
+   */
+  vtkSetVector3Macro(Periodic, vtkTypeBool);
+  vtkGetVector3Macro(Periodic, vtkTypeBool);
   ///@}
 
   ///@{
@@ -169,8 +191,14 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// The kernel's options from the properties, with progress and abort for the tetrahedralization.
+  /// The kernel's options from the properties, with progress and abort for the tetrahedralization;
+  /// the box is `inputBounds` where UseInputBounds says so, and without them the kernel's own
+  /// bounds of the points.
+  fd3::VoronoiOptions KernelOptions(const fd3::Bounds& inputBounds);
   fd3::VoronoiOptions KernelOptions();
+  /// The cells of the serial filter: periodic where Periodic says so. Throws as the kernel does,
+  /// and std::invalid_argument, saying why, where there can be no periodic cells.
+  fd3::VoronoiCells ComputeCells(const double* xyz, const double* weights, std::size_t count);
   /// Records the figures (of every rank, under MPI).
   void RecordFigures(
     vtkIdType generators, vtkIdType duplicates, vtkIdType invalid, vtkIdType hidden = 0);
@@ -198,7 +226,9 @@ protected:
   /// The counts of left-out points as field data, where there are some.
   void AddFigures(vtkFieldData* fields) const;
 
-  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
+  vtkTypeBool UseInputBounds = 1;
+  double Bounds[6] = { 0, 1, 0, 1, 0, 1 };
+  vtkTypeBool Periodic[3] = { 0, 0, 0 };
   int NumberOfThreads = 0;
   vtkTypeBool ComputeDensity = 0;
   vtkTypeBool GeneratePolyhedra = 1;

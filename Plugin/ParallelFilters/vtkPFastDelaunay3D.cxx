@@ -5,6 +5,7 @@
 #include "vtkPFastDelaunay3D.h"
 
 #include "DistributedRun.h"
+#include "FilterBox.h"
 #include "FilterCells.h"
 #include "FilterInput.h"
 
@@ -48,6 +49,15 @@ int vtkPFastDelaunay3D::RequestData(
   if (this->BoundingTriangulation)
   {
     vtkErrorMacro("BoundingTriangulation is not available across MPI ranks; the output is empty");
+    return 1;
+  }
+  if (fd3vtk::AnyPeriodic(this->Periodic))
+  {
+    vtkErrorMacro("Periodic boxes are not available across MPI ranks yet; the output holds the "
+                  "points and no cells");
+    fd3vtk::SetPointsWithoutCells(output,
+      fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision),
+      input ? input->GetPointData() : nullptr);
     return 1;
   }
   if (this->Locator && this->Controller->GetLocalProcessId() == 0)

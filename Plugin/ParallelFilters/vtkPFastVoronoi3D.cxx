@@ -5,6 +5,7 @@
 #include "vtkPFastVoronoi3D.h"
 
 #include "DistributedRun.h"
+#include "FilterBox.h"
 #include "FilterInput.h"
 
 #include "vtkCellData.h"
@@ -106,6 +107,11 @@ int vtkPFastVoronoi3D::RequestData(
   output->Initialize();
   faces->Initialize();
   this->RecordFigures(0, 0, 0);
+  if (fd3vtk::AnyPeriodic(this->Periodic))
+  {
+    vtkErrorMacro("Periodic boxes are not available across MPI ranks yet; the output is empty");
+    return 1;
+  }
   const fd3vtk::InputWeights weights = fd3vtk::ReadInputWeights(
     fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr,
     input ? input->GetNumberOfPoints() : 0, this->WeightsAreRadii);

@@ -279,6 +279,15 @@ TEST(VoronoiFilter, BoundsClipTheCells)
   vtkNew<vtkFastVoronoi3D> voronoi;
   voronoi->SetInputData(cloud);
   voronoi->SetBounds(-0.5, 0.5, -0.4, 0.6, -2, 2);
+  voronoi->Update(); // UseInputBounds is on: Bounds is not used
+  EXPECT_EQ(voronoi->GetOutput()->GetNumberOfCells(), 3000);
+  double inputBounds[6];
+  cloud->GetBounds(inputBounds);
+  double box = 1;
+  for (int a = 0; a < 3; ++a)
+    box *= inputBounds[2 * a + 1] - inputBounds[2 * a];
+  EXPECT_NEAR(Sum(voronoi->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-9 * box);
+  voronoi->UseInputBoundsOff();
   voronoi->Update();
   vtkUnstructuredGrid* out = voronoi->GetOutput();
   EXPECT_EQ(out->GetNumberOfCells(), 3000) << "a cell for every point, empty where outside";

@@ -129,7 +129,8 @@ if voronoi:
         for a in range(3):
             extent = lo_hi[2 * a + 1] - lo_hi[2 * a]
             box += [lo_hi[2 * a] + inner * extent, lo_hi[2 * a] + outer * extent]
-        clipped = FastVoronoi3D(Input=cloud, Bounds=box, GeneratePolyhedra=0, **weights)
+        clipped = FastVoronoi3D(Input=cloud, UseInputBounds=0, Bounds=box, GeneratePolyhedra=0,
+                                **weights)
         box_volume = (box[1] - box[0]) * (box[3] - box[2]) * (box[5] - box[4])
         total = 0.0
         for v in volumes(clipped)[1]:

@@ -29,7 +29,7 @@ if info.GetNumberOfCells() != 0 or info.GetNumberOfPoints() != 3:
 print("TestMPIFewPoints: 3 points and no cells on %d ranks" % servermanager.ActiveConnection.GetNumberOfDataPartitions())
 
 # Fetch() gathers an unstructured grid from rank 0 alone under pvbatch: each rank's piece in turn.
-voronoi = FastVoronoi3D(Input=points, Bounds=[0, 2, 0, 2, -1, 1])
+voronoi = FastVoronoi3D(Input=points, UseInputBounds=0, Bounds=[0, 2, 0, 2, -1, 1])
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 count, total = 0, 0.0
 for cells in (servermanager.Fetch(voronoi, r) for r in range(ranks)):

@@ -29,11 +29,14 @@ points = vtkPoints()
 points.SetData(numpy_to_vtk(xyz, deep=True))
 self.GetPolyDataOutput().SetPoints(points)
 """
+cloud.UpdatePipeline()  # as the GUI's Apply does: the box's domain then knows the input's bounds
 voronoi = FastVoronoi3D(Input=cloud)
-for name in ("Bounds", "NumberOfThreads", "GeneratePolyhedra"):
+for name in ("UseInputBounds", "Bounds", "Periodic", "NumberOfThreads", "GeneratePolyhedra"):
     assert name in voronoi.ListProperties(), name
 assert voronoi.GeneratePolyhedra == 1
-assert list(voronoi.Bounds) == [0, -1, 0, -1, 0, -1], voronoi.Bounds
+assert voronoi.UseInputBounds == 1 and list(voronoi.Periodic) == [0, 0, 0]
+# The panel shows the box in use: the input's bounds.
+assert list(voronoi.Bounds) == list(servermanager.Fetch(cloud).GetBounds()), voronoi.Bounds
 voronoi.UpdatePipeline()
 output = servermanager.Fetch(voronoi)
 assert output.GetNumberOfCells() == 1200, output.GetNumberOfCells()
@@ -61,11 +64,15 @@ voronoi.GeneratePolyhedra = 1
 
 voronoi.Bounds = [0.25, 0.75, 0.25, 0.75, 0.25, 0.75]
 voronoi.UpdatePipeline()
+unclipped = servermanager.Fetch(voronoi)  # Use Input Bounds is on: Bounds is not used
+assert (vtk_to_numpy(unclipped.GetCellData().GetArray("Volume")) == volume).all()
+voronoi.UseInputBounds = 0
+voronoi.UpdatePipeline()
 clipped = servermanager.Fetch(voronoi)
 clipped_volume = vtk_to_numpy(clipped.GetCellData().GetArray("Volume")).sum()
 assert abs(clipped_volume - 0.125) <= 1e-12, clipped_volume
 
-voronoi.Bounds = [0, -1, 0, -1, 0, -1]
+voronoi.UseInputBounds = 1
 shrink = Shrink(Input=voronoi, ShrinkFactor=0.8)
 view = CreateRenderView()
 view.ViewSize = [400, 300]
