@@ -388,6 +388,142 @@ TEST(Periodic, DensityHasNoBoundaryEffect)
   EXPECT_NEAR(cells, 1.0, 1e-12);
 }
 
+/// A periodic simplex: its vertices as (input point, shift from the least vertex), sorted.
+using PeriodicSimplex = std::vector<std::array<std::int64_t, 4>>;
+
+PeriodicSimplex periodicSimplex(std::vector<std::array<std::int64_t, 4>> vertices)
+{
+  const auto least = *std::min_element(vertices.begin(), vertices.end());
+  for (auto& v : vertices)
+    for (int a = 1; a < 4; ++a)
+      v[a] -= least[a];
+  std::sort(vertices.begin(), vertices.end());
+  return vertices;
+}
+
+/// The simplices of an alpha complex, `size` point ids each, as periodic simplices, where
+/// vertex(id) gives an id's input point and shift.
+template <typename Vertex>
+std::set<PeriodicSimplex> periodicSimplices(
+  const std::vector<std::uint32_t>& ids, int size, Vertex vertex)
+{
+  std::set<PeriodicSimplex> simplices;
+  for (std::size_t s = 0; s < ids.size(); s += size)
+  {
+    std::vector<std::array<std::int64_t, 4>> vertices;
+    for (int k = 0; k < size; ++k)
+      vertices.push_back(vertex(ids[s + k]));
+    EXPECT_TRUE(simplices.insert(periodicSimplex(vertices)).second) << "listed twice";
+  }
+  return simplices;
+}
+
+// The periodic alpha complex is the ordinary one of the points repeated 3 x 3 x 3 times, around
+// the middle copy: the same tetrahedra, triangles, lines and lone vertices, each periodic simplex
+// once.
+TEST(Periodic, AlphaComplexIsTheRepeatedPointsOne)
+{
+  const std::size_t n = 400;
+  const Points p = fd3test::uniformCube(n, 24);
+  const auto t = checked(p, fd3::PeriodicBox());
+  const auto placed = fd3::placePeriodic(p.data(), n, t, fd3::PeriodicBox());
+  const auto placedVertex = [&](std::uint32_t id) -> std::array<std::int64_t, 4> {
+    if (id < n)
+      return {id, 0, 0, 0};
+    const std::int32_t* s = &placed.imageShifts[3 * (id - n)];
+    return {placed.imageSources[id - n], s[0], s[1], s[2]};
+  };
+  Points repeated;
+  for (int copy = 0; copy < 27; ++copy)
+    for (std::size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a)
+        repeated.push_back(p[3 * i + a] + (copy / (a == 0 ? 1 : a == 1 ? 3 : 9) % 3 - 1));
+  const auto repeatedVertex = [&](std::uint32_t id) -> std::array<std::int64_t, 4> {
+    const int copy = int(id / n);
+    return {id % n, copy % 3 - 1, copy / 3 % 3 - 1, copy / 9 - 1};
+  };
+  fd3::Options options;
+  options.computeNeighbors = true;
+  const fd3::Triangulation whole = fd3::triangulate(repeated.data(), 27 * n, options);
+  const std::uint32_t middle = 13; // the copy with no shift
+  for (const double alpha : {0.05, 0.08, 0.12})
+  {
+    const fd3::AlphaComplex periodic = fd3::alphaComplex(p.data(), n, placed, alpha, 3);
+    const fd3::AlphaComplex reference = fd3::alphaComplex(repeated.data(), 27 * n, whole, alpha, 3);
+    // The reference's simplices with a vertex in the middle copy, each periodic one once.
+    const auto inMiddle = [&](const std::vector<std::uint32_t>& ids, int size) {
+      std::vector<std::uint32_t> chosen;
+      std::set<PeriodicSimplex> seen;
+      for (std::size_t s = 0; s < ids.size(); s += size)
+      {
+        bool middleVertex = false;
+        std::vector<std::array<std::int64_t, 4>> vertices;
+        for (int k = 0; k < size; ++k)
+        {
+          middleVertex = middleVertex || ids[s + k] / n == middle;
+          vertices.push_back(repeatedVertex(ids[s + k]));
+        }
+        if (middleVertex && seen.insert(periodicSimplex(vertices)).second)
+          chosen.insert(chosen.end(), &ids[s], &ids[s] + size);
+      }
+      return chosen;
+    };
+    std::vector<std::uint32_t> periodicTets, referenceTets;
+    for (const std::uint32_t c : periodic.tetrahedra)
+      periodicTets.insert(
+        periodicTets.end(), &placed.tetrahedra[4 * c], &placed.tetrahedra[4 * c] + 4);
+    for (const std::uint32_t c : reference.tetrahedra)
+      referenceTets.insert(
+        referenceTets.end(), &whole.tetrahedra[4 * c], &whole.tetrahedra[4 * c] + 4);
+    EXPECT_EQ(periodicSimplices(periodicTets, 4, placedVertex),
+      periodicSimplices(inMiddle(referenceTets, 4), 4, repeatedVertex));
+    EXPECT_EQ(periodicSimplices(periodic.triangles, 3, placedVertex),
+      periodicSimplices(inMiddle(reference.triangles, 3), 3, repeatedVertex));
+    EXPECT_EQ(periodicSimplices(periodic.lines, 2, placedVertex),
+      periodicSimplices(inMiddle(reference.lines, 2), 2, repeatedVertex));
+    std::vector<std::uint32_t> lone;
+    for (const std::uint32_t v : reference.vertices)
+      if (v / n == middle)
+        lone.push_back(v % n);
+    EXPECT_EQ(periodic.vertices, lone);
+    EXPECT_FALSE(
+      periodic.triangles.empty() || periodic.lines.empty() || periodic.tetrahedra.empty());
+  }
+}
+
+// One point in the box: every tetrahedron holds four images of it, and each edge is met as
+// several translates; the complex lists each once: the three axes' edges, of half-length 0.5.
+TEST(Periodic, AlphaComplexOfOnePoint)
+{
+  const Points p = {0.25, 0.5, 0.75};
+  const auto t = checked(p, fd3::PeriodicBox());
+  const auto placed = fd3::placePeriodic(p.data(), 1, t, fd3::PeriodicBox());
+  const fd3::AlphaComplex shape = fd3::alphaComplex(p.data(), 1, placed, 0.6);
+  EXPECT_TRUE(shape.tetrahedra.empty());
+  EXPECT_TRUE(shape.triangles.empty());
+  EXPECT_TRUE(shape.vertices.empty());
+  ASSERT_EQ(shape.lines.size(), 6u);
+  const auto point = [&](std::uint32_t id) {
+    return id < 1 ? &p[0] : &placed.imagePoints[3 * (id - 1)];
+  };
+  std::set<int> axes;
+  for (std::size_t l = 0; l < 6; l += 2)
+  {
+    const double* a = point(shape.lines[l]);
+    const double* b = point(shape.lines[l + 1]);
+    int axis = -1;
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(a[k] - b[k]) == 1.0)
+        axis = k;
+      else
+        EXPECT_EQ(a[k], b[k]);
+    axes.insert(axis);
+  }
+  EXPECT_EQ(axes, (std::set<int>{0, 1, 2}));
+  // A larger alpha keeps every tetrahedron: six of the cube's, a unit of volume.
+  EXPECT_EQ(fd3::alphaComplex(p.data(), 1, placed, 10).tetrahedra.size(), t.numberOfTetrahedra());
+}
+
 double sum(const fd3::VoronoiCells::Doubles& values)
 {
   double total = 0;

@@ -113,6 +113,15 @@ PeriodicPlacement placePeriodic(const double* xyz, std::size_t count,
 std::vector<double> densities(const double* xyz, std::size_t count,
   const PeriodicTriangulation& triangulation, const PeriodicPlacement& placement);
 
+/// The alpha complex (alphaComplex() of fd3/Delaunay.h) of the periodic tetrahedralization
+/// `placement` places (placePeriodic() of `count` points xyz): tetrahedra as indices into
+/// placement.tetrahedra / 4, triangles and lines on the ids of the placement (an input point, or
+/// count + an image) of a tetrahedron that holds them, each periodic simplex once; vertices as
+/// input ids. Faces and edges are followed across the box. On `threads` threads, the same result
+/// for any count.
+AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPlacement& placement,
+  double alpha, int threads = 1);
+
 /// The Voronoi cells of the points repeated along the periodic axes of `box`: one per distinct
 /// point (as triangulatePeriodic() merges them), around its place in the box, whole along the
 /// periodic axes, so that the cells of a box periodic along every axis fill it exactly once;
