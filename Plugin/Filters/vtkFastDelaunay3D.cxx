@@ -527,16 +527,6 @@ int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoint
     output->GetPointData(), pointData, static_cast<vtkIdType>(count), placement);
   std::vector<double> converted;
   const double* placed = CoordinatesAsDoubles(output->GetPoints(), converted);
-  if (this->Alpha > 0)
-  {
-    vtkWarningMacro("In a periodic box the alpha shape's tetrahedra are output, not yet its "
-                    "triangles, lines and vertices");
-    KeepCells(placement.tetrahedra, 4, [&](const std::uint32_t* ids) {
-      return std::sqrt(fd3::tetrahedronCircumradius2(placed + 3 * ids[0], placed + 3 * ids[1],
-               placed + 3 * ids[2], placed + 3 * ids[3])) <= this->Alpha;
-    });
-    fd3::releaseSpareCapacity(placement.tetrahedra);
-  }
   if (this->ComputeDensity)
   {
     std::vector<double> density = fd3::densities(xyz, count, result, placement);
@@ -547,7 +537,16 @@ int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoint
     }
     AddDensity(output, density);
   }
-  SetTetrahedra(output, std::move(placement.tetrahedra));
+  if (this->Alpha > 0)
+  {
+    const fd3::AlphaComplex shape =
+      fd3::alphaComplex(xyz, count, placement, this->Alpha, ThreadCount(this->NumberOfThreads));
+    this->SetAlphaShape(output, placement.tetrahedra.data(), shape);
+  }
+  else
+  {
+    SetTetrahedra(output, std::move(placement.tetrahedra));
+  }
   this->AddCellArrays(output, placed);
   this->OutputSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
@@ -720,6 +719,12 @@ void vtkFastDelaunay3D::SetOutputCells(vtkUnstructuredGrid* output, const double
     KeepCells(shape.lines, 2, [&](const std::uint32_t* ids) { return keep(ids, 2); });
     KeepCells(shape.vertices, 1, [&](const std::uint32_t* ids) { return keep(ids, 1); });
   }
+  this->SetAlphaShape(output, tets, shape);
+}
+
+void vtkFastDelaunay3D::SetAlphaShape(
+  vtkUnstructuredGrid* output, const std::uint32_t* tets, const fd3::AlphaComplex& shape)
+{
   std::vector<CellBlock> blocks; // in vtkDelaunay3D's order
   if (this->AlphaTris)
   {

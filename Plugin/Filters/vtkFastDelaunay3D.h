@@ -60,6 +60,7 @@ class PointInsertion;
 }
 namespace fd3
 {
+struct AlphaComplex;
 struct Bounds;
 struct Options;
 struct Statistics;
@@ -338,9 +339,10 @@ public:
    * points' extent. Density is the periodic estimate, from each point's whole star. Any number
    * of points works, one included. Exact duplicates are merged once wrapped, and points too
    * close for the doubles to tell their images apart are skipped (NumberOfSkippedPoints).
-   * Tolerance, VolumeThreshold, the Locator and BoundingTriangulation do not apply. With Alpha,
-   * only the alpha shape's tetrahedra are output (its triangles, lines and vertices not yet).
-   * Weights, and several MPI ranks, are not available in a periodic box yet.
+   * Tolerance, VolumeThreshold, the Locator and BoundingTriangulation do not apply. Alpha gives
+   * the periodic alpha shape: each simplex once, placed as a tetrahedron that holds it, faces and
+   * edges followed across the box; its lone vertices are input points. Weights, and several MPI
+   * ranks, are not available in a periodic box yet.
    */
   vtkSetVector3Macro(Periodic, vtkTypeBool);
   vtkGetVector3Macro(Periodic, vtkTypeBool);
@@ -465,6 +467,10 @@ protected:
   /// result.tetrahedra over (left empty).
   void SetOutputCells(vtkUnstructuredGrid* output, const double* xyz, const double* weights,
     std::size_t count, fd3::Triangulation& result, const CellFilter& keep = CellFilter());
+  /// The alpha shape's cells, as AlphaTets, AlphaTris, AlphaLines and AlphaVerts ask, on the
+  /// tetrahedra `tets` (4 point ids each) that shape.tetrahedra indexes.
+  void SetAlphaShape(
+    vtkUnstructuredGrid* output, const std::uint32_t* tets, const fd3::AlphaComplex& shape);
   /// The requested Circumradius, Volume and RadiusEdgeRatio cell arrays; xyz: the output points.
   void AddCellArrays(vtkUnstructuredGrid* output, const double* xyz);
   /// The Density point array, from `density` for the first output points and NaN for the rest.
