@@ -377,37 +377,29 @@ int vtkFastDelaunay3D::RequestData(
     return 1;
   }
 
+  vtkDataArray* weightArray =
+    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
+  if (fd3vtk::AnyPeriodic(this->Periodic))
+  {
+    return this->TriangulatePeriodic(input, output, weightArray != nullptr);
+  }
+
   // VTK points in -> Core -> VTK cells out. The kernel triangulates the output's own coordinates,
   // so the result is exact for what is written.
-  const bool periodic = fd3vtk::AnyPeriodic(this->Periodic);
-  const bool octahedron = this->BoundingTriangulation && !periodic;
   vtkSmartPointer<vtkPoints> points =
-    PointsInPrecision(input, this->OutputPointsPrecision, octahedron ? 6 : 0);
+    PointsInPrecision(input, this->OutputPointsPrecision, this->BoundingTriangulation ? 6 : 0);
   std::vector<double> converted;
   const double* xyz = CoordinatesAsDoubles(points, converted);
   const fd3::Bounds bounds = fd3::finiteBounds(
     xyz, static_cast<std::size_t>(numberOfPoints), ThreadCount(this->NumberOfThreads));
-  if (octahedron)
+  if (this->BoundingTriangulation)
   {
     SetOctahedron(points, numberOfPoints, bounds, this->Offset);
     xyz = CoordinatesAsDoubles(points, converted); // the octahedron in the output's precision
   }
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
-  vtkPointData* pointData = octahedron ? nullptr : input->GetPointData();
+  vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
   std::vector<double> weights;
-  vtkDataArray* weightArray =
-    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
-  if (periodic)
-  {
-    if (weightArray)
-    {
-      vtkErrorMacro("Cannot triangulate: weights are not available in a periodic box yet; the "
-                    "output holds the points and no cells");
-      SetPointsWithoutCells(output, points, pointData);
-      return 0;
-    }
-    return this->TriangulatePeriodic(output, points, xyz, bounds, pointData);
-  }
   if (weightArray)
   {
     std::string problem;
@@ -477,9 +469,22 @@ int vtkFastDelaunay3D::RequestData(
   return 1;
 }
 
-int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoints* points,
-  const double* xyz, const fd3::Bounds& bounds, vtkPointData* pointData)
+int vtkFastDelaunay3D::TriangulatePeriodic(
+  vtkDataSet* input, vtkUnstructuredGrid* output, bool weighted)
 {
+  vtkSmartPointer<vtkPoints> points = PointsInPrecision(input, this->OutputPointsPrecision);
+  vtkPointData* pointData = input->GetPointData();
+  if (weighted)
+  {
+    vtkErrorMacro("Cannot triangulate: weights are not available in a periodic box yet; the output "
+                  "holds the points and no cells");
+    SetPointsWithoutCells(output, points, pointData);
+    return 0;
+  }
+  std::vector<double> converted;
+  const double* xyz = CoordinatesAsDoubles(points, converted);
+  const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
+  const fd3::Bounds bounds = fd3::finiteBounds(xyz, count, ThreadCount(this->NumberOfThreads));
   const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(
     fd3vtk::BoxInUse(this, this->UseInputBounds, this->Bounds, bounds), this->Periodic);
   const std::string problem = fd3vtk::PeriodicBoxProblem(box);
@@ -490,7 +495,6 @@ int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoint
     SetPointsWithoutCells(output, points, pointData);
     return 1;
   }
-  const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   fd3::PeriodicTriangulation result;
   fd3::PeriodicPlacement placement;
   try
@@ -521,6 +525,18 @@ int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoint
   }
 
   const auto conversionStart = std::chrono::steady_clock::now();
+  this->SetPeriodicOutput(output, points, pointData, xyz, result, placement);
+  this->OutputSeconds +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
+  this->AddFigures(output->GetFieldData());
+  return 1;
+}
+
+void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points,
+  vtkPointData* pointData, const double* xyz, const fd3::PeriodicTriangulation& result,
+  fd3::PeriodicPlacement& placement)
+{
+  const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   const vtkIdType images = static_cast<vtkIdType>(placement.numberOfImages());
   SetPointsAndImages(output, points, placement);
   SetPointDataAndImages(
@@ -548,10 +564,6 @@ int vtkFastDelaunay3D::TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoint
     SetTetrahedra(output, std::move(placement.tetrahedra));
   }
   this->AddCellArrays(output, placed);
-  this->OutputSeconds +=
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
-  this->AddFigures(output->GetFieldData());
-  return 1;
 }
 
 fd3::Triangulation vtkFastDelaunay3D::Triangulate(const double* xyz, const double* weights,

@@ -63,6 +63,8 @@ namespace fd3
 struct AlphaComplex;
 struct Bounds;
 struct Options;
+struct PeriodicPlacement;
+struct PeriodicTriangulation;
 struct Statistics;
 struct Triangulation;
 enum class Status;
@@ -341,8 +343,10 @@ public:
    * close for the doubles to tell their images apart are skipped (NumberOfSkippedPoints).
    * Tolerance, VolumeThreshold, the Locator and BoundingTriangulation do not apply. Alpha gives
    * the periodic alpha shape: each simplex once, placed as a tetrahedron that holds it, faces and
-   * edges followed across the box; its lone vertices are input points. Weights, and several MPI
-   * ranks, are not available in a periodic box yet.
+   * edges followed across the box; its lone vertices are input points. Weights are not
+   * available in a periodic box yet (an error). Across MPI ranks (vtkPFastDelaunay3D) the first
+   * rank gathers every rank's points, in rank order, and outputs the whole result, as one
+   * process would: not distributed yet.
    */
   vtkSetVector3Macro(Periodic, vtkTypeBool);
   vtkGetVector3Macro(Periodic, vtkTypeBool);
@@ -452,11 +456,15 @@ protected:
   /// given.
   fd3::Triangulation Triangulate(const double* xyz, const double* weights, std::size_t count,
     vtkIdType inputPoints, const fd3::Bounds& bounds);
-  /// The output of a periodic box (Periodic): the tetrahedra of the input's `points` (kernel
-  /// coordinates `xyz`, finite points' bounds `bounds`) and their image points. Returns as
+  /// The output of a periodic box (Periodic): the periodic tetrahedra of the input's points, or
+  /// its alpha shape, and their image points; an error where the input is `weighted`. Returns as
   /// RequestData does.
-  int TriangulatePeriodic(vtkUnstructuredGrid* output, vtkPoints* points, const double* xyz,
-    const fd3::Bounds& bounds, vtkPointData* pointData);
+  int TriangulatePeriodic(vtkDataSet* input, vtkUnstructuredGrid* output, bool weighted);
+  /// The periodic output: the input's `points` (kernel coordinates `xyz`) and `pointData`, the
+  /// images of `placement` (of `result`) after them, the tetrahedra or the alpha shape (taking
+  /// placement.tetrahedra over), Density and the cell arrays asked for.
+  void SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData,
+    const double* xyz, const fd3::PeriodicTriangulation& result, fd3::PeriodicPlacement& placement);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   /// (`weighted`: the points had weights, whose NaN or Inf leaves a point out too.)

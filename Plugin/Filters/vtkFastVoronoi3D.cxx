@@ -101,14 +101,21 @@ int vtkFastVoronoi3D::RequestData(
                     "alone, so cells next to another process's points are too large");
   }
 
+  return this->OutputCells(input,
+    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr, output,
+    faces);
+}
+
+int vtkFastVoronoi3D::OutputCells(
+  vtkDataSet* input, vtkDataArray* weightArray, vtkUnstructuredGrid* output, vtkPolyData* faces)
+{
   // VTK points in -> Core -> VTK polyhedra out.
+  const vtkIdType numberOfPoints = input->GetNumberOfPoints();
   vtkSmartPointer<vtkPoints> points =
     fd3vtk::PointsInPrecision(input, vtkAlgorithm::DEFAULT_PRECISION);
   std::vector<double> converted;
   const double* xyz = fd3vtk::CoordinatesAsDoubles(points, converted);
   std::vector<double> weights;
-  vtkDataArray* weightArray =
-    fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
   if (weightArray)
   {
     std::string problem;

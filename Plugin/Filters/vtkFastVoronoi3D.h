@@ -46,6 +46,8 @@
 #include <cstdint>    // for std::uint32_t
 #include <functional> // for std::function
 
+class vtkDataArray;
+class vtkDataSet;
 class vtkFieldData;
 class vtkPointData;
 class vtkPoints;
@@ -91,7 +93,9 @@ public:
    * along the other axes. Where every axis is periodic, the volumes add up to the box's.
    * NumberOfNeighbors counts the neighbours across the box's sides, and a face's neighbour may
    * be the cell's own point (a box of few points). Density is the periodic estimate, from whole
-   * stars. Weights, and several MPI ranks, are not available in a periodic box yet.
+   * stars. Weights are not available in a periodic box yet (an error). Across MPI ranks
+   * (vtkPFastVoronoi3D) the first rank gathers every rank's points and outputs every cell, in
+   * rank order, as one process would: not distributed yet.
    */
   vtkSetVector3Macro(Periodic, vtkTypeBool);
   vtkGetVector3Macro(Periodic, vtkTypeBool);
@@ -191,6 +195,10 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// The cells of `input`'s points (power cells with `weightArray`), written to `output` and
+  /// `faces`. Returns as RequestData does.
+  int OutputCells(
+    vtkDataSet* input, vtkDataArray* weightArray, vtkUnstructuredGrid* output, vtkPolyData* faces);
   /// The kernel's options from the properties, with progress and abort for the tetrahedralization;
   /// the box is `inputBounds` where UseInputBounds says so, and without them the kernel's own
   /// bounds of the points.

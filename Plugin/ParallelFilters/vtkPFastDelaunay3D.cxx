@@ -8,11 +8,13 @@
 #include "FilterBox.h"
 #include "FilterCells.h"
 #include "FilterInput.h"
+#include "GatheredPoints.h"
 
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -46,20 +48,29 @@ int vtkPFastDelaunay3D::RequestData(
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   output->Initialize();
   this->RecordFigures(fd3::Statistics());
+  if (fd3vtk::AnyPeriodic(this->Periodic))
+  {
+    // Not distributed yet: the first rank triangulates every rank's points, as one process.
+    vtkSmartPointer<vtkPointSet> all = fd3vtk::GatheredPoints(this->Controller, input);
+    if (!all)
+    {
+      return 1;
+    }
+    if (all->GetNumberOfPoints() == 0)
+    {
+      vtkWarningMacro("Cannot triangulate; no input points");
+      return 1;
+    }
+    const bool weighted =
+      fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, all) != nullptr;
+    return this->TriangulatePeriodic(all, output, weighted);
+  }
   if (this->BoundingTriangulation)
   {
     vtkErrorMacro("BoundingTriangulation is not available across MPI ranks; the output is empty");
     return 1;
   }
-  if (fd3vtk::AnyPeriodic(this->Periodic))
-  {
-    vtkErrorMacro("Periodic boxes are not available across MPI ranks yet; the output holds the "
-                  "points and no cells");
-    fd3vtk::SetPointsWithoutCells(output,
-      fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision),
-      input ? input->GetPointData() : nullptr);
-    return 1;
-  }
+
   if (this->Locator && this->Controller->GetLocalProcessId() == 0)
   {
     vtkWarningMacro("The Locator is not used across MPI ranks: exact duplicates are merged, and "

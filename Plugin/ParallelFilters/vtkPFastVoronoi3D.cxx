@@ -7,6 +7,7 @@
 #include "DistributedRun.h"
 #include "FilterBox.h"
 #include "FilterInput.h"
+#include "GatheredPoints.h"
 
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
@@ -15,6 +16,7 @@
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -109,8 +111,19 @@ int vtkPFastVoronoi3D::RequestData(
   this->RecordFigures(0, 0, 0);
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
-    vtkErrorMacro("Periodic boxes are not available across MPI ranks yet; the output is empty");
-    return 1;
+    // Not distributed yet: the first rank computes every rank's points' cells, as one process.
+    vtkSmartPointer<vtkPointSet> all = fd3vtk::GatheredPoints(this->Controller, input);
+    if (!all)
+    {
+      return 1;
+    }
+    if (all->GetNumberOfPoints() == 0)
+    {
+      vtkWarningMacro("No Voronoi cells: no input points");
+      return 1;
+    }
+    return this->OutputCells(all,
+      fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, all) : nullptr, output, faces);
   }
   const fd3vtk::InputWeights weights = fd3vtk::ReadInputWeights(
     fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr,

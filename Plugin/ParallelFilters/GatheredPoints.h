@@ -1,0 +1,26 @@
+/*=========================================================================
+  FastDelaunay3D
+  SPDX-License-Identifier: BSD-3-Clause
+=========================================================================*/
+// Every rank's points and point data on the first rank, for the runs that are not distributed
+// yet (periodic boxes): that rank then computes the one-process result of all the points. A
+// private header of the ParallelFilters module.
+#ifndef GatheredPoints_h
+#define GatheredPoints_h
+
+#include "vtkSmartPointer.h"
+
+class vtkDataSet;
+class vtkMultiProcessController;
+class vtkPointSet;
+
+namespace fd3vtk
+{
+/// A collective call: on rank 0, the points of every rank's `input` (none where it is null) with
+/// the point data arrays that all of them have, rank after rank, each in its own order; null on
+/// the other ranks.
+vtkSmartPointer<vtkPointSet> GatheredPoints(
+  vtkMultiProcessController* controller, vtkDataSet* input);
+} // namespace fd3vtk
+
+#endif
