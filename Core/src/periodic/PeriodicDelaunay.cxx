@@ -28,6 +28,8 @@ constexpr double kFirstShell = 3.5;
 // Relative slack of the certificate's float evaluation: it only needs to be sufficient, and a
 // false failure only widens the shell.
 constexpr double kSlack = 1e-6;
+// Points per bucket of the lookup of the points in a region.
+constexpr std::size_t kPointsPerBucket = 4;
 
 /// Whether the exact value rounded + residual lies below y.
 bool below(double rounded, double residual, double y)
@@ -220,46 +222,91 @@ bool PeriodicDelaunay::addImage(std::uint32_t id, const std::array<std::int8_t, 
   return true;
 }
 
+void PeriodicDelaunay::filePoints()
+{
+  places_ = Bounds();
+  for (const std::uint32_t id : points_)
+    places_.include(place_[id].data());
+  pointBuckets_ = std::make_unique<Buckets>(places_, points_.size() / kPointsPerBucket + 1);
+  for (const std::uint32_t id : points_)
+  {
+    Bounds at;
+    at.include(place_[id].data());
+    pointBuckets_->file(id, at);
+  }
+}
+
 bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
 {
-  for (const std::uint32_t id : points_)
-    for (const Bounds& region : regions)
+  if (!pointBuckets_)
+    filePoints();
+  for (const Bounds& region : regions)
+  {
+    // The periods that bring part of the points' extent into the region, along each axis.
+    int first[3], last[3];
+    for (int k = 0; k < 3; ++k)
     {
-      // The offsets along each axis that bring the point into the region.
-      int first[3], last[3];
-      bool inside = true;
-      for (int k = 0; k < 3 && inside; ++k)
-      {
-        const double x = place_[id][k];
-        if (!box_.periodic[k])
-        {
-          first[k] = last[k] = 0;
-          inside = x >= region.lo[k] && x <= region.hi[k];
-          continue;
-        }
-        first[k] = static_cast<int>(std::ceil((region.lo[k] - x) / period_[k]));
-        last[k] = static_cast<int>(std::floor((region.hi[k] - x) / period_[k]));
-        if (std::max(std::abs(first[k]), std::abs(last[k])) > kMostOffset)
-          return false;
-        inside = first[k] <= last[k];
-      }
-      if (!inside)
+      first[k] = last[k] = 0;
+      if (!box_.periodic[k])
         continue;
-      for (int x = first[0]; x <= last[0]; ++x)
-        for (int y = first[1]; y <= last[1]; ++y)
-          for (int z = first[2]; z <= last[2]; ++z)
-          {
-            const std::array<std::int8_t, 3> o = {static_cast<std::int8_t>(x),
-              static_cast<std::int8_t>(y), static_cast<std::int8_t>(z)};
-            if ((x == 0 && y == 0 && z == 0) || inShell(id, o, margin_) ||
-              !present_.insert(keyOf(id, o)).second)
-              continue;
-            if (!addImage(id, o))
-              return false;
-          }
+      const double below = std::floor((region.lo[k] - places_.hi[k]) / period_[k]);
+      const double above = std::ceil((region.hi[k] - places_.lo[k]) / period_[k]);
+      if (!(std::max(std::fabs(below), std::fabs(above)) <= kMostOffset))
+        return false;
+      first[k] = int(below);
+      last[k] = int(above);
     }
+    for (int x = first[0]; x <= last[0]; ++x)
+      for (int y = first[1]; y <= last[1]; ++y)
+        for (int z = first[2]; z <= last[2]; ++z)
+        {
+          const int shift[3] = {x, y, z};
+          Bounds moved = region; // the region moved back by the periods
+          for (int k = 0; k < 3; ++k)
+          {
+            moved.lo[k] -= shift[k] * period_[k];
+            moved.hi[k] -= shift[k] * period_[k];
+          }
+          bool added = true;
+          pointBuckets_->visit(moved, [&](std::uint32_t id) {
+            if (added && inRegion(id, shift, region))
+              added = addRegionImage(id, shift);
+          });
+          if (!added)
+            return false;
+        }
+  }
   regions_.insert(regions_.end(), regions.begin(), regions.end());
   return true;
+}
+
+bool PeriodicDelaunay::inRegion(std::uint32_t id, const int shift[3], const Bounds& region) const
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    const double x = place_[id][k];
+    if (!box_.periodic[k])
+    {
+      if (!(x >= region.lo[k] && x <= region.hi[k]))
+        return false;
+      continue;
+    }
+    // As the offsets that bring the point into the region were found before: in whole periods.
+    if (!(std::ceil((region.lo[k] - x) / period_[k]) <= shift[k] &&
+          shift[k] <= std::floor((region.hi[k] - x) / period_[k])))
+      return false;
+  }
+  return true;
+}
+
+bool PeriodicDelaunay::addRegionImage(std::uint32_t id, const int shift[3])
+{
+  const std::array<std::int8_t, 3> o = {static_cast<std::int8_t>(shift[0]),
+    static_cast<std::int8_t>(shift[1]), static_cast<std::int8_t>(shift[2])};
+  if ((o[0] == 0 && o[1] == 0 && o[2] == 0) || inShell(id, o, margin_) ||
+    !present_.insert(keyOf(id, o)).second)
+    return true;
+  return addImage(id, o);
 }
 
 bool PeriodicDelaunay::addShell(double inner, double outer)
@@ -344,8 +391,15 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   std::copy(box_.hi, box_.hi + 3, box.hi);
   box = toFrame(frame_, box);
   std::vector<Bounds> regions;
+  Bounds all;
   for (const Bounds& region : regions_)
+  {
     regions.push_back(toFrame(frame_, region));
+    all.include(regions.back());
+  }
+  Buckets regionBuckets(all, regions.size());
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    regionBuckets.file(std::uint32_t(r), regions[r]);
   const double scale = frame_.identity ? 1.0 : frame_.scale;
   const double margin = margin_ * scale, spacing = spacing_ * scale;
   Failures out;
@@ -488,12 +542,19 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
           sphere.hi[k] = std::min(c[k] + radius + slack, extent.hi[k]);
         }
       }
-      if (inShell || std::any_of(regions.begin(), regions.end(), [&](const Bounds& region) {
-            for (int k = 0; k < 3; ++k)
-              if (!(sphere.lo[k] >= region.lo[k] && sphere.hi[k] <= region.hi[k]))
-                return false;
-            return true;
-          }))
+      if (inShell)
+        return;
+      // A region that holds the sphere holds its centre, and is filed where the centre is.
+      bool inRegion = false;
+      Bounds centre;
+      centre.include(c);
+      regionBuckets.visit(centre, [&](std::uint32_t r) {
+        bool holds = true;
+        for (int k = 0; k < 3; ++k)
+          holds = holds && sphere.lo[k] >= regions[r].lo[k] && sphere.hi[k] <= regions[r].hi[k];
+        inRegion = inRegion || holds;
+      });
+      if (inRegion)
         return;
       // A region a spacing wider, so that the tetrahedra that replace this one fit it too.
       for (int k = 0; k < 3; ++k)
@@ -575,6 +636,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   present_.clear();
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
+  pointBuckets_.reset(); // the points may have changed: filed again when a region asks
   addPoints(); // first, the cells' generators
   if (!addShell(-1, margin_))
     return nullptr;

@@ -24,6 +24,7 @@
 #include "fd3/Distributed.h"
 #include "fd3/Periodic.h"
 #include "fd3/Voronoi.h"
+#include "periodic/Buckets.h"
 
 #include <array>
 #include <cstdint>
@@ -92,6 +93,13 @@ private:
   /// Appends the images inside `regions` that the covering lacks, and keeps the regions: every
   /// image in them is then present. False where an image is out of range.
   bool addRegions(const std::vector<Bounds>& regions);
+  /// Files the box's points by place (pointBuckets_, places_).
+  void filePoints();
+  /// Whether point id, moved by `shift` periods, lies in `region`.
+  bool inRegion(std::uint32_t id, const int shift[3], const Bounds& region) const;
+  /// Appends that image where the covering lacks it (true where it has it); false where it is no
+  /// sum of two doubles.
+  bool addRegionImage(std::uint32_t id, const int shift[3]);
   /// Appends the image of point id moved by offset o; false where it is no sum of two doubles.
   bool addImage(std::uint32_t id, const std::array<std::int8_t, 3>& o);
   /// Whether that image lies within `margin` of the box along every periodic axis.
@@ -136,6 +144,9 @@ private:
   // Beyond the shell, the regions whose images are all present, and those images (keyOf()).
   std::vector<Bounds> regions_;
   std::unordered_set<std::uint64_t> present_;
+  // The box's points by place, for the images in a region, and the extent of their places.
+  std::unique_ptr<Buckets> pointBuckets_;
+  Bounds places_;
 };
 
 } // namespace fd3
