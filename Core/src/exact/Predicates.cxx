@@ -39,6 +39,11 @@ constexpr double kInSphereDoubleDouble = 2 * 53 * kUnitRoundoff * kUnitRoundoff;
 // The same for the 2D incircle determinant: 11 u^2 for the 2x2 minors and the lifts, 36 u^2 for
 // the determinant; doubled.
 constexpr double kInCircleDoubleDouble = 2 * 36 * kUnitRoundoff * kUnitRoundoff;
+// The same over the differences of periodic images (record plus residual each, PeriodicImages.h):
+// each difference is the double-double sum of the records' and the residuals' exact differences,
+// within 3 u^2 of the magnitudes summed, which the permanent is taken over; through the
+// determinant's degree 5 that adds 15 u^2. Doubled as above.
+constexpr double kInSphereImagesDoubleDouble = 2 * (53 + 15) * kUnitRoundoff * kUnitRoundoff;
 // Below this permanent the low parts could reach the subnormal range: left to the exact stage.
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
 
@@ -611,7 +616,11 @@ int Predicates::inSphereDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   if (tuning_.images && anyInexact(a, b, c, d, e))
+  {
+    if (const int sign = inSphereOfImagesDoubleDouble(a, b, c, d, e); sign != kUndecided)
+      return sign;
     return inSphereOfImages(a, b, c, d, e);
+  }
   if (tuning_.inverseGridUnit > 0)
     return inSphereExact(a, b, c, d, e);
   const double* five[5] = {a, b, c, d, e};
@@ -633,6 +642,38 @@ int Predicates::inSphereDoubleDouble(
       x[r][k] = DoubleDouble::difference(rows[r][k], e[k]);
       m[r][k] = std::fabs(x[r][k].hi);
     }
+  if (const int sign = inSphereOfDifferences(x, m, kInSphereDoubleDouble); sign != kUndecided)
+    return sign;
+  return inSphereExact(a, b, c, d, e);
+}
+
+int Predicates::inSphereOfImagesDoubleDouble(
+  const double* a, const double* b, const double* c, const double* d, const double* e)
+{
+  const double* rows[4] = {a, b, c, d};
+  const double zero[3] = {0, 0, 0};
+  const double* residualE = residualOf(e) ? residualOf(e) : zero;
+  ++doubleDoubleInSphereCalls;
+  DoubleDouble x[4][3];
+  double m[4][3]; // |records' difference| + |residuals' difference|, for the permanent
+  for (int r = 0; r < 4; ++r)
+  {
+    const double* residual = residualOf(rows[r]) ? residualOf(rows[r]) : zero;
+    for (int k = 0; k < 3; ++k)
+    {
+      const DoubleDouble records = DoubleDouble::difference(rows[r][k], e[k]);
+      const DoubleDouble residuals = DoubleDouble::difference(residual[k], residualE[k]);
+      x[r][k] = records + residuals;
+      m[r][k] = std::fabs(records.hi) + std::fabs(records.lo) + std::fabs(residuals.hi) +
+        std::fabs(residuals.lo);
+    }
+  }
+  return inSphereOfDifferences(x, m, kInSphereImagesDoubleDouble);
+}
+
+int Predicates::inSphereOfDifferences(
+  const DoubleDouble x[4][3], const double m[4][3], double coefficient) const
+{
   // 2x2 minors of the x and y columns, rows (i, j).
   auto minor2 = [&](int i, int j) { return x[i][0] * x[j][1] - x[j][0] * x[i][1]; };
   auto minor2Permanent = [&](int i, int j) { return m[i][0] * m[j][1] + m[j][0] * m[i][1]; };
@@ -661,10 +702,10 @@ int Predicates::inSphereDoubleDouble(
   const double permanent =
     (liftP[3] * abcP + liftP[2] * dabP) + (liftP[1] * cdaP + liftP[0] * bcdP);
   const double value = det.value();
-  const double bound = kInSphereDoubleDouble * permanent;
+  const double bound = coefficient * permanent;
   if ((value > bound || -value > bound) && permanent > kDoubleDoubleSmallest)
     return -signOf(value);
-  return inSphereExact(a, b, c, d, e);
+  return kUndecided;
 }
 
 int Predicates::inSphereExact(

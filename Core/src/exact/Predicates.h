@@ -13,6 +13,7 @@
 #ifndef fd3_Predicates_h
 #define fd3_Predicates_h
 
+#include "exact/DoubleDouble.h"
 #include "exact/Expansion.h"
 #include "exact/PeriodicImages.h"
 #include "fd3/Bounds.h"
@@ -227,6 +228,14 @@ private:
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereDoubleDouble(
+    const double* a, const double* b, const double* c, const double* d, const double* e);
+  /// The insphere sign from the coordinate differences x (row r: point r less the fifth point)
+  /// in double-double, where it clears `coefficient` times the permanent over the magnitudes m;
+  /// else kUndecided.
+  int inSphereOfDifferences(
+    const DoubleDouble x[4][3], const double m[4][3], double coefficient) const;
+  /// inSphereOfDifferences() over periodic images' exact differences (records and residuals).
+  int inSphereOfImagesDoubleDouble(
     const double* a, const double* b, const double* c, const double* d, const double* e);
   int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(
