@@ -637,7 +637,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
   pointBuckets_.reset(); // the points may have changed: filed again when a region asks
-  addPoints(); // first, the cells' generators
+  addPoints();           // first, the cells' generators
   if (!addShell(-1, margin_))
     return nullptr;
   auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
