@@ -340,29 +340,16 @@ void Predicates::applyBoxBounds()
   const double* e = tuning_.extents;
   // Records of images (useImages()) are within u |x| of the exact coordinates, so the differences
   // of the exact points are within eps = 2 u M of the records', M the largest |x| (1% for the
-  // rounding of M). The float evaluation on the records errs by the bound at extents e + eps; the
-  // exact determinant differs from the records' by at most P(e + eps) - P(e), P the determinant
-  // with every term made positive (a polynomial in the differences with positive coefficients, so
-  // its growth bounds any change of them by at most eps): 6 ex ey ez for orient3d, and
-  // 24 (ex^2 + ey^2 + ez^2) ex ey ez for insphere (4 lifts, each with a 6-term minor).
-  const double eps = tuning_.images ? 2 * filter::kEpsilon * tuning_.magnitude * 1.01 : 0.0;
-  const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
-  const double m = std::max({ex, ey, ez});
-  const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
-  // The growths, summed from positive terms (no cancellation): P(e + eps) - P(e) for the product
-  // of the extents, and the sum of their squares.
-  const double productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
-    eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
-  const double squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
-  const double squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
-  const double orientGrowth = 6 * productGrowth;
-  const double inSphereGrowth = 24 * (squaresGrowth * orientProduct + squares * productGrowth);
+  // rounding of M).
+  tuning_.imageSlack = tuning_.images ? 2 * filter::kEpsilon * tuning_.magnitude * 1.01 : 0.0;
+  const double eps = tuning_.imageSlack;
+  const double orientProduct = (e[0] + eps) * (e[1] + eps) * (e[2] + eps);
+  const double m = std::max({e[0], e[1], e[2]}) + eps;
   const bool staticSafe = !tuning_.anyMagnitude && orientProduct > filter::kUnderflowGuard &&
-    inSphereProduct > filter::kUnderflowGuard;
-  tuning_.boxOrient =
-    staticSafe ? (filter::kOrientSemiStatic * orientProduct + orientGrowth) * 1.01 : HUGE_VAL;
-  tuning_.boxInSphere =
-    staticSafe ? (filter::kInSphereSemiStatic * inSphereProduct + inSphereGrowth) * 1.01 : HUGE_VAL;
+    m * m * orientProduct > filter::kUnderflowGuard;
+  const filter::RecordBounds bounds = filter::recordBounds(e, eps);
+  tuning_.boxOrient = staticSafe ? bounds.orient : HUGE_VAL;
+  tuning_.boxInSphere = staticSafe ? bounds.inSphere : HUGE_VAL;
 }
 
 void Predicates::useImages(const PeriodicImages* images)
@@ -534,6 +521,13 @@ struct SharedCoordinates
   int onAxis[3] = {0, 0, 0};
   int onTwoAxes = 0;
 };
+
+/// Whether x is 0 or of a magnitude within 2^-200..2^200.
+bool moderate(double x)
+{
+  const double m = std::fabs(x);
+  return m == 0 || (m >= 0x1p-200 && m <= 0x1p200);
+}
 
 /// Whether four of the five points form an axis-parallel rectangle (formAxisRectangle()): the
 /// structured samples' ties, settled without arithmetic.
@@ -880,10 +874,38 @@ int Predicates::inCircleExact(const double* const p[4], int u, int v)
 int Predicates::orient3dOfImages(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;
+  const double zero[3] = {0, 0, 0};
+  const double* const points[4] = {a, b, c, d};
+  const double* residuals[4];
+  bool expansionsHold = true; // every term's product within the doubles' normal range
+  for (int r = 0; r < 4; ++r)
+  {
+    residuals[r] = residualOf(points[r]) ? residualOf(points[r]) : zero;
+    for (int k = 0; k < 3; ++k)
+      expansionsHold = expansionsHold && moderate(points[r][k]) && moderate(residuals[r][k]);
+  }
+  if (expansionsHold)
+  {
+    // Each difference the records' and the residuals' exact differences added; the parts of a
+    // difference of numbers within 2^-200..2^200 lie within 2^-253..2^201, so the minor's
+    // products of three neither under- nor overflow.
+    const double* residualA = residuals[0];
+    const double* const rows[3] = {b, c, d};
+    arena_.reset();
+    Expansion x[3][3];
+    for (int r = 0; r < 3; ++r)
+    {
+      const double* residual = residuals[r + 1];
+      for (int k = 0; k < 3; ++k)
+        x[r][k] = arena_.add(arena_.fromDifference(rows[r][k], a[k]),
+          arena_.fromDifference(residual[k], residualA[k]));
+    }
+    return minor3(x[0], x[1], x[2]).sign();
+  }
   ++integerExactCalls;
   const double* rows[3] = {b, c, d};
-  const double* residuals[3] = {residualOf(b), residualOf(c), residualOf(d)};
-  IntegerRows<3> q(rows, a, residuals, residualOf(a));
+  const double* rowResiduals[3] = {residualOf(b), residualOf(c), residualOf(d)};
+  IntegerRows<3> q(rows, a, rowResiduals, residualOf(a));
   Integer det;
   q.minor3(0, 1, 2, det);
   return mpz_sgn(det.get());

@@ -94,6 +94,35 @@ constexpr double kUnderflowGuard = 1e-250;
 // products stay below 2^600, insphere's below 2^607), and a rounding error lost to underflow (at
 // most 2^-1075, times the factors it is multiplied by afterwards, below 2^362) stays below 2^-60
 // of the bound, which the bounds' 2% margin covers.
+/// Error bounds of the float orient3d and insphere determinants of records whose differences
+/// are at most e[k] along axis k, where the exact points' differences lie within eps of the
+/// records' (periodic images' rounded records; 0 for exact points): the semi-static bounds at
+/// e + eps, plus the exact determinants' growth from e to e + eps, P(e + eps) - P(e), P the
+/// determinant with every term made positive (a polynomial in the differences with positive
+/// coefficients, so its growth bounds any change of them by at most eps): 6 ex ey ez for
+/// orient3d, 24 (ex^2 + ey^2 + ez^2) ex ey ez for insphere (4 lifts, each with a 6-term minor).
+/// 1% for the rounding of all that. Valid where the products neither under- nor overflow.
+struct RecordBounds
+{
+  double orient, inSphere;
+};
+inline RecordBounds recordBounds(const double e[3], double eps)
+{
+  const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
+  const double m = std::max({ex, ey, ez});
+  const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
+  // The growths, summed from positive terms (no cancellation): P(e + eps) - P(e) for the product
+  // of the extents, and the sum of their squares.
+  const double productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
+    eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
+  const double squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
+  const double squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+  const double orientGrowth = 6 * productGrowth;
+  const double inSphereGrowth = 24 * (squaresGrowth * orientProduct + squares * productGrowth);
+  return {(kOrientSemiStatic * orientProduct + orientGrowth) * 1.01,
+    (kInSphereSemiStatic * inSphereProduct + inSphereGrowth) * 1.01};
+}
+
 constexpr double kOrientRange = 0x1p200;
 constexpr double kInSphereRange = 0x1p120;
 
@@ -300,6 +329,7 @@ private:
     double powerStatic = HUGE_VAL;                      // adaptToWeights()
     double extents[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}; // the box's, from adaptTo()
     double magnitude = HUGE_VAL;                        // the largest |coordinate| in the box
+    double imageSlack = 0; // how far images' differences may lie from their records' (useImages())
     bool floatExactOrient = false;
     bool floatExactInSphere = false;
     bool anyMagnitude = false;              // allowAnyMagnitude()
@@ -324,19 +354,20 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
     return -filter::signOf(det);
   if (tuning_.floatExactOrient)
     return 0;
-  if (tuning_.images && anyInexact(a, b, c, d))
-    return orient3dOfImages(a, b, c, d);
   // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
   // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
-  // filter::kOrientSemiStatic times that product.
+  // filter::kOrientSemiStatic times that product. For images with rounded records, the bound
+  // widened by how far the exact differences may lie from the records' (filter::recordBounds()).
   const double largest[3] = {std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)}),
     std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)}),
     std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)})};
   const double scale = largest[0] * largest[1] * largest[2];
-  const double bound = filter::kOrientSemiStatic * scale;
+  const bool inexact = tuning_.images && anyInexact(a, b, c, d);
+  const double bound = inexact ? filter::recordBounds(largest, tuning_.imageSlack).orient
+                               : filter::kOrientSemiStatic * scale;
   if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kOrientRange, largest))
     return -filter::signOf(det);
-  return orient3dExact(a, b, c, d);
+  return inexact ? orient3dOfImages(a, b, c, d) : orient3dExact(a, b, c, d);
 }
 
 /// det[(x-e, |x-e|^2) for x = a,b,c,d]: positive means inside for the negative orientation, i.e.
@@ -537,11 +568,10 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
     return -filter::signOf(det);
   if (det > tuning_.inSphereStatic || -det > tuning_.inSphereStatic)
     return -filter::signOf(det);
-  if (tuning_.images && anyInexact(a, b, c, d, e))
-    return 0; // the relative filters do not bound the records' rounding
-  if (tuning_.floatExactInSphere)
+  const bool inexact = tuning_.images && anyInexact(a, b, c, d, e);
+  if (tuning_.floatExactInSphere && !inexact)
     return -filter::signOf(det);
-  if (!liftsFirst_ && !tuning_.anyMagnitude && liftsFilterProves(det, lifts))
+  if (!liftsFirst_ && !tuning_.anyMagnitude && !inexact && liftsFilterProves(det, lifts))
   {
     ++liftsFilterRescues_;
     return -filter::signOf(det);
@@ -556,7 +586,9 @@ inline int Predicates::inSphereFiltered(double det, const double lifts[4], const
       std::fabs(d[k] - e[k])});
   const double m = std::max({largest[0], largest[1], largest[2]});
   const double scale = m * m * largest[0] * largest[1] * largest[2];
-  const double bound = filter::kInSphereSemiStatic * scale;
+  // For images with rounded records, widened as orient3d()'s.
+  const double bound = inexact ? filter::recordBounds(largest, tuning_.imageSlack).inSphere
+                               : filter::kInSphereSemiStatic * scale;
   if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kInSphereRange, largest))
     return -filter::signOf(det);
   return 0;
