@@ -46,6 +46,8 @@ constexpr double kInCircleDoubleDouble = 2 * 36 * kUnitRoundoff * kUnitRoundoff;
 constexpr double kInSphereImagesDoubleDouble = 2 * (53 + 15) * kUnitRoundoff * kUnitRoundoff;
 // Below this permanent the low parts could reach the subnormal range: left to the exact stage.
 constexpr double kDoubleDoubleSmallest = 0x1p-600;
+// The residual of a point that is no rounded image: none.
+constexpr double kNoResidual[3] = {0, 0, 0};
 
 /// GMP integers that free themselves.
 class Integer
@@ -80,7 +82,7 @@ public:
   IntegerRows(const double* const x[N], const double* y, const double* const xr[N],
     const double* yr, int highestScale = INT_MAX)
   {
-    const double* const none = kZero;
+    const double* const none = kNoResidual;
     int lowest = highestScale;
     auto lower = [&lowest](double v) {
       if (v != 0)
@@ -180,7 +182,6 @@ public:
   }
 
 private:
-  static constexpr double kZero[3] = {0, 0, 0};
   Integer row_[N][3];
   Integer t_;
   int lowest_ = 0;
@@ -645,14 +646,13 @@ int Predicates::inSphereOfImagesDoubleDouble(
   const double* a, const double* b, const double* c, const double* d, const double* e)
 {
   const double* rows[4] = {a, b, c, d};
-  const double zero[3] = {0, 0, 0};
-  const double* residualE = residualOf(e) ? residualOf(e) : zero;
+  const double* residualE = residualOrNone(e);
   ++doubleDoubleInSphereCalls;
   DoubleDouble x[4][3];
   double m[4][3]; // |records' difference| + |residuals' difference|, for the permanent
   for (int r = 0; r < 4; ++r)
   {
-    const double* residual = residualOf(rows[r]) ? residualOf(rows[r]) : zero;
+    const double* residual = residualOrNone(rows[r]);
     for (int k = 0; k < 3; ++k)
     {
       const DoubleDouble records = DoubleDouble::difference(rows[r][k], e[k]);
@@ -874,13 +874,12 @@ int Predicates::inCircleExact(const double* const p[4], int u, int v)
 int Predicates::orient3dOfImages(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;
-  const double zero[3] = {0, 0, 0};
   const double* const points[4] = {a, b, c, d};
   const double* residuals[4];
   bool expansionsHold = true; // every term's product within the doubles' normal range
   for (int r = 0; r < 4; ++r)
   {
-    residuals[r] = residualOf(points[r]) ? residualOf(points[r]) : zero;
+    residuals[r] = residualOrNone(points[r]);
     for (int k = 0; k < 3; ++k)
       expansionsHold = expansionsHold && moderate(points[r][k]) && moderate(residuals[r][k]);
   }
@@ -904,11 +903,17 @@ int Predicates::orient3dOfImages(const double* a, const double* b, const double*
   }
   ++integerExactCalls;
   const double* rows[3] = {b, c, d};
-  const double* rowResiduals[3] = {residualOf(b), residualOf(c), residualOf(d)};
-  IntegerRows<3> q(rows, a, rowResiduals, residualOf(a));
+  const double* rowResiduals[3] = {residuals[1], residuals[2], residuals[3]};
+  IntegerRows<3> q(rows, a, rowResiduals, residuals[0]);
   Integer det;
   q.minor3(0, 1, 2, det);
   return mpz_sgn(det.get());
+}
+
+const double* Predicates::residualOrNone(const double* p) const
+{
+  const double* residual = residualOf(p);
+  return residual ? residual : kNoResidual;
 }
 
 int Predicates::inSphereOfImages(

@@ -281,6 +281,8 @@ private:
     const ImageOf* image = tuning_.images->find(p);
     return image ? image->residual : nullptr;
   }
+  /// p's residual, zeros where p is no image's record.
+  const double* residualOrNone(const double* p) const;
   /// Whether any of the points is an image that its record does not hold exactly: the others,
   /// exact doubles, take the usual filters and exact stages.
   template <typename... Points>
