@@ -34,14 +34,6 @@ namespace
 {
 using fd3test::Points;
 
-double Sum(vtkDataArray* array)
-{
-  double sum = 0;
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-    sum += array->GetTuple1(i);
-  return sum;
-}
-
 /// Uniform points in [0, side)^3 with a "Tag" array (the point's id), some moved out of the box
 /// by whole periods along x.
 vtkSmartPointer<vtkPolyData> Cloud(std::size_t n, double side, std::uint64_t seed)
@@ -129,7 +121,7 @@ TEST(PeriodicFilter, DelaunayTetrahedraTileOnePeriodAndAreValid)
   vtkUnstructuredGrid* out = delaunay->GetOutput();
   EXPECT_GT(out->GetNumberOfPoints(), 1500);
   EXPECT_EQ(out->GetNumberOfCells(), delaunay->GetNumberOfTetrahedra());
-  EXPECT_NEAR(Sum(out->GetCellData()->GetArray("Volume")), 8.0, 8.0 * 1e-12);
+  EXPECT_NEAR(fd3test::sum(out->GetCellData()->GetArray("Volume")), 8.0, 8.0 * 1e-12);
   // Every output point, image or not, has its input point's data.
   vtkDataArray* tag = out->GetPointData()->GetArray("Tag");
   vtkDataArray* source = out->GetPointData()->GetArray("SourcePointId");
@@ -199,7 +191,7 @@ TEST(PeriodicFilter, VoronoiCellsFillTheBoxWithTheDelaunayNeighbours)
   voronoi->Update();
   vtkUnstructuredGrid* cells = voronoi->GetOutput();
   ASSERT_EQ(cells->GetNumberOfCells(), 1200);
-  EXPECT_NEAR(Sum(cells->GetCellData()->GetArray("Volume")), 1.0, 1e-12);
+  EXPECT_NEAR(fd3test::sum(cells->GetCellData()->GetArray("Volume")), 1.0, 1e-12);
 
   auto delaunay = PeriodicDelaunay(cloud, 1.0);
   delaunay->Update();
@@ -239,7 +231,8 @@ TEST(PeriodicFilter, UseInputBoundsChoosesTheBox)
   double bounds[6];
   cloud->GetBounds(bounds);
   const double box = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) * (bounds[5] - bounds[4]);
-  EXPECT_NEAR(Sum(delaunay->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-12 * box);
+  EXPECT_NEAR(
+    fd3test::sum(delaunay->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-12 * box);
 
   // No box: a warning, and the input's bounds.
   delaunay->UseInputBoundsOff();
@@ -249,7 +242,8 @@ TEST(PeriodicFilter, UseInputBoundsChoosesTheBox)
   delaunay->Update();
   EXPECT_NE(observer->GetWarningMessage().find("is no box"), std::string::npos)
     << observer->GetWarningMessage();
-  EXPECT_NEAR(Sum(delaunay->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-12 * box);
+  EXPECT_NEAR(
+    fd3test::sum(delaunay->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-12 * box);
 }
 
 TEST(PeriodicFilter, BadInputGivesAMessageAndTheCloud)

@@ -62,14 +62,6 @@ double StreamVolume(vtkUnstructuredGrid* grid, vtkIdType faces, const vtkIdType*
   return volume;
 }
 
-double Sum(vtkDataArray* array)
-{
-  double sum = 0;
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-    sum += array->GetTuple1(i);
-  return sum;
-}
-
 TEST(VoronoiFilter, OnePolyhedronPerPointThatVtkReadsBack)
 {
   auto cloud = fd3test::toPolyData(fd3test::generate("clusters", 2000, 5));
@@ -93,7 +85,7 @@ TEST(VoronoiFilter, OnePolyhedronPerPointThatVtkReadsBack)
   double bounds[6];
   cloud->GetBounds(bounds);
   const double box = (bounds[1] - bounds[0]) * (bounds[3] - bounds[2]) * (bounds[5] - bounds[4]);
-  EXPECT_NEAR(Sum(volume), box, 1e-9 * box);
+  EXPECT_NEAR(fd3test::sum(volume), box, 1e-9 * box);
   std::vector<bool> seen(2000, false);
   vtkNew<vtkGenericCell> cell;
   for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
@@ -133,7 +125,7 @@ TEST(VoronoiFilter, OnePolyhedronPerPointThatVtkReadsBack)
   vtkUnstructuredGrid* back = reader->GetOutput();
   ASSERT_EQ(back->GetNumberOfCells(), out->GetNumberOfCells());
   EXPECT_EQ(back->GetNumberOfPoints(), out->GetNumberOfPoints());
-  EXPECT_NEAR(Sum(back->GetCellData()->GetArray("Volume")), box, 1e-9 * box);
+  EXPECT_NEAR(fd3test::sum(back->GetCellData()->GetArray("Volume")), box, 1e-9 * box);
 }
 
 // Density on the cells: Fast Delaunay 3D's on their generators; absent unless asked for.
@@ -286,12 +278,13 @@ TEST(VoronoiFilter, BoundsClipTheCells)
   double box = 1;
   for (int a = 0; a < 3; ++a)
     box *= inputBounds[2 * a + 1] - inputBounds[2 * a];
-  EXPECT_NEAR(Sum(voronoi->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-9 * box);
+  EXPECT_NEAR(
+    fd3test::sum(voronoi->GetOutput()->GetCellData()->GetArray("Volume")), box, 1e-9 * box);
   voronoi->UseInputBoundsOff();
   voronoi->Update();
   vtkUnstructuredGrid* out = voronoi->GetOutput();
   EXPECT_EQ(out->GetNumberOfCells(), 3000) << "a cell for every point, empty where outside";
-  EXPECT_NEAR(Sum(out->GetCellData()->GetArray("Volume")), 4.0, 1e-9 * 4.0);
+  EXPECT_NEAR(fd3test::sum(out->GetCellData()->GetArray("Volume")), 4.0, 1e-9 * 4.0);
   double bounds[6];
   out->GetPoints()->GetBounds(bounds);
   EXPECT_GE(bounds[0], -0.5);
@@ -340,7 +333,7 @@ TEST(VoronoiFilter, EmptyAndFlatInputGiveAWarningAndNoCells)
     vtkUnstructuredGrid* out = voronoi->GetOutput();
     double volume = 0;
     if (auto* array = out->GetCellData()->GetArray("Volume"))
-      volume = Sum(array);
+      volume = fd3test::sum(array);
     EXPECT_EQ(volume, 0) << p.size() / 3 << " points";
   }
 }

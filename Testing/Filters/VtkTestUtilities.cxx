@@ -2,6 +2,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
@@ -51,6 +52,14 @@ ValidityReport checkOutput(vtkUnstructuredGrid* grid, const ValidityOptions& opt
 {
   const Points xyz = coordinates(grid);
   return checkTriangulation(xyz.data(), xyz.size() / 3, tetrahedra(grid), options);
+}
+
+double sum(vtkDataArray* array)
+{
+  double total = 0;
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+    total += array->GetTuple1(i);
+  return total;
 }
 
 } // namespace fd3test

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+class vtkDataArray;
 class vtkPointSet;
 class vtkPolyData;
 class vtkUnstructuredGrid;
@@ -27,6 +28,9 @@ std::vector<std::uint32_t> tetrahedra(vtkUnstructuredGrid* grid);
 
 /// The points' coordinates as doubles, whatever their VTK type.
 Points coordinates(vtkPointSet* data);
+
+/// The sum of an array's first components (a cell array of volumes, say).
+double sum(vtkDataArray* array);
 
 /// The exact validator's report on a filter output: its tetrahedra over its own points.
 ValidityReport checkOutput(
