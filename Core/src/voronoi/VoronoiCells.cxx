@@ -333,6 +333,36 @@ void renumberAlongCurve(ThreadTeam& team, const IdArray& inputId, Triangulation&
   mesh.representative.swap(representative);
 }
 
+/// Drops the tetrahedra with no generator among their vertices (the first `generators` ids): no
+/// cell is made of them. A mesh's halo or periodic images bring many.
+void keepGeneratorsTetrahedra(ThreadTeam& team, std::size_t generators, Triangulation& mesh)
+{
+  const std::uint32_t* t4 = mesh.tetrahedra.data();
+  const auto kept = [&](std::size_t t) {
+    return std::min({t4[4 * t], t4[4 * t + 1], t4[4 * t + 2], t4[4 * t + 3]}) < generators;
+  };
+  IdArray tetrahedra(mesh.tetrahedra.size());
+  std::size_t written = 0;
+  team.countThenWrite(
+    team.newRecord("voronoi generators' tetrahedra"), 0, mesh.tetrahedra.size() / 4, written,
+    [&](std::size_t begin, std::size_t end) {
+      std::size_t n = 0;
+      for (std::size_t t = begin; t < end; ++t)
+        n += kept(t);
+      return n;
+    },
+    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
+      for (std::size_t t = begin; t < end; ++t)
+        if (kept(t))
+          std::copy_n(t4 + 4 * t, 4, tetrahedra.data() + 4 * next++);
+      return next;
+    });
+  tetrahedra.resize(4 * written);
+  team.release(mesh.tetrahedra, "voronoi generators' tetrahedra");
+  mesh.tetrahedra.swap(tetrahedra);
+  mesh.neighbors.clear();
+}
+
 /// The cells from the tetrahedralization of the points along the curve and the far points (in
 /// the curve's ids), with each point's density in the curve's order where asked for.
 VoronoiCells cellsOf(ThreadTeam& team, CurvePoints curve, std::size_t count,
@@ -530,6 +560,8 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   xyz.resize(3 * count);
   const auto hiddenGenerators = static_cast<std::size_t>(std::count_if(tetrahedra.hidden.begin(),
     tetrahedra.hidden.end(), [&](std::uint32_t id) { return id < options.generators; }));
+  if (options.generators < count)
+    keepGeneratorsTetrahedra(team, options.generators, tetrahedra);
   renumberAlongCurve(team, curve.inputId, tetrahedra);
   cells = cellsOf(
     team, std::move(curve), count, options, std::move(tetrahedra), density, std::move(cells));
