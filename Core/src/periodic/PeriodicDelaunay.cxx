@@ -31,6 +31,72 @@ constexpr double kSlack = 1e-6;
 // Points per bucket of the lookup of the points in a region.
 constexpr std::size_t kPointsPerBucket = 4;
 
+/// The certificate's first test, which settles nearly every tetrahedron at a point of the box: its
+/// circumsphere passes through that point, at least `margin` inside the shell along the periodic
+/// axes, so a diameter 2r below the margin keeps the sphere inside the shell. The centre is
+/// a + n / (2 det) for the vertices' differences from a, so 2r = |n| / |det|, compared without a
+/// division or a root. A diameter below the margin has every difference below it too, which
+/// bounds the float evaluation's error with the records' magnitude: det is a cubic in the
+/// differences whose terms sum to 6 margin^3 at most, each n_k a quartic whose terms sum to
+/// 18 margin^4, each difference is off by its rounding and two residuals, and each bound below is
+/// twice the differences' part (degree times that error) and the evaluation's (a few eps a term).
+class SmallSphere
+{
+public:
+  /// margin: the points' room to the shell's sides; most: the largest magnitude of a record.
+  SmallSphere(double margin, double most)
+  {
+    constexpr double eps = 0x1p-53;
+    margin_ = margin - kSlack * (margin + most); // the box's and the records' roundings
+    const double eta = eps * (margin_ + 2 * most), m2 = margin_ * margin_;
+    usable_ = margin_ > 0x1p-200 && margin_ < 0x1p200 && 100 * eta < margin_;
+    detError_ = 2 * (20 * eta * m2 + 80 * eps * m2 * margin_);
+    nError_ = 2 * (130 * eta * m2 * margin_ + 520 * eps * m2 * m2);
+  }
+
+  /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
+  /// below the margin; false where floats cannot tell.
+  bool holds(const double* const xyz[4]) const
+  {
+    if (!usable_)
+      return false;
+    const double* a = xyz[0];
+    double u[3][3];
+    bool within = true;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+      {
+        u[i][k] = xyz[i + 1][k] - a[k];
+        within &= std::fabs(u[i][k]) < margin_;
+      }
+    if (!within)
+      return false;
+    double lift[3], cross[3][3];
+    for (int i = 0; i < 3; ++i)
+    {
+      lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
+      const double* v = u[(i + 1) % 3];
+      const double* w = u[(i + 2) % 3];
+      cross[i][0] = v[1] * w[2] - v[2] * w[1];
+      cross[i][1] = v[2] * w[0] - v[0] * w[2];
+      cross[i][2] = v[0] * w[1] - v[1] * w[0];
+    }
+    const double det = u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2];
+    double n2 = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double n = lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k];
+      n2 += n * n;
+    }
+    const double reach = margin_ * (std::fabs(det) - detError_) - nError_; // |n| must stay below
+    return reach > 0 && n2 * (1 + 1e-12) < reach * reach;
+  }
+
+private:
+  double margin_ = 0, detError_ = 0, nError_ = 0;
+  bool usable_ = false;
+};
+
 /// Whether the exact value rounded + residual lies below y.
 bool below(double rounded, double residual, double y)
 {
@@ -218,7 +284,6 @@ bool PeriodicDelaunay::addImage(std::uint32_t id, const std::array<std::int8_t, 
   coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
   coveringImages_.push_back(image);
   covering_.push_back({id, o});
-  inBox_.push_back(o[0] == 0 && o[1] == 0 && o[2] == 0);
   return true;
 }
 
@@ -402,6 +467,11 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     regionBuckets.file(std::uint32_t(r), regions[r]);
   const double scale = frame_.identity ? 1.0 : frame_.scale;
   const double margin = margin_ * scale, spacing = spacing_ * scale;
+  double most = 0; // the largest magnitude of a record
+  for (int k = 0; k < 3; ++k)
+    most = std::max({most, std::fabs(toFrame(frame_, coverBounds_.lo[k], k)),
+      std::fabs(toFrame(frame_, coverBounds_.hi[k], k))});
+  const SmallSphere small(margin, most);
   Failures out;
   std::mutex failed; // rare, from every thread of the visit
   auto fail = [&](Bounds region, std::vector<Bounds>& list) {
@@ -423,7 +493,7 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   const bool withHull = periodicAxes_ < 3;
   mesh.visitTetrahedra(
     withHull, [&](const std::uint32_t ids[4], const double* const xyz[4], unsigned hull) {
-      if (!(inBox_[ids[0]] | inBox_[ids[1]] | inBox_[ids[2]] | inBox_[ids[3]]))
+      if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
         return;
       if (hull != 0)
       {
@@ -436,7 +506,7 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
           // A hull face of the covering that a point of the box is on must be one of the repeated
           // set: across the periodic axes, its half-space would take in images. What it lacks are
           // images of the points on its outer side, within a period of it.
-          const bool atBox = inBox_[face[0]] | inBox_[face[1]] | inBox_[face[2]];
+          const bool atBox = std::min({face[0], face[1], face[2]}) < boxPoints_;
           if (!atBox || parallelToPeriods(face))
             continue;
           Bounds region;
@@ -465,6 +535,8 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
           fail(region, out.hull);
         }
       }
+      if (small.holds(xyz))
+        return;
       // The circumsphere, relative to vertex 0, in floats.
       const double* a = xyz[0];
       double u[3][3];
@@ -599,31 +671,40 @@ bool PeriodicDelaunay::parallelToPeriods(const std::uint32_t face[3]) const
 void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulation& out) const
 {
   // The copy of each tetrahedron whose least vertex is in the box: as many as the box's points
-  // have tetrahedra, about a quarter of them each.
+  // have tetrahedra, fewer than the covering's. Most have only points of the box, each its own
+  // representative where every input point is one (its covering id is then its input id): those
+  // are written with no lookup by id, whose order is the input's, not space's.
   const std::size_t n = covering.numberOfTetrahedra();
-  out.tetrahedra.reserve(4 * (n - n / 8));
-  out.offsets.reserve(12 * (n - n / 8));
+  const bool ownIds = points_.size() == count_;
+  out.tetrahedra.resize(4 * n);
+  out.offsets.resize(12 * n); // zero: the box's points
+  std::uint32_t* ids = out.tetrahedra.data();
+  std::int8_t* offsets = out.offsets.data();
   for (std::size_t t = 0; t < n; ++t)
   {
-    const std::uint32_t* ids = &covering.tetrahedra[4 * t];
-    if (!(inBox_[ids[0]] | inBox_[ids[1]] | inBox_[ids[2]] | inBox_[ids[3]]))
-      continue;
-    int least = 0;
-    for (int i = 1; i < 4; ++i)
+    const std::uint32_t* v = &covering.tetrahedra[4 * t];
+    const std::uint32_t highest = std::max({v[0], v[1], v[2], v[3]});
+    if (ownIds && highest < boxPoints_)
     {
-      const CoveringPoint &p = covering_[ids[i]], &q = covering_[ids[least]];
-      if (p.owner < q.owner || (p.owner == q.owner && p.offset < q.offset))
-        least = i;
+      ids = std::copy_n(v, 4, ids);
+      offsets += 12;
+      continue;
     }
-    if (!inBox_[ids[least]])
+    if (std::min({v[0], v[1], v[2], v[3]}) >= boxPoints_)
+      continue;
+    const std::uint64_t least = std::min({rankOf(covering_[v[0]]), rankOf(covering_[v[1]]),
+      rankOf(covering_[v[2]]), rankOf(covering_[v[3]])});
+    if (least != rankOf({static_cast<std::uint32_t>(least >> 24), {0, 0, 0}}))
       continue;
     for (int i = 0; i < 4; ++i)
     {
-      const CoveringPoint& p = covering_[ids[i]];
-      out.tetrahedra.push_back(representative_[p.owner]); // the first of repeats
-      out.offsets.insert(out.offsets.end(), p.offset.begin(), p.offset.end());
+      const CoveringPoint& p = covering_[v[i]];
+      *ids++ = representative_[p.owner]; // the first of repeats
+      offsets = std::copy(p.offset.begin(), p.offset.end(), offsets);
     }
   }
+  out.tetrahedra.resize(std::size_t(ids - out.tetrahedra.data()));
+  out.offsets.resize(std::size_t(offsets - out.offsets.data()));
 }
 
 std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulation& out)
@@ -631,13 +712,13 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   coveringXyz_.clear();
   coveringImages_.clear();
   covering_.clear();
-  inBox_.clear();
   regions_.clear();
   present_.clear();
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
   pointBuckets_.reset(); // the points may have changed: filed again when a region asks
   addPoints();           // first, the cells' generators
+  boxPoints_ = static_cast<std::uint32_t>(covering_.size());
   if (!addShell(-1, margin_))
     return nullptr;
   auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
@@ -716,7 +797,7 @@ PeriodicTriangulation PeriodicDelaunay::run()
   out.status = covering.status;
   out.stats = covering.stats;
   countPoints(out.stats);
-  out.imagePoints = std::size_t(std::count(inBox_.begin(), inBox_.end(), 0));
+  out.imagePoints = covering_.size() - boxPoints_;
   out.margin = margin_;
   if (out.status == Status::Ok)
     extract(covering, out);

@@ -109,6 +109,13 @@ private:
     return std::uint64_t(id) << 24 | std::uint64_t(std::uint8_t(o[0])) << 16 |
       std::uint64_t(std::uint8_t(o[1])) << 8 | std::uint64_t(std::uint8_t(o[2]));
   }
+  /// The covering points in the order that picks each periodic tetrahedron's copy: by owner,
+  /// then by offset, lexicographic. Translating a tetrahedron keeps the order of its vertices.
+  static std::uint64_t rankOf(const CoveringPoint& p)
+  {
+    return std::uint64_t(p.owner) << 24 | std::uint64_t(p.offset[0] + 128) << 16 |
+      std::uint64_t(p.offset[1] + 128) << 8 | std::uint64_t(p.offset[2] + 128);
+  }
   /// Whether the hull face (a, b, c) of covering points is parallel to every periodic axis,
   /// exactly.
   bool parallelToPeriods(const std::uint32_t face[3]) const;
@@ -138,9 +145,8 @@ private:
   std::vector<double> coveringXyz_;
   std::vector<ImageOf> coveringImages_;
   std::vector<CoveringPoint> covering_;
-  // Whether each covering point is a point of the box (offset 0): a byte each, for the
-  // certificate's and the extraction's reads in the mesh's order.
-  std::vector<std::uint8_t> inBox_;
+  // The covering's first points, its points of the box (offset 0): each id below it is one.
+  std::uint32_t boxPoints_ = 0;
   // Beyond the shell, the regions whose images are all present, and those images (keyOf()).
   std::vector<Bounds> regions_;
   std::unordered_set<std::uint64_t> present_;
