@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A/B of the kernel against an earlier commit's, on this machine, in interleaved runs.
 #   Testing/Benchmark/ab.sh <commit> [kinds=cube,ball,torus,ellipsoid] [points=1000000]
-#                           [runs=5] [threads=1] [voronoi]
+#                           [runs=5] [threads=1] [voronoi | periodic | periodic-voronoi]
 # Builds <commit>'s Core and the working tree's in build-ab/ (Release, as setup.sh builds), both
 # timed by the same driver (ab/ABDriver.cxx) on the same generated points, then runs them in
 # turn, A then B on even runs and B then A on odd ones, and prints for each point set the best
@@ -10,7 +10,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
-commit="${1:?usage: $0 <commit> [kinds] [points] [runs] [threads] [voronoi]}"
+commit="${1:?usage: $0 <commit> [kinds] [points] [runs] [threads] [mode]}"
 kinds="${2:-cube,ball,torus,ellipsoid}"
 points="${3:-1000000}"
 runs="${4:-5}"

@@ -1,14 +1,18 @@
 // One timed run of the kernel on a generated point set, for Testing/Benchmark/ab.sh, which builds
 // this program against two versions of Core and runs them in turn. It uses only what every
 // version since the public API settled offers: fd3::triangulate() and, where the version has
-// it (FD3_AB_VORONOI), fd3::voronoiCells().
-//   ABDriver <kind> <points> <threads> [voronoi]
+// them, fd3::voronoiCells() (FD3_AB_VORONOI) and the periodic unit box's fd3::triangulatePeriodic()
+// and fd3::voronoiCellsPeriodic() (FD3_AB_PERIODIC; the points wrapped into it).
+//   ABDriver <kind> <points> <threads> [voronoi | periodic | periodic-voronoi]
 // prints: <seconds> <output hash> <tetrahedra or cells>, and the kernel's phase times to stderr.
 // The seconds are the kernel's call alone, not the hashing of its output.
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
 #ifdef FD3_AB_VORONOI
 #include "fd3/Voronoi.h"
+#endif
+#ifdef FD3_AB_PERIODIC
+#include "fd3/Periodic.h"
 #endif
 
 #include <algorithm>
@@ -53,6 +57,31 @@ std::uint64_t hashOfTetrahedra(const fd3::Triangulation& t)
   return sum;
 }
 
+#ifdef FD3_AB_PERIODIC
+/// A hash of the set of periodic tetrahedra: each one's vertices (id and offset, as placed: the
+/// copy with its least vertex in the box) sorted, summed as hashOfTetrahedra() sums.
+std::uint64_t hashOfPeriodic(const fd3::PeriodicTriangulation& t)
+{
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < t.numberOfTetrahedra(); ++i)
+  {
+    std::uint64_t v[4];
+    for (int j = 0; j < 4; ++j)
+    {
+      v[j] = std::uint64_t(t.tetrahedra[4 * i + j]) << 24;
+      for (int k = 0; k < 3; ++k)
+        v[j] |= std::uint64_t(std::uint8_t(t.offsets[12 * i + 3 * j + k])) << (16 - 8 * k);
+    }
+    std::sort(v, v + 4);
+    std::uint64_t h = 0;
+    for (const std::uint64_t id : v)
+      h = mix(h ^ id);
+    sum += h;
+  }
+  return sum;
+}
+#endif
+
 #ifdef FD3_AB_VORONOI
 /// A hash of the cells: each one's generator, volume and area bit for bit, and its faces'
 /// neighbours in order, summed over the cells.
@@ -77,12 +106,14 @@ int main(int argc, char* argv[])
 {
   if (argc < 4)
   {
-    std::fprintf(stderr, "usage: ABDriver <kind> <points> <threads> [voronoi]\n");
+    std::fprintf(stderr,
+      "usage: ABDriver <kind> <points> <threads> [voronoi | periodic | periodic-voronoi]\n");
     return 2;
   }
   const fd3test::Points p = fd3test::generate(argv[1], std::strtoull(argv[2], nullptr, 10), 1);
   const int threads = std::atoi(argv[3]);
-  const bool voronoi = argc > 4 && std::string(argv[4]) == "voronoi";
+  const std::string mode = argc > 4 ? argv[4] : "";
+  const bool voronoi = mode == "voronoi";
   const auto start = std::chrono::steady_clock::now();
   double seconds = 0;
   const auto stop = [&] {
@@ -90,7 +121,35 @@ int main(int argc, char* argv[])
   };
   std::uint64_t hash = 0;
   std::size_t count = 0;
-  if (voronoi)
+  if (mode == "periodic" || mode == "periodic-voronoi")
+  {
+#ifdef FD3_AB_PERIODIC
+    if (mode == "periodic")
+    {
+      fd3::Options options;
+      options.threads = threads;
+      const fd3::PeriodicTriangulation t =
+        fd3::triangulatePeriodic(p.data(), p.size() / 3, fd3::PeriodicBox(), options);
+      stop();
+      hash = hashOfPeriodic(t);
+      count = t.numberOfTetrahedra();
+    }
+    else
+    {
+      fd3::VoronoiOptions options;
+      options.threads = threads;
+      const fd3::VoronoiCells cells =
+        fd3::voronoiCellsPeriodic(p.data(), p.size() / 3, fd3::PeriodicBox(), options);
+      stop();
+      hash = hashOfCells(cells);
+      count = cells.numberOfCells();
+    }
+#else
+    std::fprintf(stderr, "ABDriver: this version of Core has no periodic boxes\n");
+    return 2;
+#endif
+  }
+  else if (voronoi)
   {
 #ifdef FD3_AB_VORONOI
     fd3::VoronoiOptions options;
