@@ -98,6 +98,127 @@ private:
   bool usable_ = false;
 };
 
+enum class SphereBox
+{
+  Made,   ///< the box is made
+  Misses, ///< the sphere misses the points' extent (it only touches it)
+  Flat    ///< the tetrahedron is too flat for floats to place its sphere
+};
+
+/// The circumsphere of a tetrahedron (its vertices' records) where it meets the points' extent
+/// along the axes that are not periodic, as a box about it: its reach along the periodic axes
+/// (r^2 less the squared gaps to the extent along the others) and its span within the extent
+/// along the others, each widened by a bound on the float evaluation's error. The centre, as
+/// computed, goes to `centre`.
+///
+/// The error bounds are SmallSphere's, for differences up to the tetrahedron's largest: det's
+/// relative error then bounds each coordinate of the centre (a + n / det) with n's, magnified
+/// along the normal of a flat tetrahedron; past a relative error of 1e-3 it is Flat. The gaps and reaches are summed
+/// from terms that are never negative (the sphere passes through vertex a, within the extent):
+/// r^2 - gap^2 along a free axis k is (a_k - e)(a_k + e - 2 c_k), e the extent's side nearest the
+/// centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past that side: a cap far from the
+/// centre needs both, r and the gap agreeing to many digits.
+SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool periodic[3],
+  double most, double centre[3], Bounds& sphere)
+{
+  constexpr double eps = 0x1p-53;
+  const double* a = xyz[0];
+  double u[3][3], size = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      u[i][k] = xyz[i + 1][k] - a[k];
+      size = std::max(size, std::fabs(u[i][k]));
+    }
+  double lift[3], cross[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
+    const double* v = u[(i + 1) % 3];
+    const double* w = u[(i + 2) % 3];
+    cross[i][0] = v[1] * w[2] - v[2] * w[1];
+    cross[i][1] = v[2] * w[0] - v[0] * w[2];
+    cross[i][2] = v[0] * w[1] - v[1] * w[0];
+  }
+  const double det = 2 * (u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2]);
+  const double eta = eps * (size + 2 * most), s2 = size * size;
+  const double detError = 4 * (20 * eta * s2 + 80 * eps * s2 * size); // det is twice SmallSphere's
+  const double nError = 2 * (130 * eta * s2 * size + 520 * eps * s2 * s2);
+  const double relative = detError / std::fabs(det);
+  if (!(relative < 1e-3) || !(size > 0x1p-300 && size < 0x1p300))
+    return SphereBox::Flat;
+  double d[3], r2 = 0; // the centre less a
+  for (int k = 0; k < 3; ++k)
+  {
+    d[k] = (lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k]) / det;
+    centre[k] = a[k] + d[k];
+    r2 += d[k] * d[k];
+  }
+  const double r = std::sqrt(r2);
+  if (!std::isfinite(r))
+    return SphereBox::Flat;
+  // How far each of the centre's coordinates may lie from the exact one (a flat tetrahedron's
+  // centre is far off along its normal, but not across), and the radius; every other rounding
+  // (the sums here, the box's and the extent's bounds in the frame) is within 1e-12 of the
+  // magnitudes.
+  double error[3], radiusError = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    error[k] =
+      (nError / std::fabs(det) + std::fabs(d[k]) * relative) / (1 - relative) + 1e-12 * (most + r);
+    radiusError += error[k];
+  }
+  double square[3], squareError[3], gap[3], part[3], partError[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    const double e = centre[k] < extent.lo[k] ? extent.lo[k]
+      : centre[k] > extent.hi[k]              ? extent.hi[k]
+                                              : centre[k];
+    square[k] = d[k] * d[k];
+    squareError[k] = (2 * std::fabs(d[k]) + error[k]) * error[k];
+    gap[k] = periodic[k] ? 0.0 : std::fabs(centre[k] - e);
+    part[k] = gap[k] > 0 ? (a[k] - e) * (a[k] + e - 2 * centre[k]) : square[k];
+    partError[k] = gap[k] > 0 ? 2 * std::fabs(a[k] - e) * error[k] : squareError[k];
+  }
+  double reach2 = 0, reachError = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    reach2 += part[k];
+    reachError += partError[k];
+  }
+  if (reach2 + reachError <= 0)
+    return SphereBox::Misses;
+  const double reach = std::sqrt(reach2 + reachError);
+  for (int k = 0; k < 3; ++k)
+  {
+    if (periodic[k])
+    {
+      sphere.lo[k] = centre[k] - reach - error[k];
+      sphere.hi[k] = centre[k] + reach + error[k];
+      continue;
+    }
+    if (gap[k] == 0)
+    {
+      sphere.lo[k] = std::max(centre[k] - r - radiusError - error[k], extent.lo[k]);
+      sphere.hi[k] = std::min(centre[k] + r + radiusError + error[k], extent.hi[k]);
+      continue;
+    }
+    // r^2 - gap_k^2: the other axes' squares and this one's part.
+    double within2 = part[k] + partError[k];
+    for (int j = 0; j < 3; ++j)
+      if (j != k)
+        within2 += square[j] + squareError[j];
+    within2 = std::max(within2, 0.0);
+    const double depth = r > radiusError ? std::min(std::sqrt(within2), within2 / (r - radiusError))
+                                         : std::sqrt(within2);
+    const double side = centre[k] < extent.lo[k] ? extent.lo[k] : extent.hi[k];
+    const double slack = 1e-12 * (most + r);
+    sphere.lo[k] = centre[k] < extent.lo[k] ? side : std::max(side - depth - slack, extent.lo[k]);
+    sphere.hi[k] = centre[k] < extent.lo[k] ? std::min(side + depth + slack, extent.hi[k]) : side;
+  }
+  return SphereBox::Made;
+}
+
 /// Whether the exact value rounded + residual lies below y.
 bool below(double rounded, double residual, double y)
 {
@@ -538,30 +659,12 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
       }
       if (small.holds(xyz))
         return;
-      // The circumsphere, relative to vertex 0, in floats.
-      const double* a = xyz[0];
-      double u[3][3];
-      for (int i = 0; i < 3; ++i)
-        for (int k = 0; k < 3; ++k)
-          u[i][k] = xyz[i + 1][k] - a[k];
-      double lift[3], cross[3][3];
-      for (int i = 0; i < 3; ++i)
-      {
-        lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
-        const double* v = u[(i + 1) % 3];
-        const double* w = u[(i + 2) % 3];
-        cross[i][0] = v[1] * w[2] - v[2] * w[1];
-        cross[i][1] = v[2] * w[0] - v[0] * w[2];
-        cross[i][2] = v[0] * w[1] - v[1] * w[0];
-      }
-      const double det =
-        2 * (u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2]);
       double c[3];
-      for (int k = 0; k < 3; ++k)
-        c[k] = a[k] + (lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k]) / det;
-      const double r2 = (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1]) +
-        (c[2] - a[2]) * (c[2] - a[2]);
-      if (!std::isfinite(r2))
+      Bounds sphere;
+      const SphereBox made = sphereBox(xyz, extent, box_.periodic, most, c, sphere);
+      if (made == SphereBox::Misses)
+        return;
+      if (made == SphereBox::Flat)
       {
         // Flat in floats: the images within half a period of it.
         Bounds around;
@@ -576,45 +679,11 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
         fail(around, out.spheres);
         return;
       }
-      // The box about the sphere where it meets the points' extent along the other axes: its reach
-      // along the periodic ones, r^2 less the squared gaps to the extent along the others. Summed
-      // from terms that are never negative (the sphere passes through vertex a, within the extent):
-      // r^2 - gap^2 along axis k is (c_k - a_k)^2 - (c_k - e)^2 = (a_k - e)(a_k + e - 2 c_k), e the
-      // extent's side nearest c, which a cap far from the centre needs (r and the gap then agree to
-      // many digits).
-      double reach2 = 0;
-      for (int k = 0; k < 3; ++k)
-      {
-        const double e = c[k] < extent.lo[k] ? extent.lo[k]
-          : c[k] > extent.hi[k]              ? extent.hi[k]
-                                             : c[k];
-        if (box_.periodic[k] || e == c[k])
-          reach2 += (c[k] - a[k]) * (c[k] - a[k]);
-        else
-          reach2 += (a[k] - e) * (a[k] + e - 2 * c[k]);
-      }
-      if (reach2 <= 0)
-        return;
-      const double reach = std::sqrt(reach2) * (1 + kSlack);
-      const double radius = std::sqrt(r2) * (1 + kSlack);
-      Bounds sphere;
       bool inShell = true;
       for (int k = 0; k < 3; ++k)
-      {
-        const double slack = kSlack * (std::fabs(c[k]) + radius + (box.hi[k] - box.lo[k]));
         if (box_.periodic[k])
-        {
-          sphere.lo[k] = c[k] - reach - slack;
-          sphere.hi[k] = c[k] + reach + slack;
           inShell =
             inShell && sphere.lo[k] > box.lo[k] - margin && sphere.hi[k] < box.hi[k] + margin;
-        }
-        else
-        {
-          sphere.lo[k] = std::max(c[k] - radius - slack, extent.lo[k]);
-          sphere.hi[k] = std::min(c[k] + radius + slack, extent.hi[k]);
-        }
-      }
       if (inShell)
         return;
       // A region that holds the sphere holds its centre, and is filed where the centre is.
