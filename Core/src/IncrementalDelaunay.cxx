@@ -742,9 +742,8 @@ void IncrementalDelaunay::addImages(const double* xyz, const ImageOf* images, st
   impl_->images = nullptr;
 }
 
-void IncrementalDelaunay::visitTetrahedra(bool withHull,
-  const std::function<void(const std::uint32_t ids[4], const double* const xyz[4], unsigned hull)>&
-    visit) const
+void IncrementalDelaunay::visitTetrahedra(
+  const std::function<void(const std::uint32_t ids[4], const double* const xyz[4])>& visit) const
 {
   if (impl_->released || !impl_->triangulator)
     return;
@@ -758,16 +757,42 @@ void IncrementalDelaunay::visitTetrahedra(bool withHull,
           continue;
         std::uint32_t ids[4];
         const double* xyz[4];
-        unsigned hull = 0;
         for (int i = 0; i < 4; ++i)
         {
           const Vertex& vertex = vertices[mesh.vertex(TetId(t), i)];
           ids[i] = vertex.point;
           xyz[i] = vertex.xyz;
-          if (withHull)
-            hull |= unsigned(mesh.isGhost(tetOf(mesh.neighbor(TetId(t), i)))) << i;
         }
-        visit(ids, xyz, hull);
+        visit(ids, xyz);
+      }
+    });
+}
+
+void IncrementalDelaunay::visitHullFaces(
+  const std::function<void(const std::uint32_t ids[3], const double* const xyz[3])>& visit) const
+{
+  if (impl_->released || !impl_->triangulator)
+    return;
+  const TetMesh& mesh = impl_->triangulator->tetrahedra();
+  const VertexArray& vertices = impl_->triangulator->vertices();
+  impl_->team->forRanges(
+    mesh.slots(), "visit", [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t g = begin; g < end; ++g)
+      {
+        if (mesh.isDead(TetId(g)) || !mesh.isGhost(TetId(g)))
+          continue;
+        // A ghost's finite face is the one opposite its vertex at infinity, 3.
+        const FaceCode across = mesh.neighbor(TetId(g), 3);
+        const TetId t = tetOf(across);
+        std::uint32_t ids[3];
+        const double* xyz[3];
+        for (int i = 0; i < 3; ++i)
+        {
+          const Vertex& vertex = vertices[mesh.vertex(t, kFaceVertices[faceOf(across)][i])];
+          ids[i] = vertex.point;
+          xyz[i] = vertex.xyz;
+        }
+        visit(ids, xyz);
       }
     });
 }

@@ -155,6 +155,16 @@ TEST(Periodic, AHandfulOfPointsInALargeBox)
   }
 }
 
+TEST(Periodic, PlanesAcrossAWideGap)
+{
+  // Points on the planes z = 0, 0.1 (wrapped from 1.1) and 0.37: the first shell holds no image
+  // below the lowest plane, which is then on the covering's hull, though its tetrahedra's spheres
+  // are small. Its hull faces at the box's points ask for the images across the gap.
+  const Points p = fd3test::generate("planes", 600, 3);
+  const auto t = checked(p, fd3::PeriodicBox());
+  EXPECT_EQ(t.stats.insertedPoints, 600u);
+}
+
 TEST(Periodic, SlabsAndColumns)
 {
   const Points p = fd3test::uniformCube(800, 6);
@@ -440,7 +450,7 @@ TEST(Periodic, AlphaComplexIsTheRepeatedPointsOne)
         repeated.push_back(p[3 * i + a] + (copy / (a == 0 ? 1 : a == 1 ? 3 : 9) % 3 - 1));
   const auto repeatedVertex = [&](std::uint32_t id) -> std::array<std::int64_t, 4> {
     const int copy = int(id / n);
-    return {id % n, copy % 3 - 1, copy / 3 % 3 - 1, copy / 9 - 1};
+    return {std::int64_t(id % n), copy % 3 - 1, copy / 3 % 3 - 1, copy / 9 - 1};
   };
   fd3::Options options;
   options.computeNeighbors = true;

@@ -161,13 +161,16 @@ private:
   void addImages(const double* xyz, const ImageOf* images, std::size_t count);
   /// How many points so far were merged into another.
   std::size_t mergedPoints() const;
-  /// Calls visit(ids, xyz, hull) for every live finite tetrahedron: its point ids, positively
-  /// oriented, its vertices' coordinates in the frame and, `withHull`, bit f of `hull` set where
-  /// its face opposite vertex f is a hull face (else 0). On the mesh's threads at once: `visit`
+  /// Calls visit(ids, xyz) for every live finite tetrahedron: its point ids, positively
+  /// oriented, and its vertices' coordinates in the frame. On the mesh's threads at once: `visit`
   /// must be safe to call concurrently.
-  void visitTetrahedra(bool withHull,
-    const std::function<void(
-      const std::uint32_t ids[4], const double* const xyz[4], unsigned hull)>& visit) const;
+  void visitTetrahedra(
+    const std::function<void(const std::uint32_t ids[4], const double* const xyz[4])>& visit) const;
+  /// Calls visit(ids, xyz) for every hull face: its point ids and its vertices' coordinates in
+  /// the frame, ordered so that (b - a) x (c - a) points out of the hull. On the mesh's threads
+  /// at once, as visitTetrahedra().
+  void visitHullFaces(
+    const std::function<void(const std::uint32_t ids[3], const double* const xyz[3])>& visit) const;
   /// triangulate()'s mesh: used once, in the frame of its own points, made from their bounds;
   /// weighted where `weights` is given.
   IncrementalDelaunay(

@@ -1,6 +1,5 @@
 #include "periodic/PeriodicDelaunay.h"
 
-#include "TetMesh.h"
 #include "exact/Frame.h"
 #include "exact/Predicates.h"
 
@@ -612,100 +611,86 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     const std::lock_guard<std::mutex> lock(failed);
     list.push_back(region);
   };
-  const bool withHull = periodicAxes_ < 3;
-  mesh.visitTetrahedra(
-    withHull, [&](const std::uint32_t ids[4], const double* const xyz[4], unsigned hull) {
-      if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
-        return;
-      if (hull != 0)
+  // A hull face of the covering that a point of the box is on must be one of the repeated set's:
+  // across the periodic axes, its half-space would take in images (with every axis periodic it
+  // has none). What it lacks are images of the points on its outer side, within a period of it.
+  mesh.visitHullFaces([&](const std::uint32_t face[3], const double* const xyz[3]) {
+    if (std::min({face[0], face[1], face[2]}) >= boxPoints_ || parallelToPeriods(face))
+      return;
+    Bounds region;
+    for (int i = 0; i < 3; ++i)
+      region.include(xyz[i]);
+    const double *a = xyz[0], *b = xyz[1], *c = xyz[2];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (box_.periodic[k])
       {
-        for (int f = 0; f < 4; ++f)
-        {
-          if (!(hull >> f & 1u))
-            continue;
-          const std::uint32_t face[3] = {
-            ids[kFaceVertices[f][0]], ids[kFaceVertices[f][1]], ids[kFaceVertices[f][2]]};
-          // A hull face of the covering that a point of the box is on must be one of the repeated
-          // set: across the periodic axes, its half-space would take in images. What it lacks are
-          // images of the points on its outer side, within a period of it.
-          const bool atBox = std::min({face[0], face[1], face[2]}) < boxPoints_;
-          if (!atBox || parallelToPeriods(face))
-            continue;
-          Bounds region;
-          for (int i = 0; i < 3; ++i)
-            region.include(xyz[kFaceVertices[f][i]]);
-          const double* a = xyz[kFaceVertices[f][0]];
-          const double* b = xyz[kFaceVertices[f][1]];
-          const double* c = xyz[kFaceVertices[f][2]];
-          for (int k = 0; k < 3; ++k)
-          {
-            if (box_.periodic[k])
-            {
-              const double period = box.hi[k] - box.lo[k];
-              region.lo[k] -= period;
-              region.hi[k] += period;
-              continue;
-            }
-            // The normal's component along k (its sign picks the outer side).
-            const int u = (k + 1) % 3, v = (k + 2) % 3;
-            const double normal = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
-            if (normal > 0)
-              region.hi[k] = extent.hi[k];
-            else
-              region.lo[k] = extent.lo[k];
-          }
-          fail(region, out.hull);
-        }
+        const double period = box.hi[k] - box.lo[k];
+        region.lo[k] -= period;
+        region.hi[k] += period;
+        continue;
       }
-      if (small.holds(xyz))
-        return;
-      double c[3];
-      Bounds sphere;
-      const SphereBox made = sphereBox(xyz, extent, box_.periodic, most, c, sphere);
-      if (made == SphereBox::Misses)
-        return;
-      if (made == SphereBox::Flat)
-      {
-        // Flat in floats: the images within half a period of it.
-        Bounds around;
-        for (int i = 0; i < 4; ++i)
-          around.include(xyz[i]);
-        for (int k = 0; k < 3; ++k)
-        {
-          const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
-          around.lo[k] -= grow;
-          around.hi[k] += grow;
-        }
-        fail(around, out.spheres);
-        return;
-      }
-      bool inShell = true;
-      for (int k = 0; k < 3; ++k)
-        if (box_.periodic[k])
-          inShell =
-            inShell && sphere.lo[k] > box.lo[k] - margin && sphere.hi[k] < box.hi[k] + margin;
-      if (inShell)
-        return;
-      // A region that holds the sphere holds its centre, and is filed where the centre is.
-      bool inRegion = false;
-      Bounds centre;
-      centre.include(c);
-      regionBuckets.visit(centre, [&](std::uint32_t r) {
-        bool holds = true;
-        for (int k = 0; k < 3; ++k)
-          holds = holds && sphere.lo[k] >= regions[r].lo[k] && sphere.hi[k] <= regions[r].hi[k];
-        inRegion = inRegion || holds;
-      });
-      if (inRegion)
-        return;
-      // A region a spacing wider, so that the tetrahedra that replace this one fit it too.
+      // The normal's component along k (its sign picks the outer side).
+      const int u = (k + 1) % 3, v = (k + 2) % 3;
+      const double normal = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+      if (normal > 0)
+        region.hi[k] = extent.hi[k];
+      else
+        region.lo[k] = extent.lo[k];
+    }
+    fail(region, out.hull);
+  });
+  mesh.visitTetrahedra([&](const std::uint32_t ids[4], const double* const xyz[4]) {
+    if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
+      return;
+    if (small.holds(xyz))
+      return;
+    double c[3];
+    Bounds sphere;
+    const SphereBox made = sphereBox(xyz, extent, box_.periodic, most, c, sphere);
+    if (made == SphereBox::Misses)
+      return;
+    if (made == SphereBox::Flat)
+    {
+      // Flat in floats: the images within half a period of it.
+      Bounds around;
+      for (int i = 0; i < 4; ++i)
+        around.include(xyz[i]);
       for (int k = 0; k < 3; ++k)
       {
-        sphere.lo[k] -= spacing;
-        sphere.hi[k] += spacing;
+        const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
+        around.lo[k] -= grow;
+        around.hi[k] += grow;
       }
-      fail(sphere, out.spheres);
+      fail(around, out.spheres);
+      return;
+    }
+    bool inShell = true;
+    for (int k = 0; k < 3; ++k)
+      if (box_.periodic[k])
+        inShell = inShell && sphere.lo[k] > box.lo[k] - margin && sphere.hi[k] < box.hi[k] + margin;
+    if (inShell)
+      return;
+    // A region that holds the sphere holds its centre, and is filed where the centre is.
+    bool inRegion = false;
+    Bounds centre;
+    centre.include(c);
+    regionBuckets.visit(centre, [&](std::uint32_t r) {
+      bool holds = true;
+      for (int k = 0; k < 3; ++k)
+        holds = holds && sphere.lo[k] >= regions[r].lo[k] && sphere.hi[k] <= regions[r].hi[k];
+      inRegion = inRegion || holds;
     });
+    if (inRegion)
+      return;
+    // A region a spacing wider, so that the tetrahedra that replace this one fit it too.
+    for (int k = 0; k < 3; ++k)
+    {
+      sphere.lo[k] -= spacing;
+      sphere.hi[k] += spacing;
+    }
+    fail(sphere, out.spheres);
+  });
   return out;
 }
 
