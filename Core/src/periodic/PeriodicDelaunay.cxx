@@ -31,46 +31,19 @@ constexpr double kSlack = 1e-6;
 // Points per bucket of the lookup of the points in a region.
 constexpr std::size_t kPointsPerBucket = 4;
 
-/// The certificate's first test, which settles nearly every tetrahedron at a point of the box: its
-/// circumsphere passes through that point, at least `margin` inside the shell along the periodic
-/// axes, so a diameter 2r below the margin keeps the sphere inside the shell. The centre is
-/// a + n / (2 det) for the vertices' differences from a, so 2r = |n| / |det|, compared without a
-/// division or a root. A diameter below the margin has every difference below it too, which
-/// bounds the float evaluation's error with the records' magnitude: det is a cubic in the
-/// differences whose terms sum to 6 margin^3 at most, each n_k a quartic whose terms sum to
-/// 18 margin^4, each difference is off by its rounding and two residuals, and each bound below is
-/// twice the differences' part (degree times that error) and the evaluation's (a few eps a term).
-class SmallSphere
+/// A tetrahedron's circumsphere in floats, from its vertices' records: the centre is
+/// a + n / (2 det), for a = xyz[0] and the differences u of the others from it.
+struct SphereTerms
 {
-public:
-  /// margin: the points' room to the shell's sides; most: the largest magnitude of a record.
-  SmallSphere(double margin, double most)
-  {
-    constexpr double eps = 0x1p-53;
-    margin_ = margin - kSlack * (margin + most); // the box's and the records' roundings
-    const double eta = eps * (margin_ + 2 * most), m2 = margin_ * margin_;
-    usable_ = margin_ > 0x1p-200 && margin_ < 0x1p200 && 100 * eta < margin_;
-    detError_ = 2 * (20 * eta * m2 + 80 * eps * m2 * margin_);
-    nError_ = 2 * (130 * eta * m2 * margin_ + 520 * eps * m2 * m2);
-  }
+  double u[3][3];
+  double det; ///< u0 . (u1 x u2)
+  double n[3];
 
-  /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
-  /// below the margin; false where floats cannot tell.
-  bool holds(const double* const xyz[4]) const
+  explicit SphereTerms(const double* const xyz[4])
   {
-    if (!usable_)
-      return false;
-    const double* a = xyz[0];
-    double u[3][3];
-    bool within = true;
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
-      {
-        u[i][k] = xyz[i + 1][k] - a[k];
-        within &= std::fabs(u[i][k]) < margin_;
-      }
-    if (!within)
-      return false;
+        u[i][k] = xyz[i + 1][k] - xyz[0][k];
     double lift[3], cross[3][3];
     for (int i = 0; i < 3; ++i)
     {
@@ -81,20 +54,70 @@ public:
       cross[i][1] = v[2] * w[0] - v[0] * w[2];
       cross[i][2] = v[0] * w[1] - v[1] * w[0];
     }
-    const double det = u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2];
-    double n2 = 0;
+    det = u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2];
     for (int k = 0; k < 3; ++k)
-    {
-      const double n = lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k];
-      n2 += n * n;
-    }
-    const double reach = margin_ * (std::fabs(det) - detError_) - nError_; // |n| must stay below
-    return reach > 0 && n2 * (1 + 1e-12) < reach * reach;
+      n[k] = lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k];
+  }
+
+  /// Bounds on the errors of det and of n (its norm, and so each n_k) where every difference is
+  /// at most `size` and every record's magnitude at most `most`; usable() says where they hold.
+  /// det is a cubic in the differences whose terms sum to 6 size^3 at most, each n_k a quartic
+  /// whose terms sum to 18 size^4; each difference is off by eta, its rounding and two residuals,
+  /// and each bound is twice the differences' part (degree times eta, taken below size / 100) and
+  /// the evaluation's (a few eps a term).
+  static constexpr double kEps = 0x1p-53;
+  static double eta(double size, double most) { return kEps * (size + 2 * most); }
+  static bool usable(double size, double most)
+  {
+    return size > 0x1p-200 && size < 0x1p200 && 100 * eta(size, most) < size;
+  }
+  static double detError(double size, double most)
+  {
+    const double s2 = size * size;
+    return 2 * (20 * eta(size, most) * s2 + 80 * kEps * s2 * size);
+  }
+  static double nError(double size, double most)
+  {
+    const double s2 = size * size;
+    return 2 * (130 * eta(size, most) * s2 * size + 520 * kEps * s2 * s2);
+  }
+};
+
+/// The certificate's first test, which settles nearly every tetrahedron at a point of the box: its
+/// circumsphere passes through that point, at least `margin` inside the shell along the periodic
+/// axes, so a diameter 2r = |n| / |det| below the margin keeps the sphere inside the shell,
+/// compared without a division or a root. Every difference is then below the margin too, which
+/// bounds the float evaluation's error (SphereTerms).
+class SmallSphere
+{
+public:
+  /// margin: the points' room to the shell's sides; most: the largest magnitude of a record.
+  SmallSphere(double margin, double most)
+    : margin_(margin - kSlack * (margin + most)) // the box's and the records' roundings
+      ,
+      detError_(SphereTerms::detError(margin_, most)), nError_(SphereTerms::nError(margin_, most)),
+      usable_(SphereTerms::usable(margin_, most))
+  {}
+
+  /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
+  /// below the margin; false where floats cannot tell.
+  bool holds(const double* const xyz[4]) const
+  {
+    if (!usable_)
+      return false;
+    const SphereTerms t(xyz);
+    bool within = true;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        within &= std::fabs(t.u[i][k]) < margin_;
+    const double n2 = t.n[0] * t.n[0] + t.n[1] * t.n[1] + t.n[2] * t.n[2];
+    const double reach = margin_ * (std::fabs(t.det) - detError_) - nError_; // |n| must stay below
+    return within && reach > 0 && n2 * (1 + 1e-12) < reach * reach;
   }
 
 private:
-  double margin_ = 0, detError_ = 0, nError_ = 0;
-  bool usable_ = false;
+  double margin_, detError_, nError_;
+  bool usable_;
 };
 
 enum class SphereBox
@@ -110,46 +133,31 @@ enum class SphereBox
 /// along the others, each widened by a bound on the float evaluation's error. The centre, as
 /// computed, goes to `centre`.
 ///
-/// The error bounds are SmallSphere's, for differences up to the tetrahedron's largest: det's
-/// relative error then bounds each coordinate of the centre (a + n / det) with n's, magnified
-/// along the normal of a flat tetrahedron; past a relative error of 1e-3 it is Flat. The gaps and reaches are summed
-/// from terms that are never negative (the sphere passes through vertex a, within the extent):
-/// r^2 - gap^2 along a free axis k is (a_k - e)(a_k + e - 2 c_k), e the extent's side nearest the
-/// centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past that side: a cap far from the
-/// centre needs both, r and the gap agreeing to many digits.
+/// The error bounds are SphereTerms', for differences up to the tetrahedron's largest: det's
+/// relative error then bounds each coordinate of the centre (a + n / (2 det)) with n's,
+/// magnified along the normal of a flat tetrahedron; past a relative error of 1e-3 it is Flat.
+/// The gaps and reaches are summed from terms that are never negative (the sphere passes through
+/// vertex a, within the extent): r^2 - gap^2 along a free axis k is (a_k - e)(a_k + e - 2 c_k),
+/// e the extent's side nearest the centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past
+/// that side: a cap far from the centre needs both, r and the gap agreeing to many digits.
 SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool periodic[3],
   double most, double centre[3], Bounds& sphere)
 {
-  constexpr double eps = 0x1p-53;
   const double* a = xyz[0];
-  double u[3][3], size = 0;
+  const SphereTerms t(xyz);
+  double size = 0;
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k)
-    {
-      u[i][k] = xyz[i + 1][k] - a[k];
-      size = std::max(size, std::fabs(u[i][k]));
-    }
-  double lift[3], cross[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
-    const double* v = u[(i + 1) % 3];
-    const double* w = u[(i + 2) % 3];
-    cross[i][0] = v[1] * w[2] - v[2] * w[1];
-    cross[i][1] = v[2] * w[0] - v[0] * w[2];
-    cross[i][2] = v[0] * w[1] - v[1] * w[0];
-  }
-  const double det = 2 * (u[0][0] * cross[0][0] + u[0][1] * cross[0][1] + u[0][2] * cross[0][2]);
-  const double eta = eps * (size + 2 * most), s2 = size * size;
-  const double detError = 4 * (20 * eta * s2 + 80 * eps * s2 * size); // det is twice SmallSphere's
-  const double nError = 2 * (130 * eta * s2 * size + 520 * eps * s2 * s2);
-  const double relative = detError / std::fabs(det);
-  if (!(relative < 1e-3) || !(size > 0x1p-300 && size < 0x1p300))
+      size = std::max(size, std::fabs(t.u[i][k]));
+  const double det = 2 * t.det;
+  const double relative = 2 * SphereTerms::detError(size, most) / std::fabs(det);
+  const double nError = SphereTerms::nError(size, most);
+  if (!SphereTerms::usable(size, most) || !(relative < 1e-3))
     return SphereBox::Flat;
   double d[3], r2 = 0; // the centre less a
   for (int k = 0; k < 3; ++k)
   {
-    d[k] = (lift[0] * cross[0][k] + lift[1] * cross[1][k] + lift[2] * cross[2][k]) / det;
+    d[k] = t.n[k] / det;
     centre[k] = a[k] + d[k];
     r2 += d[k] * d[k];
   }
