@@ -215,6 +215,18 @@ int threadCount(const Options& options)
     return 1; // which slivers the guard avoids depends on the order of insertion
   return boundedThreads(options.threads);
 }
+
+/// The point ids and frame coordinates of `n` vertices of tetrahedron t, those at `local`.
+void vertexRecords(const TetMesh& mesh, const VertexArray& vertices, TetId t, const int* local,
+  int n, std::uint32_t* ids, const double** xyz)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    const Vertex& vertex = vertices[mesh.vertex(t, local[i])];
+    ids[i] = vertex.point;
+    xyz[i] = vertex.xyz;
+  }
+}
 } // namespace
 
 struct IncrementalDelaunay::Impl
@@ -755,14 +767,10 @@ void IncrementalDelaunay::visitTetrahedra(
       {
         if (mesh.isDead(TetId(t)) || mesh.isGhost(TetId(t)))
           continue;
+        static constexpr int kAll[4] = {0, 1, 2, 3};
         std::uint32_t ids[4];
         const double* xyz[4];
-        for (int i = 0; i < 4; ++i)
-        {
-          const Vertex& vertex = vertices[mesh.vertex(TetId(t), i)];
-          ids[i] = vertex.point;
-          xyz[i] = vertex.xyz;
-        }
+        vertexRecords(mesh, vertices, TetId(t), kAll, 4, ids, xyz);
         visit(ids, xyz);
       }
     });
@@ -783,15 +791,9 @@ void IncrementalDelaunay::visitHullFaces(
           continue;
         // A ghost's finite face is the one opposite its vertex at infinity, 3.
         const FaceCode across = mesh.neighbor(TetId(g), 3);
-        const TetId t = tetOf(across);
         std::uint32_t ids[3];
         const double* xyz[3];
-        for (int i = 0; i < 3; ++i)
-        {
-          const Vertex& vertex = vertices[mesh.vertex(t, kFaceVertices[faceOf(across)][i])];
-          ids[i] = vertex.point;
-          xyz[i] = vertex.xyz;
-        }
+        vertexRecords(mesh, vertices, tetOf(across), kFaceVertices[faceOf(across)], 3, ids, xyz);
         visit(ids, xyz);
       }
     });

@@ -93,10 +93,9 @@ class SmallSphere
 public:
   /// margin: the points' room to the shell's sides; most: the largest magnitude of a record.
   SmallSphere(double margin, double most)
-    : margin_(margin - kSlack * (margin + most)) // the box's and the records' roundings
-      ,
-      detError_(SphereTerms::detError(margin_, most)), nError_(SphereTerms::nError(margin_, most)),
-      usable_(SphereTerms::usable(margin_, most))
+    // The margin less the box's and the records' roundings.
+    : margin_(margin - kSlack * (margin + most)), detError_(SphereTerms::detError(margin_, most)),
+      nError_(SphereTerms::nError(margin_, most)), usable_(SphereTerms::usable(margin_, most))
   {}
 
   /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter

@@ -4,9 +4,9 @@
 // holds: every tetrahedron with a vertex in the box has its circumsphere, where it meets the
 // points' extent along the axes that are not periodic, inside the shell or inside one region
 // whose images are all present, so that no point missing from the covering could lie in it (and
-// the hull faces there are a slab's, parallel to the periods). Those tetrahedra are then exactly the
-// periodic ones at the box's points (their stars are complete), and each periodic tetrahedron is
-// taken once, by the copy whose least vertex lies in the box. The regions are the failed spheres'
+// the hull faces there are a slab's, parallel to the periods). Those tetrahedra are then exactly
+// the periodic ones at the box's points (their stars are complete), and each periodic tetrahedron
+// is taken once, by the copy whose least vertex lies in the box. The regions are the failed spheres'
 // (and the outer sides of the failed hull faces, first): a slab's tetrahedra under its highest
 // and lowest planes reach a period across, but only as thin caps, whose few points' images a
 // region adds where a wider shell would add every point's. After a few such rounds the shell
