@@ -44,6 +44,7 @@ public:
       inverse_[k] = box.extent(k) > 0 ? n_[k] / box.extent(k) : 0.0;
     }
     cells_.resize(std::size_t(n_[0]) * n_[1] * n_[2]);
+    filed_.resize(cells_.size());
   }
 
   /// Files `id` in every cell that `region` overlaps.
@@ -54,7 +55,26 @@ public:
     for (int k = lo[2]; k <= hi[2]; ++k)
       for (int j = lo[1]; j <= hi[1]; ++j)
         for (int i = lo[0]; i <= hi[0]; ++i)
+        {
           cells_[index(i, j, k)].push_back(id);
+          filed_[index(i, j, k)].include(region);
+        }
+  }
+
+  /// Calls visit(cell, filed, ids) for each cell that `region` overlaps: its index, below 2^30,
+  /// the bounds of what is filed there (empty for none), and the ids.
+  template <typename Visit>
+  void visitCells(const Bounds& region, Visit visit) const
+  {
+    int lo[3], hi[3];
+    span(region, lo, hi);
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          const std::size_t cell = index(i, j, k);
+          visit(cell, filed_[cell], cells_[cell]);
+        }
   }
 
   /// Calls visit(id) for each id filed in a cell that `region` overlaps (an id in several of
@@ -94,6 +114,7 @@ private:
   double lo_[3], inverse_[3];
   int n_[3];
   std::vector<std::vector<std::uint32_t>> cells_;
+  std::vector<Bounds> filed_; // per cell, of the regions filed there
 };
 
 } // namespace fd3

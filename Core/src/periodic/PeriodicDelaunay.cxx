@@ -433,6 +433,10 @@ bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
 {
   if (!pointBuckets_)
     filePoints();
+  // The regions of a round overlap, many of them widely (planes across a gap, clusters): a
+  // bucket whose points all lie inside a region has its images added at once, and the other
+  // regions that hold it pass it over instead of testing each point again.
+  std::unordered_set<std::uint64_t> whole;
   for (const Bounds& region : regions)
   {
     // The periods that bring part of the points' extent into the region, along each axis.
@@ -460,11 +464,22 @@ bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
             moved.lo[k] -= shift[k] * period_[k];
             moved.hi[k] -= shift[k] * period_[k];
           }
+          const std::uint64_t shiftKey = std::uint64_t(std::uint8_t(x)) << 16 |
+            std::uint64_t(std::uint8_t(y)) << 8 | std::uint64_t(std::uint8_t(z));
           bool added = true;
-          pointBuckets_->visit(moved, [&](std::uint32_t id) {
-            if (added && inRegion(id, shift, region))
-              added = addRegionImage(id, shift);
-          });
+          pointBuckets_->visitCells(moved,
+            [&](std::size_t cell, const Bounds& filed, const std::vector<std::uint32_t>& ids) {
+              if (ids.empty())
+                return;
+              bool inside = true;
+              for (int k = 0; k < 3; ++k)
+                inside = inside && filed.lo[k] >= moved.lo[k] && filed.hi[k] <= moved.hi[k];
+              if (inside && !whole.insert(std::uint64_t(cell) << 24 | shiftKey).second)
+                return;
+              for (const std::uint32_t id : ids)
+                if (added && (inside || inRegion(id, shift, region)))
+                  added = addRegionImage(id, shift);
+            });
           if (!added)
             return false;
         }
@@ -683,6 +698,8 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     Bounds centre;
     centre.include(c);
     regionBuckets.visit(centre, [&](std::uint32_t r) {
+      if (inRegion)
+        return;
       bool holds = true;
       for (int k = 0; k < 3; ++k)
         holds = holds && sphere.lo[k] >= regions[r].lo[k] && sphere.hi[k] <= regions[r].hi[k];
