@@ -130,7 +130,7 @@ enum class SphereBox
 /// along the axes that are not periodic, as a box about it: its reach along the periodic axes
 /// (r^2 less the squared gaps to the extent along the others) and its span within the extent
 /// along the others, each widened by a bound on the float evaluation's error. The centre, as
-/// computed, goes to `centre`.
+/// computed, goes to `centre`, and a radius about it that holds the whole sphere to `radius`.
 ///
 /// The error bounds are SphereTerms', for differences up to the tetrahedron's largest: det's
 /// relative error then bounds each coordinate of the centre (a + n / (2 det)) with n's,
@@ -140,7 +140,7 @@ enum class SphereBox
 /// e the extent's side nearest the centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past
 /// that side: a cap far from the centre needs both, r and the gap agreeing to many digits.
 SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool periodic[3],
-  double most, double centre[3], Bounds& sphere)
+  double most, double centre[3], double& radius, Bounds& sphere)
 {
   const double* a = xyz[0];
   const SphereTerms t(xyz);
@@ -174,6 +174,8 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
       (nError / std::fabs(det) + std::fabs(d[k]) * relative) / (1 - relative) + 1e-12 * (most + r);
     radiusError += error[k];
   }
+  // The exact centre and radius each lie within radiusError of these.
+  radius = r + 2 * radiusError + 1e-12 * (most + r);
   double square[3], squareError[3], gap[3], part[3], partError[3];
   for (int k = 0; k < 3; ++k)
   {
@@ -429,7 +431,7 @@ void PeriodicDelaunay::filePoints()
   }
 }
 
-bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
+bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
 {
   if (!pointBuckets_)
     filePoints();
@@ -437,7 +439,7 @@ bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
   // bucket whose points all lie inside a region has its images added at once, and the other
   // regions that hold it pass it over instead of testing each point again.
   std::unordered_set<std::uint64_t> whole;
-  for (const Bounds& region : regions)
+  for (const ImageRegion& region : regions)
   {
     // The periods that bring part of the points' extent into the region, along each axis.
     int first[3], last[3];
@@ -446,8 +448,8 @@ bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
       first[k] = last[k] = 0;
       if (!box_.periodic[k])
         continue;
-      const double below = std::floor((region.lo[k] - places_.hi[k]) / period_[k]);
-      const double above = std::ceil((region.hi[k] - places_.lo[k]) / period_[k]);
+      const double below = std::floor((region.box.lo[k] - places_.hi[k]) / period_[k]);
+      const double above = std::ceil((region.box.hi[k] - places_.lo[k]) / period_[k]);
       if (!(std::max(std::fabs(below), std::fabs(above)) <= kMostOffset))
         return false;
       first[k] = int(below);
@@ -458,26 +460,23 @@ bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
         for (int z = first[2]; z <= last[2]; ++z)
         {
           const int shift[3] = {x, y, z};
-          Bounds moved = region; // the region moved back by the periods
+          double back[3]; // the region moved back by the periods
           for (int k = 0; k < 3; ++k)
-          {
-            moved.lo[k] -= shift[k] * period_[k];
-            moved.hi[k] -= shift[k] * period_[k];
-          }
+            back[k] = -shift[k] * period_[k];
+          const ImageRegion moved = region.moved(back);
           const std::uint64_t shiftKey = std::uint64_t(std::uint8_t(x)) << 16 |
             std::uint64_t(std::uint8_t(y)) << 8 | std::uint64_t(std::uint8_t(z));
           bool added = true;
-          pointBuckets_->visitCells(moved,
+          pointBuckets_->visitCells(moved.box,
             [&](std::size_t cell, const Bounds& filed, const std::vector<std::uint32_t>& ids) {
-              if (ids.empty())
-                return;
-              bool inside = true;
-              for (int k = 0; k < 3; ++k)
-                inside = inside && filed.lo[k] >= moved.lo[k] && filed.hi[k] <= moved.hi[k];
-              if (inside && !whole.insert(std::uint64_t(cell) << 24 | shiftKey).second)
+              const ImageRegion::Overlap overlap =
+                ids.empty() ? ImageRegion::Overlap::None : moved.overlap(filed);
+              if (overlap == ImageRegion::Overlap::None ||
+                (overlap == ImageRegion::Overlap::All &&
+                  !whole.insert(std::uint64_t(cell) << 24 | shiftKey).second))
                 return;
               for (const std::uint32_t id : ids)
-                if (added && (inside || inRegion(id, shift, region)))
+                if (added && (overlap == ImageRegion::Overlap::All || inRegion(id, shift, region)))
                   added = addRegionImage(id, shift);
             });
           if (!added)
@@ -488,23 +487,26 @@ bool PeriodicDelaunay::addRegions(const std::vector<Bounds>& regions)
   return true;
 }
 
-bool PeriodicDelaunay::inRegion(std::uint32_t id, const int shift[3], const Bounds& region) const
+bool PeriodicDelaunay::inRegion(
+  std::uint32_t id, const int shift[3], const ImageRegion& region) const
 {
+  double at[3]; // the image
   for (int k = 0; k < 3; ++k)
   {
     const double x = place_[id][k];
+    at[k] = x + shift[k] * period_[k];
     if (!box_.periodic[k])
     {
-      if (!(x >= region.lo[k] && x <= region.hi[k]))
+      if (!(x >= region.box.lo[k] && x <= region.box.hi[k]))
         return false;
       continue;
     }
     // As the offsets that bring the point into the region were found before: in whole periods.
-    if (!(std::ceil((region.lo[k] - x) / period_[k]) <= shift[k] &&
-          shift[k] <= std::floor((region.hi[k] - x) / period_[k])))
+    if (!(std::ceil((region.box.lo[k] - x) / period_[k]) <= shift[k] &&
+          shift[k] <= std::floor((region.box.hi[k] - x) / period_[k])))
       return false;
   }
-  return true;
+  return region.ballAndSideHold(at);
 }
 
 bool PeriodicDelaunay::addRegionImage(std::uint32_t id, const int shift[3])
@@ -598,17 +600,26 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   std::copy(box_.lo, box_.lo + 3, box.lo);
   std::copy(box_.hi, box_.hi + 3, box.hi);
   box = toFrame(frame_, box);
-  std::vector<Bounds> regions;
+  const double scale = frame_.identity ? 1.0 : frame_.scale;
+  std::vector<ImageRegion> regions;
   Bounds all;
-  for (const Bounds& region : regions_)
+  for (const ImageRegion& region : regions_)
   {
-    regions.push_back(toFrame(frame_, region));
-    all.include(regions.back());
+    // A hull face's region, on the face's outer side, holds none of the spheres through the
+    // face: it only brings images in (outerBall()).
+    if (region.sided())
+      continue;
+    ImageRegion r = region;
+    r.box = toFrame(frame_, region.box);
+    for (int k = 0; k < 3; ++k)
+      r.centre[k] = toFrame(frame_, region.centre[k], k);
+    r.radius *= scale;
+    regions.push_back(r);
+    all.include(r.box);
   }
   Buckets regionBuckets(all, regions.size());
   for (std::size_t r = 0; r < regions.size(); ++r)
-    regionBuckets.file(std::uint32_t(r), regions[r]);
-  const double scale = frame_.identity ? 1.0 : frame_.scale;
+    regionBuckets.file(std::uint32_t(r), regions[r].box);
   const double margin = margin_ * scale, spacing = spacing_ * scale;
   double most = 0; // the largest magnitude of a record
   for (int k = 0; k < 3; ++k)
@@ -617,19 +628,21 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   const SmallSphere small(margin, most);
   Failures out;
   std::mutex failed; // rare, from every thread of the visit
-  auto fail = [&](Bounds region, std::vector<Bounds>& list) {
+  auto fail = [&](ImageRegion region, std::vector<ImageRegion>& list) {
     // Within the widest shell, beyond which no image is needed: a sphere that reaches farther
     // belongs to a tetrahedron that the images within it will take apart.
     for (int k = 0; k < 3; ++k)
     {
-      region.lo[k] = fromFrame(frame_, region.lo[k], k);
-      region.hi[k] = fromFrame(frame_, region.hi[k], k);
+      region.box.lo[k] = fromFrame(frame_, region.box.lo[k], k);
+      region.box.hi[k] = fromFrame(frame_, region.box.hi[k], k);
+      region.centre[k] = fromFrame(frame_, region.centre[k], k);
       if (box_.periodic[k])
       {
-        region.lo[k] = std::max(region.lo[k], box_.lo[k] - widest_);
-        region.hi[k] = std::min(region.hi[k], box_.hi[k] + widest_);
+        region.box.lo[k] = std::max(region.box.lo[k], box_.lo[k] - widest_);
+        region.box.hi[k] = std::min(region.box.hi[k], box_.hi[k] + widest_);
       }
     }
+    region.radius /= scale;
     const std::lock_guard<std::mutex> lock(failed);
     list.push_back(region);
   };
@@ -639,10 +652,20 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   mesh.visitHullFaces([&](const std::uint32_t face[3], const double* const xyz[3]) {
     if (std::min({face[0], face[1], face[2]}) >= boxPoints_ || parallelToPeriods(face))
       return;
+    const double *a = xyz[0], *b = xyz[1], *c = xyz[2];
+    if (periodicAxes_ == 3)
+    {
+      std::array<double, 9> face;
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+          face[3 * i + k] = fromFrame(frame_, xyz[i][k], k);
+      const std::lock_guard<std::mutex> lock(failed);
+      out.outerFaces.push_back(face);
+      return;
+    }
     Bounds region;
     for (int i = 0; i < 3; ++i)
       region.include(xyz[i]);
-    const double *a = xyz[0], *b = xyz[1], *c = xyz[2];
     for (int k = 0; k < 3; ++k)
     {
       if (box_.periodic[k])
@@ -660,16 +683,16 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
       else
         region.lo[k] = extent.lo[k];
     }
-    fail(region, out.hull);
+    fail({region}, out.hull);
   });
   mesh.visitTetrahedra([&](const std::uint32_t ids[4], const double* const xyz[4]) {
     if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
       return;
     if (small.holds(xyz))
       return;
-    double c[3];
+    double c[3], radius;
     Bounds sphere;
-    const SphereBox made = sphereBox(xyz, extent, box_.periodic, most, c, sphere);
+    const SphereBox made = sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere);
     if (made == SphereBox::Misses)
       return;
     if (made == SphereBox::Flat)
@@ -684,7 +707,7 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
         around.lo[k] -= grow;
         around.hi[k] += grow;
       }
-      fail(around, out.spheres);
+      fail({around}, out.spheres);
       return;
     }
     bool inShell = true;
@@ -700,22 +723,119 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     regionBuckets.visit(centre, [&](std::uint32_t r) {
       if (inRegion)
         return;
-      bool holds = true;
-      for (int k = 0; k < 3; ++k)
-        holds = holds && sphere.lo[k] >= regions[r].lo[k] && sphere.hi[k] <= regions[r].hi[k];
-      inRegion = inRegion || holds;
+      inRegion = regions[r].holds(sphere, c, radius, most);
     });
     if (inRegion)
       return;
-    // A region a spacing wider, so that the tetrahedra that replace this one fit it too.
+    // A region a spacing wider, so that the tetrahedra that replace this one fit it too; its
+    // ball where every axis is periodic.
+    ImageRegion failure{sphere};
     for (int k = 0; k < 3; ++k)
     {
-      sphere.lo[k] -= spacing;
-      sphere.hi[k] += spacing;
+      failure.box.lo[k] -= spacing;
+      failure.box.hi[k] += spacing;
+      failure.centre[k] = c[k];
     }
-    fail(sphere, out.spheres);
+    if (periodicAxes_ == 3)
+      failure.radius = radius + spacing;
+    fail(failure, out.spheres);
   });
   return out;
+}
+
+ImageRegion PeriodicDelaunay::outerBall(const std::array<double, 9>& face)
+{
+  const double *a = &face[0], *b = &face[3], *c = &face[6];
+  // The face's circle: its centre o, its squared radius, and the unit normal outwards.
+  double u[3], v[3], w[3], uu = 0, vv = 0, ww = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    u[k] = b[k] - a[k];
+    v[k] = c[k] - a[k];
+    uu += u[k] * u[k];
+    vv += v[k] * v[k];
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    w[k] = u[i] * v[j] - u[j] * v[i];
+    ww += w[k] * w[k];
+  }
+  double o[3], rho2 = 0, normal[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    const double m[3] = {uu * v[0] - vv * u[0], uu * v[1] - vv * u[1], uu * v[2] - vv * u[2]};
+    o[k] = a[k] + (m[i] * w[j] - m[j] * w[i]) / (2 * ww);
+    rho2 += (o[k] - a[k]) * (o[k] - a[k]);
+    normal[k] = w[k] / std::sqrt(ww);
+  }
+  // The sphere through the circle and q has its centre at o + t normal.
+  double least = HUGE_VAL;
+  auto consider = [&](const double q[3]) {
+    double height = 0, d2 = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      height += (q[k] - o[k]) * normal[k];
+      d2 += (q[k] - o[k]) * (q[k] - o[k]);
+    }
+    if (height > 0)
+      least = std::min(least, (d2 - rho2) / (2 * height));
+  };
+  if (!pointBuckets_)
+    filePoints();
+  const double rho = std::sqrt(rho2);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!(normal[axis] != 0))
+      continue;
+    const double step = std::copysign(period_[axis], normal[axis]);
+    for (const double* vertex : {a, b, c})
+    {
+      double q[3] = {vertex[0], vertex[1], vertex[2]};
+      q[axis] += step;
+      consider(q);
+    }
+    Bounds across = places_; // the points whose places lie across the circle along the axis
+    for (int k = 0; k < 3; ++k)
+      if (k != axis)
+      {
+        across.lo[k] = std::max(across.lo[k], o[k] - rho);
+        across.hi[k] = std::min(across.hi[k], o[k] + rho);
+      }
+    if (across.empty())
+      continue;
+    pointBuckets_->visit(across, [&](std::uint32_t id) {
+      double q[3] = {place_[id][0], place_[id][1], place_[id][2]};
+      q[axis] += step;
+      consider(q);
+    });
+  }
+  ImageRegion region;
+  if (!std::isfinite(least)) // a face too flat for floats: a period about it
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      region.box.lo[k] = std::min({a[k], b[k], c[k]}) - period_[k];
+      region.box.hi[k] = std::max({a[k], b[k], c[k]}) + period_[k];
+    }
+    return region;
+  }
+  // The outer cap of that sphere; with its centre below the circle's plane (t < 0) it lies
+  // within the circle's own ball, which bounds it, and is thin where t is far below.
+  const double t = std::isfinite(std::sqrt(rho2 + least * least)) ? least : 0.0;
+  const double reach = t < 0 ? std::sqrt(rho2) + spacing_ : std::sqrt(rho2 + t * t) + spacing_;
+  region.radius = std::sqrt(rho2 + t * t) + spacing_;
+  for (int k = 0; k < 3; ++k)
+  {
+    region.centre[k] = o[k] + t * normal[k];
+    region.normal[k] = normal[k];
+    region.onPlane[k] = a[k];
+    const double middle = t < 0 ? o[k] : region.centre[k];
+    region.box.lo[k] = std::max(middle - reach, box_.lo[k] - widest_);
+    region.box.hi[k] = std::min(middle + reach, box_.hi[k] + widest_);
+  }
+  return region;
 }
 
 bool PeriodicDelaunay::parallelToPeriods(const std::uint32_t face[3]) const
@@ -805,7 +925,9 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   std::size_t inserted = covering_.size();
   for (int targeted = 0; mesh->status() == Status::Ok && margin_ < widest_;)
   {
-    const Failures failed = failures(*mesh);
+    Failures failed = failures(*mesh);
+    for (const std::array<double, 9>& face : failed.outerFaces)
+      failed.hull.push_back(outerBall(face));
     if (failed.hull.empty() && failed.spheres.empty())
       break;
     // The images inside the failed regions, a few times; then a wider shell all round. A slab's

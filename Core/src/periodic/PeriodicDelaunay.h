@@ -6,11 +6,11 @@
 // whose images are all present, so that no point missing from the covering could lie in it (and
 // the hull faces there are a slab's, parallel to the periods). Those tetrahedra are then exactly
 // the periodic ones at the box's points (their stars are complete), and each periodic tetrahedron
-// is taken once, by the copy whose least vertex lies in the box. The regions are the failed spheres'
-// (and the outer sides of the failed hull faces, first): a slab's tetrahedra under its highest
-// and lowest planes reach a period across, but only as thin caps, whose few points' images a
-// region adds where a wider shell would add every point's. After a few such rounds the shell
-// widens all round instead.
+// is taken once, by the copy whose least vertex lies in the box. The regions are the failed
+// spheres' (and the outer sides of the failed hull faces, first; ImageRegion.h): a slab's
+// tetrahedra under its highest and lowest planes reach a period across, but only as thin caps,
+// whose few points' images a region adds where a wider shell would add every point's. After a
+// few such rounds the shell widens all round instead.
 //
 // A shell of width m* = h + sqrt(h^2 + H^2) needs no certificate, h being half the diagonal of a
 // period and H the diagonal of the points' extent along the axes that are not periodic: the
@@ -25,6 +25,7 @@
 #include "fd3/Periodic.h"
 #include "fd3/Voronoi.h"
 #include "periodic/Buckets.h"
+#include "periodic/ImageRegion.h"
 
 #include <array>
 #include <cstdint>
@@ -87,16 +88,30 @@ private:
   /// they meet the points' extent along the free axes), and about tetrahedra flat in floats.
   struct Failures
   {
-    std::vector<Bounds> hull, spheres;
+    std::vector<ImageRegion> hull, spheres;
+    /// Where every axis is periodic, the hull faces instead: a, b, c (input units), ordered so
+    /// that (b - a) x (c - a) points out (outerBall()).
+    std::vector<std::array<double, 9>> outerFaces;
   };
   Failures failures(const IncrementalDelaunay& mesh) const;
+  /// Where every axis is periodic, the region of a hull face of the covering (Failures::
+  /// outerFaces): the images on the face's outer side within the sphere through the face and an
+  /// image beyond it, a spacing wider: of the images tried, the one whose sphere has the lowest
+  /// centre. They are one period outwards along an axis, of the face's vertices and of the points
+  /// across its circle. The repeated set's tetrahedron beyond the face has a sphere through the
+  /// face that leaves every image out, so a centre lower still, and the outer caps of the spheres
+  /// through a circle grow with their centre's height: its fourth vertex is in the region. So is
+  /// the image found, and the face is no hull face once the region's images are in. A box a
+  /// period wide each way, as where some axis is not periodic, would hold nine periods' images:
+  /// a slab's whole thickness, across a vacuum.
+  ImageRegion outerBall(const std::array<double, 9>& face);
   /// Appends the images inside `regions` that the covering lacks, and keeps the regions: every
   /// image in them is then present. False where an image is out of range.
-  bool addRegions(const std::vector<Bounds>& regions);
+  bool addRegions(const std::vector<ImageRegion>& regions);
   /// Files the box's points by place (pointBuckets_, places_).
   void filePoints();
   /// Whether point id, moved by `shift` periods, lies in `region`.
-  bool inRegion(std::uint32_t id, const int shift[3], const Bounds& region) const;
+  bool inRegion(std::uint32_t id, const int shift[3], const ImageRegion& region) const;
   /// Appends that image where the covering lacks it (true where it has it); false where it is no
   /// sum of two doubles.
   bool addRegionImage(std::uint32_t id, const int shift[3]);
@@ -148,7 +163,7 @@ private:
   // The covering's first points, its points of the box (offset 0): each id below it is one.
   std::uint32_t boxPoints_ = 0;
   // Beyond the shell, the regions whose images are all present, and those images (keyOf()).
-  std::vector<Bounds> regions_;
+  std::vector<ImageRegion> regions_;
   std::unordered_set<std::uint64_t> present_;
   // The box's points by place, for the images in a region, and the extent of their places.
   std::unique_ptr<Buckets> pointBuckets_;
