@@ -172,14 +172,18 @@ int cgalValidity(const fd3test::Points& p, const Triangulation& dt, std::size_t 
 }
 
 using CgalKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+#ifdef CGAL_LINKED_WITH_TBB
+using CgalLocks = CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>;
+#else
+using CgalLocks = CGAL::Default; // CGAL's locks need TBB, and so does its parallel build
+#endif
 template <typename Concurrency>
 using CgalDelaunay = CGAL::Delaunay_triangulation_3<CgalKernel,
   CGAL::Triangulation_data_structure_3<
     CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, CgalKernel>,
     CGAL::Delaunay_triangulation_cell_base_3<CgalKernel>, Concurrency>,
   CGAL::Default,
-  std::conditional_t<std::is_same_v<Concurrency, CGAL::Sequential_tag>, CGAL::Default,
-    CGAL::Spatial_lock_grid_3<CGAL::Tag_priority_blocking>>>;
+  std::conditional_t<std::is_same_v<Concurrency, CGAL::Sequential_tag>, CGAL::Default, CgalLocks>>;
 
 /// CGAL's Delaunay_triangulation_3, sequential or (threads > 1) its parallel version with TBB.
 Measurement runCgal(const fd3test::Points& p, std::size_t validateLimit, int threads)
