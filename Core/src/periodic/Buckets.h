@@ -82,13 +82,10 @@ public:
   template <typename Visit>
   void visit(const Bounds& region, Visit visit) const
   {
-    int lo[3], hi[3];
-    span(region, lo, hi);
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i)
-          for (const std::uint32_t id : cells_[index(i, j, k)])
-            visit(id);
+    visitCells(region, [&](std::size_t, const Bounds&, const std::vector<std::uint32_t>& ids) {
+      for (const std::uint32_t id : ids)
+        visit(id);
+    });
   }
 
 private:

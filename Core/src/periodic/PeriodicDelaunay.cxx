@@ -30,6 +30,10 @@ constexpr double kFirstShell = 3.0;
 constexpr double kSlack = 1e-6;
 // Points per bucket of the lookup of the points in a region.
 constexpr std::size_t kPointsPerBucket = 4;
+// The lattice that failed spheres' balls are snapped out to, in spacings (coarsened()): a
+// coarser one makes fewer regions of more images (a slab's surfaces across a vacuum take more),
+// a finer one more regions (planes across a gap cost more).
+constexpr double kSnap = 1.0;
 
 /// A tetrahedron's circumsphere in floats, from its vertices' records: the centre is
 /// a + n / (2 det), for a = xyz[0] and the differences u of the others from it.
@@ -743,6 +747,47 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   return out;
 }
 
+std::vector<ImageRegion> PeriodicDelaunay::coarsened(const std::vector<ImageRegion>& regions) const
+{
+  const double step = kSnap * spacing_;
+  std::vector<std::pair<std::array<std::int64_t, 4>, ImageRegion>> balls;
+  std::vector<ImageRegion> out;
+  for (const ImageRegion& region : regions)
+  {
+    std::array<std::int64_t, 4> key;
+    ImageRegion snapped;
+    double apart = 0; // the centre's move, squared
+    for (int k = 0; k < 3; ++k)
+    {
+      const double node = std::round(region.centre[k] / step);
+      key[k] = std::int64_t(node);
+      snapped.centre[k] = node * step;
+      apart += (snapped.centre[k] - region.centre[k]) * (snapped.centre[k] - region.centre[k]);
+    }
+    const double steps = std::ceil((region.radius + std::sqrt(apart)) / step) + 1; // and roundings
+    if (region.radius < 0 || region.sided() || !(steps < 0x1p52) ||
+      !std::isfinite(apart + snapped.centre[0] + snapped.centre[1] + snapped.centre[2]))
+    {
+      out.push_back(region);
+      continue;
+    }
+    key[3] = std::int64_t(steps);
+    snapped.radius = steps * step;
+    for (int k = 0; k < 3; ++k)
+    {
+      snapped.box.lo[k] = std::max(snapped.centre[k] - snapped.radius, box_.lo[k] - widest_);
+      snapped.box.hi[k] = std::min(snapped.centre[k] + snapped.radius, box_.hi[k] + widest_);
+    }
+    balls.emplace_back(key, snapped);
+  }
+  std::sort(
+    balls.begin(), balls.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < balls.size(); ++i)
+    if (i == 0 || balls[i].first != balls[i - 1].first)
+      out.push_back(balls[i].second);
+  return out;
+}
+
 ImageRegion PeriodicDelaunay::outerBall(const std::array<double, 9>& face)
 {
   const double *a = &face[0], *b = &face[3], *c = &face[6];
@@ -936,7 +981,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
     if (targeted < kTargetedRounds)
     {
       ++targeted;
-      if (!addRegions(failed.hull.empty() ? failed.spheres : failed.hull))
+      if (!addRegions(failed.hull.empty() ? coarsened(failed.spheres) : failed.hull))
         return nullptr;
     }
     else
