@@ -30,9 +30,9 @@ constexpr double kFirstShell = 3.0;
 constexpr double kSlack = 1e-6;
 // Points per bucket of the lookup of the points in a region.
 constexpr std::size_t kPointsPerBucket = 4;
-// The lattice that failed spheres' balls are snapped out to, in spacings (coarsened()): a
-// coarser one makes fewer regions of more images (a slab's surfaces across a vacuum take more),
-// a finer one more regions (planes across a gap cost more).
+// The lattice that failed spheres' balls are snapped out to, in spacings, where they outnumber
+// the points (coarsened()): a coarser one makes fewer regions of more images, a finer one more
+// regions.
 constexpr double kSnap = 1.0;
 
 /// A tetrahedron's circumsphere in floats, from its vertices' records: the centre is
@@ -749,6 +749,8 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
 
 std::vector<ImageRegion> PeriodicDelaunay::coarsened(const std::vector<ImageRegion>& regions) const
 {
+  if (regions.size() <= points_.size())
+    return regions;
   const double step = kSnap * spacing_;
   std::vector<std::pair<std::array<std::int64_t, 4>, ImageRegion>> balls;
   std::vector<ImageRegion> out;

@@ -105,10 +105,12 @@ private:
   /// period wide each way, as where some axis is not periodic, would hold nine periods' images:
   /// a slab's whole thickness, across a vacuum.
   ImageRegion outerBall(const std::array<double, 9>& face);
-  /// The failed spheres' balls snapped out to a lattice of kSnap spacings, centres to its nodes
-  /// and radii to its steps, each kept once; the other regions as they are. Spheres across a gap
-  /// fail by the thousand, nearly alike, and each region costs a pass over the buckets it
-  /// overlaps.
+  /// Where they outnumber the points, the failed spheres' balls snapped out to a lattice of
+  /// kSnap spacings, centres to its nodes and radii to its steps, each kept once; the other
+  /// regions, or all of them, as they are. Across a gap between planes spheres fail by the
+  /// hundred thousand, four a point, nearly alike, and each region costs a pass over the buckets
+  /// it overlaps; elsewhere (a vacuum, clusters) they are fewer, and a lattice adds more images
+  /// than it saves passes.
   std::vector<ImageRegion> coarsened(const std::vector<ImageRegion>& regions) const;
   /// Appends the images inside `regions` that the covering lacks, and keeps the regions: every
   /// image in them is then present. False where an image is out of range.
