@@ -21,8 +21,8 @@
 //             [--csv FILE] [--markdown FILE]
 //                                            weighted points: CGAL's regular triangulation, Voro++'s
 //                                            radical cells (WeightedBench.cxx)
-//   Benchmark --periodic [--sizes N] [--repeat K] [--methods Core,plain,CGAL,cells,Voro++]
-//             [--csv FILE] [--markdown FILE]
+//   Benchmark --periodic [--kinds cube,vacuum,planes,clusters] [--sizes N] [--repeat K]
+//             [--methods Core,plain,CGAL,cells,Voro++] [--csv FILE] [--markdown FILE]
 //                                            the periodic unit box: CGAL's periodic triangulation,
 //                                            Voro++'s periodic container (PeriodicBench.cxx)
 //
