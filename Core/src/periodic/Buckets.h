@@ -45,6 +45,7 @@ public:
     }
     cells_.resize(std::size_t(n_[0]) * n_[1] * n_[2]);
     filed_.resize(cells_.size());
+    rows_.resize(std::size_t(n_[1]) * n_[2]);
   }
 
   /// Files `id` in every cell that `region` overlaps.
@@ -58,6 +59,7 @@ public:
         {
           cells_[index(i, j, k)].push_back(id);
           filed_[index(i, j, k)].include(region);
+          rows_[std::size_t(k) * n_[1] + j].include(region);
         }
   }
 
@@ -75,6 +77,41 @@ public:
           const std::size_t cell = index(i, j, k);
           visit(cell, filed_[cell], cells_[cell]);
         }
+  }
+
+  /// visitCells() of the cells that `region` overlaps and that may hold items within `radius` of
+  /// `centre`, by the bounds of what is filed in their rows along x: a ball's cells, not its
+  /// box's, where the ball dips into the items only as a cap.
+  template <typename Visit>
+  void visitCellsNear(
+    const Bounds& region, const double centre[3], double radius, Visit visit) const
+  {
+    int lo[3], hi[3];
+    span(region, lo, hi);
+    // Wider than any rounding of a caller's distances.
+    const double reach =
+      radius + 1e-9 * (radius + std::fabs(centre[0]) + std::fabs(centre[1]) + std::fabs(centre[2]));
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+      {
+        const Bounds& row = rows_[std::size_t(k) * n_[1] + j];
+        double apart = 0; // squared, across the row
+        for (int a = 1; a < 3; ++a)
+        {
+          const double gap = std::max({row.lo[a] - centre[a], centre[a] - row.hi[a], 0.0});
+          apart += gap * gap;
+        }
+        if (row.empty() || !(apart <= reach * reach))
+          continue;
+        const double half = std::sqrt(reach * reach - apart);
+        const int first = std::max(lo[0], cellOf(centre[0] - half, 0));
+        const int last = std::min(hi[0], cellOf(centre[0] + half, 0));
+        for (int i = first; i <= last; ++i)
+        {
+          const std::size_t cell = index(i, j, k);
+          visit(cell, filed_[cell], cells_[cell]);
+        }
+      }
   }
 
   /// Calls visit(id) for each id filed in a cell that `region` overlaps (an id in several of
@@ -112,6 +149,7 @@ private:
   int n_[3];
   std::vector<std::vector<std::uint32_t>> cells_;
   std::vector<Bounds> filed_; // per cell, of the regions filed there
+  std::vector<Bounds> rows_;  // per row of cells along x, the same
 };
 
 } // namespace fd3

@@ -471,18 +471,22 @@ bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
           const std::uint64_t shiftKey = std::uint64_t(std::uint8_t(x)) << 16 |
             std::uint64_t(std::uint8_t(y)) << 8 | std::uint64_t(std::uint8_t(z));
           bool added = true;
-          pointBuckets_->visitCells(moved.box,
-            [&](std::size_t cell, const Bounds& filed, const std::vector<std::uint32_t>& ids) {
-              const ImageRegion::Overlap overlap =
-                ids.empty() ? ImageRegion::Overlap::None : moved.overlap(filed);
-              if (overlap == ImageRegion::Overlap::None ||
-                (overlap == ImageRegion::Overlap::All &&
-                  !whole.insert(std::uint64_t(cell) << 24 | shiftKey).second))
-                return;
-              for (const std::uint32_t id : ids)
-                if (added && (overlap == ImageRegion::Overlap::All || inRegion(id, shift, region)))
-                  added = addRegionImage(id, shift);
-            });
+          auto take = [&](std::size_t cell, const Bounds& filed,
+                        const std::vector<std::uint32_t>& ids) {
+            const ImageRegion::Overlap overlap =
+              ids.empty() ? ImageRegion::Overlap::None : moved.overlap(filed);
+            if (overlap == ImageRegion::Overlap::None ||
+              (overlap == ImageRegion::Overlap::All &&
+                !whole.insert(std::uint64_t(cell) << 24 | shiftKey).second))
+              return;
+            for (const std::uint32_t id : ids)
+              if (added && (overlap == ImageRegion::Overlap::All || inRegion(id, shift, region)))
+                added = addRegionImage(id, shift);
+          };
+          if (moved.radius >= 0)
+            pointBuckets_->visitCellsNear(moved.box, moved.centre, moved.radius, take);
+          else
+            pointBuckets_->visitCells(moved.box, take);
           if (!added)
             return false;
         }
