@@ -220,6 +220,34 @@ using fd3vtk::SetCells;
 using fd3vtk::SetPointsWithoutCells;
 using fd3vtk::SetTetrahedra;
 using fd3vtk::ThreadCount;
+
+/// The kernel's run as both paths make it: `run` returns its result. A failure (out of memory,
+/// more points than 32-bit ids hold) is an error that leaves the points and no cells; an abort
+/// leaves an empty output. Returns whether to go on; where not, `done` is RequestData's value.
+template <typename Result, typename Run>
+bool KernelRan(vtkAlgorithm* self, const Run& run, Result& result, vtkUnstructuredGrid* output,
+  vtkPoints* points, vtkPointData* pointData, int& done)
+{
+  try
+  {
+    result = run();
+  }
+  catch (const std::exception& failure)
+  {
+    vtkErrorWithObjectMacro(self,
+      "Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
+    SetPointsWithoutCells(output, points, pointData);
+    done = 0;
+    return false;
+  }
+  if (result.status == fd3::Status::Aborted)
+  {
+    output->Initialize();
+    done = 1;
+    return false;
+  }
+  return true;
+}
 } // namespace
 
 vtkFastDelaunay3D::vtkFastDelaunay3D() = default;
@@ -416,21 +444,12 @@ int vtkFastDelaunay3D::RequestData(
   }
   const double* weightOf = weights.empty() ? nullptr : weights.data();
   fd3::Triangulation result;
-  try
+  int done = 0;
+  if (!KernelRan(
+        this, [&] { return this->Triangulate(xyz, weightOf, count, numberOfPoints, bounds); },
+        result, output, points, pointData, done))
   {
-    result = this->Triangulate(xyz, weightOf, count, numberOfPoints, bounds);
-  }
-  catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
-  {
-    vtkErrorMacro(
-      "Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
-    SetPointsWithoutCells(output, points, pointData);
-    return 0;
-  }
-  if (result.status == fd3::Status::Aborted)
-  {
-    output->Initialize();
-    return 1;
+    return done;
   }
   this->RecordFigures(result.stats);
   if (result.status == fd3::Status::CheckFailed)
@@ -497,25 +516,19 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
   }
   fd3::PeriodicTriangulation result;
   fd3::PeriodicPlacement placement;
-  try
-  {
-    result = fd3::triangulatePeriodic(xyz, count, box, this->KernelOptions(bounds.diagonal()));
-    if (result.status == fd3::Status::Ok)
+  auto run = [&] {
+    fd3::PeriodicTriangulation t =
+      fd3::triangulatePeriodic(xyz, count, box, this->KernelOptions(bounds.diagonal()));
+    if (t.status == fd3::Status::Ok)
     {
-      placement = fd3::placePeriodic(xyz, count, result, box);
+      placement = fd3::placePeriodic(xyz, count, t, box);
     }
-  }
-  catch (const std::exception& failure) // out of memory, or more points than 32-bit ids hold
+    return t;
+  };
+  int done = 0;
+  if (!KernelRan(this, run, result, output, points, pointData, done))
   {
-    vtkErrorMacro(
-      "Triangulation failed: " << failure.what() << "; the output holds the points and no cells");
-    SetPointsWithoutCells(output, points, pointData);
-    return 0;
-  }
-  if (result.status == fd3::Status::Aborted)
-  {
-    output->Initialize();
-    return 1;
+    return done;
   }
   this->RecordFigures(result.stats);
   if (!this->ReportOnInput(result.status, result.stats, static_cast<vtkIdType>(count)))
