@@ -56,15 +56,25 @@ public:
     for (int k = lo[2]; k <= hi[2]; ++k)
       for (int j = lo[1]; j <= hi[1]; ++j)
         for (int i = lo[0]; i <= hi[0]; ++i)
-        {
           cells_[index(i, j, k)].push_back(id);
-          filed_[index(i, j, k)].include(region);
-          rows_[std::size_t(k) * n_[1] + j].include(region);
-        }
+  }
+
+  /// Files `id` at point p, in its one cell, and keeps the bounds of the points filed in each
+  /// cell and each row of cells along x, for visitCells() and visitCellsNear().
+  void file(std::uint32_t id, const double p[3])
+  {
+    int at[3];
+    for (int k = 0; k < 3; ++k)
+      at[k] = cellOf(p[k], k);
+    const std::size_t cell = index(at[0], at[1], at[2]);
+    cells_[cell].push_back(id);
+    filed_[cell].include(p);
+    rows_[std::size_t(at[2]) * n_[1] + at[1]].include(p);
   }
 
   /// Calls visit(cell, filed, ids) for each cell that `region` overlaps: its index, below 2^30,
-  /// the bounds of what is filed there (empty for none), and the ids.
+  /// the bounds of the points filed there (empty for none, or for items filed as regions), and
+  /// the ids.
   template <typename Visit>
   void visitCells(const Bounds& region, Visit visit) const
   {
@@ -79,9 +89,9 @@ public:
         }
   }
 
-  /// visitCells() of the cells that `region` overlaps and that may hold items within `radius` of
-  /// `centre`, by the bounds of what is filed in their rows along x: a ball's cells, not its
-  /// box's, where the ball dips into the items only as a cap.
+  /// visitCells() of the cells that `region` overlaps and that may hold points within `radius` of
+  /// `centre`, by the bounds of the points filed in their rows along x (filed as points only): a
+  /// ball's cells, not its box's, where the ball dips into the points only as a cap.
   template <typename Visit>
   void visitCellsNear(
     const Bounds& region, const double centre[3], double radius, Visit visit) const
@@ -148,7 +158,7 @@ private:
   double lo_[3], inverse_[3];
   int n_[3];
   std::vector<std::vector<std::uint32_t>> cells_;
-  std::vector<Bounds> filed_; // per cell, of the regions filed there
+  std::vector<Bounds> filed_; // per cell, of the points filed there
   std::vector<Bounds> rows_;  // per row of cells along x, the same
 };
 

@@ -428,11 +428,7 @@ void PeriodicDelaunay::filePoints()
     places_.include(place_[id].data());
   pointBuckets_ = std::make_unique<Buckets>(places_, points_.size() / kPointsPerBucket + 1);
   for (const std::uint32_t id : points_)
-  {
-    Bounds at;
-    at.include(place_[id].data());
-    pointBuckets_->file(id, at);
-  }
+    pointBuckets_->file(id, place_[id].data());
 }
 
 bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
@@ -660,20 +656,20 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   mesh.visitHullFaces([&](const std::uint32_t face[3], const double* const xyz[3]) {
     if (std::min({face[0], face[1], face[2]}) >= boxPoints_ || parallelToPeriods(face))
       return;
-    const double *a = xyz[0], *b = xyz[1], *c = xyz[2];
     if (periodicAxes_ == 3)
     {
-      std::array<double, 9> face;
+      std::array<double, 9> corners;
       for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k)
-          face[3 * i + k] = fromFrame(frame_, xyz[i][k], k);
+          corners[3 * i + k] = fromFrame(frame_, xyz[i][k], k);
       const std::lock_guard<std::mutex> lock(failed);
-      out.outerFaces.push_back(face);
+      out.outerFaces.push_back(corners);
       return;
     }
     Bounds region;
     for (int i = 0; i < 3; ++i)
       region.include(xyz[i]);
+    const double *a = xyz[0], *b = xyz[1], *c = xyz[2];
     for (int k = 0; k < 3; ++k)
     {
       if (box_.periodic[k])
@@ -812,11 +808,11 @@ ImageRegion PeriodicDelaunay::outerBall(const std::array<double, 9>& face)
     w[k] = u[i] * v[j] - u[j] * v[i];
     ww += w[k] * w[k];
   }
+  const double m[3] = {uu * v[0] - vv * u[0], uu * v[1] - vv * u[1], uu * v[2] - vv * u[2]};
   double o[3], rho2 = 0, normal[3];
   for (int k = 0; k < 3; ++k)
   {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const double m[3] = {uu * v[0] - vv * u[0], uu * v[1] - vv * u[1], uu * v[2] - vv * u[2]};
     o[k] = a[k] + (m[i] * w[j] - m[j] * w[i]) / (2 * ww);
     rho2 += (o[k] - a[k]) * (o[k] - a[k]);
     normal[k] = w[k] / std::sqrt(ww);
@@ -875,8 +871,8 @@ ImageRegion PeriodicDelaunay::outerBall(const std::array<double, 9>& face)
   // The outer cap of that sphere; with its centre below the circle's plane (t < 0) it lies
   // within the circle's own ball, which bounds it, and is thin where t is far below.
   const double t = std::isfinite(std::sqrt(rho2 + least * least)) ? least : 0.0;
-  const double reach = t < 0 ? std::sqrt(rho2) + spacing_ : std::sqrt(rho2 + t * t) + spacing_;
   region.radius = std::sqrt(rho2 + t * t) + spacing_;
+  const double reach = t < 0 ? rho + spacing_ : region.radius;
   for (int k = 0; k < 3; ++k)
   {
     region.centre[k] = o[k] + t * normal[k];
