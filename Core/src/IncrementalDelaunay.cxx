@@ -26,6 +26,9 @@ namespace
 using Clock = std::chrono::steady_clock;
 /// Perturbation keys by point id (only finite points' are written and read).
 using Keys = std::vector<std::uint16_t, BulkAllocator<std::uint16_t>>;
+/// How far ahead a loop that reads records out of their order fetches them: enough to cover a
+/// miss to memory.
+constexpr std::size_t kFetchAhead = 16;
 
 double secondsSince(Clock::time_point start)
 {
@@ -363,15 +366,14 @@ VertexArray IncrementalDelaunay::Impl::vertices(
 {
   // The input read in insertion order, which jumps around it: the point a few places ahead is
   // requested early.
-  constexpr std::size_t kAhead = 16;
   VertexArray out;
   out.reserve(order.size() + extra);
   out.resize(order.size());
   team->forRanges(order.size(), "sort", [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      if (i + kAhead < end)
-        prefetch(xyz + 3 * std::size_t(order[i + kAhead]));
+      if (i + kFetchAhead < end)
+        prefetch(xyz + 3 * std::size_t(order[i + kFetchAhead]));
       toFrame(frame, xyz + 3 * std::size_t(order[i]), out[i].xyz);
       out[i].tet = kNoTet;
       out[i].point = static_cast<std::uint32_t>(firstPoint + order[i]);
@@ -765,6 +767,11 @@ void IncrementalDelaunay::visitTetrahedra(
     mesh.slots(), "visit", [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t)
       {
+        // The slots run in no order of the vertices: their records are fetched ahead.
+        if (t + kFetchAhead < end && !mesh.isDead(TetId(t + kFetchAhead)))
+          for (int i = 0; i < 4; ++i)
+            if (const VertId v = mesh.vertex(TetId(t + kFetchAhead), i); v != kInfinite)
+              prefetch(&vertices[v]);
         if (mesh.isDead(TetId(t)) || mesh.isGhost(TetId(t)))
           continue;
         static constexpr int kAll[4] = {0, 1, 2, 3};
