@@ -351,11 +351,15 @@ std::vector<ImageOf> IncrementalDelaunay::Impl::framedImages(const IdArray& orde
 {
   if (!images)
     return {};
-  std::vector<ImageOf> out(order.size());
+  // Read in insertion order, as vertices() reads the points.
+  std::vector<ImageOf> out;
+  out.reserve(order.size());
   for (std::size_t i = 0; i < order.size(); ++i)
   {
-    out[i] = images[order[i]];
-    for (double& r : out[i].residual)
+    if (i + kFetchAhead < order.size())
+      prefetch(images + order[i + kFetchAhead]);
+    out.push_back(images[order[i]]);
+    for (double& r : out.back().residual)
       r *= residualScale(frame);
   }
   return out;
@@ -427,7 +431,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   status = Status::Ok;
   VertexArray records = vertices(xyz, plan.order, 0, room);
   std::vector<double> vertexWeights = framedWeights(plan.order);
-  const std::vector<ImageOf> vertexImages = framedImages(plan.order);
+  std::vector<ImageOf> vertexImages = framedImages(plan.order);
   team->release(plan.order, "sort");
   team->release(key, "sort");
   if (takesPoints)
@@ -441,7 +445,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   triangulator = std::make_unique<Triangulator>(std::move(records), toFrame(frame, box), options,
     *team, frame.identity, std::move(vertexWeights));
   if (images)
-    triangulator->useImages(vertexImages);
+    triangulator->useImages(std::move(vertexImages));
   if (!triangulator->insertAll(plan.roundStarts, options.progress))
     status = Status::Aborted;
 }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace fd3
@@ -57,6 +58,12 @@ public:
     stride_ = stride;
   }
   void append(const ImageOf& image) { byRank_.push_back(image); }
+  void append(const std::vector<ImageOf>& more)
+  {
+    byRank_.insert(byRank_.end(), more.begin(), more.end());
+  }
+  /// The images of every vertex so far (by rank), in place of any before.
+  void assign(std::vector<ImageOf> byRank) { byRank_ = std::move(byRank); }
   ImageOf& at(std::size_t rank) { return byRank_[rank]; }
   std::size_t size() const { return byRank_.size(); }
 

@@ -39,10 +39,9 @@ bool Triangulator::insertAll(
   return insertRounds(4, vertexCount(), roundStarts, true, progress);
 }
 
-void Triangulator::useImages(const std::vector<ImageOf>& images)
+void Triangulator::useImages(std::vector<ImageOf> images)
 {
-  for (const ImageOf& image : images)
-    images_.append(image);
+  images_.assign(std::move(images));
   images_.locate(mesh_.vertices[0].xyz, sizeof(Vertex) / sizeof(double));
   tuning_.useImages(&images_);
   for (auto& inserter : inserters_)
@@ -68,8 +67,7 @@ bool Triangulator::insertMore(VertexArray more, std::vector<double> weights,
   mesh_.vertices.insert(mesh_.vertices.end(), more.begin(), more.end());
   if (images_.size() > 0)
   {
-    for (const ImageOf& image : images)
-      images_.append(image);
+    images_.append(images);
     images_.locate(mesh_.vertices[0].xyz, sizeof(Vertex) / sizeof(double)); // they may have moved
   }
   std::vector<std::size_t> starts(roundStarts);

@@ -48,7 +48,7 @@ public:
     const std::vector<ImageOf>& images = {});
   /// Makes the mesh periodic, before any insertion: its vertices are the periodic images of
   /// `images` (by vertex rank, in the frame's units), which the predicates then decide exactly.
-  void useImages(const std::vector<ImageOf>& images);
+  void useImages(std::vector<ImageOf> images);
   /// Appends `vertex` and inserts it on this thread, appending the finite tetrahedra the insertion
   /// deleted and made to `deleted` and `made`; false, with no change, when it repeats a vertex
   /// (listed in duplicates()).

@@ -25,6 +25,10 @@ constexpr int kTargetedRounds = 6;
 // at once for uniform points; a narrower one saves fewer images than a round of regions costs
 // (two more passes over the tetrahedra).
 constexpr double kFirstShell = 3.0;
+// The covering's room beyond the points and the first shell's images, were they spread evenly:
+// reserved, untouched memory costs nothing, where every doubling of the lists would copy the
+// images' records and fault their pages in again.
+constexpr double kCoveringMargin = 1.05;
 // Relative slack of the certificate's float evaluation: it only needs to be sufficient, and a
 // false failure only widens the shell.
 constexpr double kSlack = 1e-6;
@@ -365,6 +369,7 @@ void PeriodicDelaunay::chooseFrame()
   for (std::size_t i = 0; i < far.size(); i += 3)
     frameBox.include(&far[i]);
   std::vector<double> places;
+  places.reserve(3 * points_.size());
   for (const std::uint32_t id : points_)
     places.insert(places.end(), place_[id].begin(), place_[id].end());
   checkShifts(places.data(), points_.size(), frameBox, shifts);
@@ -381,6 +386,19 @@ void PeriodicDelaunay::chooseFrame()
     }
   if (!fits)
     frame_ = identityFrame(frameBox);
+}
+
+void PeriodicDelaunay::reserveCovering()
+{
+  // The points spread evenly, and a little more: the shell's images are its share of the volume.
+  double share = 1;
+  for (int k = 0; k < 3; ++k)
+    if (box_.periodic[k])
+      share *= 1 + 2 * margin_ / period_[k];
+  const auto count = static_cast<std::size_t>(kCoveringMargin * share * double(points_.size()));
+  coveringXyz_.reserve(3 * count);
+  coveringImages_.reserve(count);
+  covering_.reserve(count);
 }
 
 void PeriodicDelaunay::addPoints()
@@ -963,7 +981,8 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   out.rounds = 0;
   margin_ = std::min(kFirstShell * spacing_, widest_);
   pointBuckets_.reset(); // the points may have changed: filed again when a region asks
-  addPoints();           // first, the cells' generators
+  reserveCovering();
+  addPoints(); // first, the cells' generators
   boxPoints_ = static_cast<std::uint32_t>(covering_.size());
   if (!addShell(-1, margin_))
     return nullptr;

@@ -67,6 +67,8 @@ private:
   /// The frame of the covering at its widest: the box and the widest shell, or the points'
   /// extent along the axes that are not periodic.
   void chooseFrame();
+  /// Room in the covering's lists for the box's points and the first shell's images.
+  void reserveCovering();
   /// Appends the box's points, each at its place (offset 0).
   void addPoints();
   /// Appends the images of the box's points within `outer` of the box and not within `inner`
