@@ -1107,12 +1107,16 @@ VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
   own.generators = points_.size(); // the covering's first points
   Coordinates xyz;
   out = voronoiCells(*mesh, coverBounds_, own, xyz);
-  // From the covering's points to the input's.
+  // From the covering's points to the input's, through one table: the neighbours come in no
+  // order of either.
+  std::vector<std::uint32_t> inputOf(covering_.size());
+  for (std::size_t c = 0; c < covering_.size(); ++c)
+    inputOf[c] = representative_[covering_[c].owner];
   for (std::uint32_t& g : out.generators)
-    g = representative_[covering_[g].owner];
+    g = inputOf[g];
   for (std::uint32_t& n : out.faceNeighbors)
     if (n < kBoxFace)
-      n = representative_[covering_[n].owner];
+      n = inputOf[n];
   out.box = clipBox_;
   countPoints(out.stats);
   return out;
