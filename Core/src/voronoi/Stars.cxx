@@ -76,7 +76,8 @@ void sortVertices(ThreadTeam& team, Triangulation& mesh)
     });
 }
 
-void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vertices, Stars& stars)
+void groupByLowestVertex(
+  ThreadTeam& team, Triangulation& mesh, std::size_t vertices, std::size_t owners, Stars& stars)
 {
   const std::size_t tets = mesh.numberOfTetrahedra();
   const std::uint32_t* t4 = mesh.tetrahedra.data();
@@ -89,6 +90,8 @@ void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vert
     for (std::size_t t = 0; t < tets; ++t)
     {
       const std::uint32_t* v = t4 + 4 * t;
+      if (v[0] >= owners)
+        continue;
       // Branches, not sums of flags: a thread must not write another's entries, even unchanged.
       if (v[0] >= lo && v[0] < hi)
         ++stars.ownStart[v[0] + 1];
@@ -99,14 +102,14 @@ void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vert
   });
   team.accumulate(stars.ownStart, "voronoi stars");
   team.accumulate(stars.otherStart, "voronoi stars");
-  stars.tetrahedra.resize(4 * tets);
+  stars.tetrahedra.resize(4 * std::size_t(stars.ownStart[vertices]));
   VoronoiCells::Offsets next(vertices); // where each group's next tetrahedron goes
   team.forRanges(vertices, "voronoi stars", [&](std::size_t, std::size_t lo, std::size_t hi) {
     std::copy(&stars.ownStart[lo], &stars.ownStart[hi], &next[lo]);
     for (std::size_t t = 0; t < tets; ++t)
     {
       const std::uint32_t* v = t4 + 4 * t;
-      if (v[0] >= lo && v[0] < hi)
+      if (v[0] >= lo && v[0] < hi && v[0] < owners)
         std::copy_n(v, 4, stars.tetrahedra.data() + 4 * next[v[0]]++);
     }
   });

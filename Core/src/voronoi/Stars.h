@@ -44,11 +44,13 @@ struct Stars
 /// built from them depend on the points alone.
 void sortVertices(ThreadTeam& team, Triangulation& mesh);
 
-/// The mesh's tetrahedra grouped by their lowest vertex into stars.tetrahedra (the mesh's array
-/// goes to stars.others), and each vertex's other tetrahedra counted. Each thread scans every
-/// tetrahedron for the vertices of its own range, so that no two threads write one vertex's
-/// entries.
-void groupByLowestVertex(ThreadTeam& team, Triangulation& mesh, std::size_t vertices, Stars& stars);
+/// The mesh's tetrahedra whose lowest vertex is below `owners` grouped by that vertex into
+/// stars.tetrahedra (the mesh's array goes to stars.others), and each vertex's other tetrahedra
+/// counted. The others make no cell: a mesh's halo or periodic images bring many. Each thread
+/// scans every tetrahedron for the vertices of its own range, so that no two threads write one
+/// vertex's entries.
+void groupByLowestVertex(
+  ThreadTeam& team, Triangulation& mesh, std::size_t vertices, std::size_t owners, Stars& stars);
 
 /// Each vertex's other tetrahedra (those of lower vertices' groups that hold it), and whether
 /// its cell is clipped (a centre of its star is not inBox).

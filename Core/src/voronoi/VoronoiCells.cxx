@@ -8,11 +8,11 @@
 //    each cell's part inside the box is unchanged, and every face with a far point lies outside
 //    the box.
 // 2. Each tetrahedron's vertices are put in ascending order (orientation kept), and the
-//    tetrahedra are grouped by their lowest vertex, each group ordered by the other three: an
-//    order that the points alone decide (the mesh's own varies with the thread count). A
-//    tetrahedron's circumcentre is computed once, from its vertices in that order (in
-//    double-double where it is flat); a group's centres in the box are its cell's own, numbered
-//    in the groups' order.
+//    tetrahedra of generators are grouped by their lowest vertex, a generator (they come first
+//    along the curve), each group ordered by the other three: an order that the points alone
+//    decide (the mesh's own varies with the thread count). A tetrahedron's circumcentre is
+//    computed once, from its vertices in that order (in double-double where it is flat); a
+//    group's centres in the box are its cell's own, numbered in the groups' order.
 // 3. The stars: a vertex's own group, then the tetrahedra of lower vertices' groups that hold it,
 //    listed in two passes (a count, then the ids), each thread keeping the vertices of its own
 //    range; beside them, whether any centre of its star lies outside the box.
@@ -333,34 +333,23 @@ void renumberAlongCurve(ThreadTeam& team, const IdArray& inputId, Triangulation&
   mesh.representative.swap(representative);
 }
 
-/// Drops the tetrahedra with no generator among their vertices (the first `generators` ids): no
-/// cell is made of them. A mesh's halo or periodic images bring many.
-void keepGeneratorsTetrahedra(ThreadTeam& team, std::size_t generators, Triangulation& mesh)
+/// How many places along the curve hold the finite generators, which come first: only their
+/// tetrahedra make cells.
+std::size_t ownerCount(const CurvePoints& curve, std::size_t count, const VoronoiOptions& options)
 {
-  const std::uint32_t* t4 = mesh.tetrahedra.data();
-  const auto kept = [&](std::size_t t) {
-    return std::min({t4[4 * t], t4[4 * t + 1], t4[4 * t + 2], t4[4 * t + 3]}) < generators;
+  auto owns = [&](std::size_t place) {
+    return curve.inputId[place] < options.generators && isFinite(curve.xyz.data() + 3 * place);
   };
-  IdArray tetrahedra(mesh.tetrahedra.size());
-  std::size_t written = 0;
-  team.countThenWrite(
-    team.newRecord("voronoi generators' tetrahedra"), 0, mesh.tetrahedra.size() / 4, written,
-    [&](std::size_t begin, std::size_t end) {
-      std::size_t n = 0;
-      for (std::size_t t = begin; t < end; ++t)
-        n += kept(t);
-      return n;
-    },
-    [&](std::size_t, std::size_t begin, std::size_t end, std::size_t next) {
-      for (std::size_t t = begin; t < end; ++t)
-        if (kept(t))
-          std::copy_n(t4 + 4 * t, 4, tetrahedra.data() + 4 * next++);
-      return next;
-    });
-  tetrahedra.resize(4 * written);
-  team.release(mesh.tetrahedra, "voronoi generators' tetrahedra");
-  mesh.tetrahedra.swap(tetrahedra);
-  mesh.neighbors.clear();
+  std::size_t lo = 0, hi = count; // owns() holds below lo and fails from hi on
+  while (lo < hi)
+  {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (owns(mid))
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
 }
 
 /// The cells from the tetrahedralization of the points along the curve and the far points (in
@@ -380,7 +369,7 @@ VoronoiCells cellsOf(ThreadTeam& team, CurvePoints curve, std::size_t count,
 
   sortVertices(team, mesh);
   Stars stars;
-  groupByLowestVertex(team, mesh, count + kFarPoints, stars);
+  groupByLowestVertex(team, mesh, count + kFarPoints, ownerCount(curve, count, options), stars);
   Doubles centres;
   Flags inBox;
   circumcentres(team, curve.xyz.data(), curve.weights.empty() ? nullptr : curve.weights.data(),
@@ -560,8 +549,6 @@ VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   xyz.resize(3 * count);
   const auto hiddenGenerators = static_cast<std::size_t>(std::count_if(tetrahedra.hidden.begin(),
     tetrahedra.hidden.end(), [&](std::uint32_t id) { return id < options.generators; }));
-  if (options.generators < count)
-    keepGeneratorsTetrahedra(team, options.generators, tetrahedra);
   renumberAlongCurve(team, curve.inputId, tetrahedra);
   cells = cellsOf(
     team, std::move(curve), count, options, std::move(tetrahedra), density, std::move(cells));
