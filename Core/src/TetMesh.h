@@ -77,7 +77,8 @@ inline FaceCode faceCode(TetId t, int f)
 }
 
 /// The vertices of face f of a tetrahedron (the face opposite vertex f), ordered so that its normal
-/// (right-hand rule) points out of the tetrahedron: (face, f) is an odd permutation of (0, 1, 2, 3).
+/// (right-hand rule) points out of the tetrahedron: (face, f) is an odd permutation of
+/// (0, 1, 2, 3).
 constexpr int kFaceVertices[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 enum TetFlag : std::uint32_t

@@ -4,7 +4,8 @@
 =========================================================================*/
 // What the filters of FastDelaunay3D (and their MPI subclasses) take from their input before the
 // kernel runs: the points in the requested precision, their coordinates as doubles (whose finite
-// ones fd3::finiteBounds() bounds), the weights of weighted points, and the threads to run on. Shared by the module's filters; not an API of its own.
+// ones fd3::finiteBounds() bounds), the weights of weighted points, and the threads to run on.
+// Shared by the module's filters; not an API of its own.
 #ifndef FilterInput_h
 #define FilterInput_h
 

@@ -14,12 +14,12 @@
  * flags, as vtkDelaunay3D emits them).
  *
  * Unlike vtkDelaunay3D the result is exact: every orientation and in-sphere decision is made with
- * exact arithmetic behind a floating-point filter, and ties (cospherical or coplanar points, such as
- * lattices) are broken consistently by symbolic perturbation. The boundary of the output is exactly
- * the convex hull of the points, and every distinct point is a vertex. Exact duplicates are merged:
- * the copies stay in the output as unused points. Whatever is left out of the tetrahedralization
- * (duplicates, points within a non-zero Tolerance, NaN/Inf points) is counted, reported in one
- * warning, and recorded in the getters and the field data.
+ * exact arithmetic behind a floating-point filter, and ties (cospherical or coplanar points, such
+ * as lattices) are broken consistently by symbolic perturbation. The boundary of the output is
+ * exactly the convex hull of the points, and every distinct point is a vertex. Exact duplicates are
+ * merged: the copies stay in the output as unused points. Whatever is left out of the
+ * tetrahedralization (duplicates, points within a non-zero Tolerance, NaN/Inf points) is counted,
+ * reported in one warning, and recorded in the getters and the field data.
  *
  * The kernel follows "Fast Delaunay triangulation in three dimensions" (Bowyer-Watson insertion, a
  * background grid searched layer by layer, a walk to a tetrahedron in conflict with the point, the
@@ -170,8 +170,8 @@ public:
   /**
    * Resolution of the background grid used to find a starting point for each insertion, as the
    * target number of points per grid cell. 0 turns the grid off (each walk then starts from the
-   * last created tetrahedron). Default is 4, chosen by measurement (docs/performance.md). Clamped to
-   * [0, 1000]; NaN sets the default. Below 1/8, the grid has its most cells: 8 per point.
+   * last created tetrahedron). Default is 4, chosen by measurement (docs/performance.md). Clamped
+   * to [0, 1000]; NaN sets the default. Below 1/8, the grid has its most cells: 8 per point.
    */
   virtual void SetGridResolution(double pointsPerCell);
   vtkGetMacro(GridResolution, double);
@@ -373,14 +373,13 @@ public:
   /**
    * Figures of the last execution: distinct points inserted, exact duplicates merged, points
    * skipped for Tolerance, points with NaN/Inf coordinates (or weight), weighted points hidden,
-   * tetrahedra produced; the mean and
-   * maximum walk length (tetrahedra visited to locate a point: the paper's "Path"), the mean cavity
-   * size (tetrahedra deleted per insertion: the paper's "core"); seconds spent in the kernel, and
-   * per phase: sorting the points, locating them, growing the cavities, filling them, and output
-   * (the kernel's extraction plus the VTK cell arrays). Locate, cavity and fill times are sampled on one
-   * insertion in 16 and scaled up. Each run resets them. The four counts of points that are no
-   * vertex are also in the output's field data whenever one of them is not 0 (all figures with
-   * ComputeStatistics).
+   * tetrahedra produced; the mean and maximum walk length (tetrahedra visited to locate a point:
+   * the paper's "Path"), the mean cavity size (tetrahedra deleted per insertion: the paper's
+   * "core"); seconds spent in the kernel, and per phase: sorting the points, locating them, growing
+   * the cavities, filling them, and output (the kernel's extraction plus the VTK cell arrays).
+   * Locate, cavity and fill times are sampled on one insertion in 16 and scaled up. Each run resets
+   * them. The four counts of points that are no vertex are also in the output's field data whenever
+   * one of them is not 0 (all figures with ComputeStatistics).
    */
   vtkGetMacro(NumberOfInsertedPoints, vtkIdType);
   vtkGetMacro(NumberOfDuplicatePoints, vtkIdType);

@@ -17,10 +17,10 @@
 //   Benchmark --voronoi [--kinds ...] [--sizes N] [--threads 1,2] [--methods Core,filter,...]
 //             [--csv FILE] [--markdown FILE]
 //                                            Voronoi cells: Core, Voro++, scipy (VoronoiBench.cxx)
-//   Benchmark --weighted [--sizes N] [--radii LO,HI] [--repeat K] [--methods Core,CGAL,cells,Voro++]
-//             [--csv FILE] [--markdown FILE]
-//                                            weighted points: CGAL's regular triangulation, Voro++'s
-//                                            radical cells (WeightedBench.cxx)
+//   Benchmark --weighted [--sizes N] [--radii LO,HI] [--repeat K]
+//             [--methods Core,CGAL,cells,Voro++] [--csv FILE] [--markdown FILE]
+//                                            weighted points: CGAL's regular triangulation,
+//                                            Voro++'s radical cells (WeightedBench.cxx)
 //   Benchmark --periodic [--kinds cube,vacuum,planes,clusters] [--sizes N] [--repeat K]
 //             [--methods Core,plain,CGAL,cells,Voro++] [--csv FILE] [--markdown FILE]
 //                                            the periodic unit box: CGAL's periodic triangulation,

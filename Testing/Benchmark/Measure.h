@@ -217,7 +217,8 @@ struct RunSettings
 };
 
 /// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--methods M,..] [--limit S] [--repeat K]
-/// [--csv F] [--markdown F] into `settings`, skipping the mode's own `flag`; false (with a message) on any other option.
+/// [--csv F] [--markdown F] into `settings`, skipping the mode's own `flag`; false (with a message)
+/// on any other option.
 inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettings& settings)
 {
   for (int i = 1; i < argc; i += 2)

@@ -74,9 +74,9 @@ TEST(Density, UniformPointsNearTheirCount)
   EXPECT_LT(density[n / 2], 1.25 * expected);
 }
 
-// A cluster 1e-150 wide among unit points: its tetrahedra's volumes (near 1e-450) hold in no double,
-// its inner points' density (near 1e450) is infinite, its hull points' finite (their stars reach
-// the unit points); each value is the same whatever the points' order; the masses over the
+// A cluster 1e-150 wide among unit points: its tetrahedra's volumes (near 1e-450) hold in no
+// double, its inner points' density (near 1e450) is infinite, its hull points' finite (their stars
+// reach the unit points); each value is the same whatever the points' order; the masses over the
 // densities still sum to the hull's volume.
 TEST(Density, AnyMagnitudeAndAnyOrder)
 {

@@ -395,11 +395,11 @@ TEST(Predicates, DoubleDoubleStageDecidesNearDegenerateInSpheres)
     << " went on to the exact stage";
 }
 
-// Four of the five points in a plane perpendicular to an axis (a face of a structured grid, a layer,
-// a ring): the sign then comes from the fifth point's side and an incircle test in the plane. It
-// must be the rationals' for every axis and every position of the point off the plane, on exact
-// ties (rectangles, and rings whose points swap coordinates), near ties (a rectangle one ulp off)
-// and clear cases.
+// Four of the five points in a plane perpendicular to an axis (a face of a structured grid, a
+// layer, a ring): the sign then comes from the fifth point's side and an incircle test in the
+// plane. It must be the rationals' for every axis and every position of the point off the plane, on
+// exact ties (rectangles, and rings whose points swap coordinates), near ties (a rectangle one ulp
+// off) and clear cases.
 TEST(Predicates, AxisPlaneInSpheresAgreeWithRationals)
 {
   std::mt19937_64 rng(12);

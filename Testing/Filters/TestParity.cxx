@@ -95,7 +95,7 @@ TEST(Parity, DefaultsAreVtkDelaunay3Ds)
   EXPECT_EQ(ours->GetAlphaLines(), theirs->GetAlphaLines());
   EXPECT_EQ(ours->GetAlphaVerts(), theirs->GetAlphaVerts());
   // The one deliberate difference: vtkDelaunay3D 9.2 shows 0.001 but never applies it (it keeps
-  // every point); applied, 0.001 would drop most of a dense cloud, so ours is 0 (keeps every point).
+  // every point); applied, 0.001 would drop most of a dense cloud, so ours is 0.
   EXPECT_EQ(theirs->GetTolerance(), 0.001);
   EXPECT_EQ(ours->GetTolerance(), 0.0);
   EXPECT_EQ(ours->GetOffset(), theirs->GetOffset());

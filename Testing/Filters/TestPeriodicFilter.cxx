@@ -92,7 +92,7 @@ std::vector<fd3test::PeriodicTetrahedron> PeriodicTetrahedra(
       tets[t].ids[i] = static_cast<std::uint32_t>(s);
       for (int a = 0; a < 3; ++a)
       {
-        // The input point wraps into the box by `wraps` periods; the vertex lies `offset` from there.
+        // The input point wraps by `wraps` periods into the box; the vertex is `offset` away.
         const std::int32_t wraps = box.periodic[a]
           ? static_cast<std::int32_t>(std::floor((input->GetPoint(s)[a] - box.lo[a]) / period[a]))
           : 0;

@@ -22,8 +22,8 @@
 namespace fd3
 {
 
-/// Order in which points are inserted. Brio (biased randomized insertion order over a Hilbert curve)
-/// keeps consecutive points close and the walk short; the others exist for the benchmark.
+/// Order in which points are inserted. Brio (biased randomized insertion order over a Hilbert
+/// curve) keeps consecutive points close and the walk short; the others exist for the benchmark.
 enum class InsertionOrder
 {
   Brio,
@@ -154,7 +154,8 @@ struct Statistics
   }
 };
 
-/// The kernel's arrays of ids: a std::vector whose resize() leaves elements uninitialized (fd3::BulkAllocator).
+/// The kernel's arrays of ids: a std::vector whose resize() leaves elements uninitialized
+/// (fd3::BulkAllocator).
 using IdArray = std::vector<std::uint32_t, BulkAllocator<std::uint32_t>>;
 
 constexpr std::uint32_t kNoNeighbor = 0xFFFFFFFFu; ///< a hull face in Triangulation::neighbors
@@ -187,9 +188,9 @@ struct Triangulation
   /// 4 input point ids per tetrahedron; each tetrahedron is positively oriented:
   /// (p1 - p0) x (p2 - p0) . (p3 - p0) > 0, VTK's VTK_TETRA convention.
   IdArray tetrahedra;
-  /// neighbors[4*t + f] = 4*t' + f' where tetrahedron t' shares the face of t opposite its vertex f,
-  /// and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull.
-  /// Empty unless Options::computeNeighbors.
+  /// neighbors[4*t + f] = 4*t' + f' where tetrahedron t' shares the face of t opposite its vertex
+  /// f, and f' is the vertex of t' opposite that face; kNoNeighbor on the convex hull. Empty unless
+  /// Options::computeNeighbors.
   IdArray neighbors;
   /// For each input point: the input id of the vertex it was merged into (exact duplicate) or
   /// skipped for (closer than the tolerance); itself when it is a vertex or hidden; kNoPoint when
@@ -209,8 +210,8 @@ struct Triangulation
 };
 
 /// The alpha complex of a Delaunay tetrahedralization, as vtkDelaunay3D defines it: the
-/// tetrahedra of circumradius <= alpha; the triangles of circumradius <= alpha that are not a face of
-/// those tetrahedra; the edges of half-length <= alpha on neither; the points on none of them.
+/// tetrahedra of circumradius <= alpha; the triangles of circumradius <= alpha that are not a face
+/// of those tetrahedra; the edges of half-length <= alpha on neither; the points on none of them.
 struct AlphaComplex
 {
   IdArray tetrahedra;                   ///< indices into Triangulation::tetrahedra / 4
@@ -243,19 +244,20 @@ std::vector<double> densities(
 /// beyond 2^30 points or 2^30 tetrahedra (32-bit ids; about 150M uniform points), std::bad_alloc
 /// when memory runs out, and lets exceptions from the progress callback through; all memory is
 /// released either way.
-/// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the result
-/// is a Delaunay triangulation of the distinct finite input points whose boundary is their convex hull.
+/// Exact: every predicate is decided exactly, ties are broken by symbolic perturbation, so the
+/// result is a Delaunay triangulation of the distinct finite input points whose boundary is their
+/// convex hull.
 Triangulation triangulate(const double* xyz, std::size_t count, const Options& options = Options());
 
 /// The regular (weighted Delaunay) tetrahedralization of `count` weighted points: point i at
 /// xyz[3i..3i+2] with weight weights[i], its power distance to x being |x - p|^2 - weights[i] (a
-/// ball of radius r has weight r^2). It is the Delaunay tetrahedralization where every weight is the
-/// same (then computed as such, bit for bit), and any weight, negative too, is allowed. A point of
-/// non-finite weight is left out as a non-finite point. A point whose power cell is empty is hidden:
-/// no vertex, listed in Triangulation::hidden; of points at one position, only the heaviest can be
-/// a vertex. Exact, as triangulate() is, with ties broken by the same symbolic perturbation of the
-/// lifted coordinate |p|^2 - w, and the same for any Options::threads. Options::volumeThreshold
-/// does not apply (the result is exactly regular).
+/// ball of radius r has weight r^2). It is the Delaunay tetrahedralization where every weight is
+/// the same (then computed as such, bit for bit), and any weight, negative too, is allowed. A point
+/// of non-finite weight is left out as a non-finite point. A point whose power cell is empty is
+/// hidden: no vertex, listed in Triangulation::hidden; of points at one position, only the heaviest
+/// can be a vertex. Exact, as triangulate() is, with ties broken by the same symbolic perturbation
+/// of the lifted coordinate |p|^2 - w, and the same for any Options::threads.
+/// Options::volumeThreshold does not apply (the result is exactly regular).
 Triangulation triangulate(
   const double* xyz, const double* weights, std::size_t count, const Options& options = Options());
 

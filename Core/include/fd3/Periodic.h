@@ -71,11 +71,11 @@ struct PeriodicTriangulation
 /// small for a single copy of the box to hold their tetrahedralization.
 ///
 /// Options as for triangulate(), except that tolerance and volumeThreshold are not applied (0:
-/// exactly Delaunay, every distinct point a vertex) and no neighbours are given. Throws std::invalid_argument for a box with
-/// no periodic axis or a periodic axis with hi <= lo or not finite. Status::OutOfRange where a
-/// point lies more than 2^30 periods from the box, an image is no sum of two doubles, or a
-/// tetrahedron would span more than 127 periods (a few points in a box thousands of times longer
-/// than wide).
+/// exactly Delaunay, every distinct point a vertex) and no neighbours are given. Throws
+/// std::invalid_argument for a box with no periodic axis or a periodic axis with hi <= lo or not
+/// finite. Status::OutOfRange where a point lies more than 2^30 periods from the box, an image is
+/// no sum of two doubles, or a tetrahedron would span more than 127 periods (a few points in a box
+/// thousands of times longer than wide).
 PeriodicTriangulation triangulatePeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options = Options());
 

@@ -50,8 +50,8 @@ struct VoronoiOptions
 };
 
 /// One cell per generator: each distinct finite input point (duplicates are merged into the first
-/// of their copies, as triangulate() merges them) among the first VoronoiOptions::generators. A generator whose region misses the box has a
-/// cell without faces, of volume 0.
+/// of their copies, as triangulate() merges them) among the first VoronoiOptions::generators. A
+/// generator whose region misses the box has a cell without faces, of volume 0.
 struct VoronoiCells
 {
   /// Ok, Empty (no finite point), Aborted; or OutOfRange when the points and box span more than
@@ -62,10 +62,10 @@ struct VoronoiCells
   using Doubles = std::vector<double, BulkAllocator<double>>;
   using Offsets = std::vector<std::size_t, BulkAllocator<std::size_t>>;
   /// The cells' vertices (empty without VoronoiOptions::polyhedra, as are faceStart,
-  /// faceVertices, cellPointStart and cellPoints), x,y,z each: the circumcentres in the box, cell after cell (each cell's
-  /// own, those of the tetrahedra whose lowest vertex is its generator), then the crossings of
-  /// the box, cell after cell (each clipped cell has its own, at the same coordinates as its
-  /// neighbours').
+  /// faceVertices, cellPointStart and cellPoints), x,y,z each: the circumcentres in the box, cell
+  /// after cell (each cell's own, those of the tetrahedra whose lowest vertex is its generator),
+  /// then the crossings of the box, cell after cell (each clipped cell has its own, at the same
+  /// coordinates as its neighbours').
   Doubles points;
   /// Each cell's input point id; the cells follow a Hilbert curve through the points, an order
   /// that only the points decide.
@@ -116,11 +116,11 @@ VoronoiCells voronoiCells(
 /// points again: the mesh took its points (the piece's own first, options.generators of them,
 /// then those other pieces sent), all within `pointBounds` (the whole set's bounds, so that every
 /// piece adds the same far points), in a frame that also holds voronoiFarPoints(pointBounds,
-/// options.box); options.box must be a finite box. The cells are those voronoiCells() gives the same
-/// points. Adds the far points and ends the mesh, which gives back its points' coordinates in
-/// `xyz` (as IncrementalDelaunay::release does). A weighted mesh gives power cells: `weights`
-/// then holds every point's weight, by id, as the mesh was given them, and stats.hiddenPoints
-/// counts the generators hidden. Throws as triangulate() does.
+/// options.box); options.box must be a finite box. The cells are those voronoiCells() gives the
+/// same points. Adds the far points and ends the mesh, which gives back its points' coordinates in
+/// `xyz` (as IncrementalDelaunay::release does). A weighted mesh gives power cells: `weights` then
+/// holds every point's weight, by id, as the mesh was given them, and stats.hiddenPoints counts the
+/// generators hidden. Throws as triangulate() does.
 VoronoiCells voronoiCells(IncrementalDelaunay& mesh, const Bounds& pointBounds,
   const VoronoiOptions& options, Coordinates& xyz, const double* weights = nullptr);
 

@@ -1,8 +1,8 @@
 // Exact floating-point expansion arithmetic (Priest, Shewchuk): a number is a sum of doubles of
-// increasing magnitude that do not overlap. Sums and products of doubles are captured without error,
-// so the sign of a polynomial in the input coordinates is decided exactly.
-// Written for this project from the published algorithms; no external code.
-// Requires IEEE round-to-nearest doubles and no contraction into FMA (Core builds with -ffp-contract=off).
+// increasing magnitude that do not overlap. Sums and products of doubles are captured without
+// error, so the sign of a polynomial in the input coordinates is decided exactly. Written for this
+// project from the published algorithms; no external code. Requires IEEE round-to-nearest doubles
+// and no contraction into FMA (Core builds with -ffp-contract=off).
 #ifndef fd3_Expansion_h
 #define fd3_Expansion_h
 

@@ -218,10 +218,10 @@ public:
     tuning_ = other.tuning_;
     liftsFirst_ = liftsFirst_ && !tuning_.anyMagnitude && !tuning_.images;
   }
-  /// For the vertices of a periodic run, whose records hold images rounded (PeriodicImages.h): every
-  /// sign is then the exact images', and ties are broken in the images' order. The static filters
-  /// widen by the rounding of the records (applyBoxBounds()); every test they leave open on an
-  /// image that its record does not hold is decided exactly, with the residuals, in GMP
+  /// For the vertices of a periodic run, whose records hold images rounded (PeriodicImages.h):
+  /// every sign is then the exact images', and ties are broken in the images' order. The static
+  /// filters widen by the rounding of the records (applyBoxBounds()); every test they leave open on
+  /// an image that its record does not hold is decided exactly, with the residuals, in GMP
   /// integers. No grid, lifts' filter or power test then.
   void useImages(const PeriodicImages* images);
   /// For coordinates of any finite magnitude, from the smallest subnormal to DBL_MAX (points that

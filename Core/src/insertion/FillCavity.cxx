@@ -186,8 +186,8 @@ void Inserter::linkByRotation()
 }
 
 // New tetrahedron i was built on boundary facet (t, g); its face `face` holds the new point and
-// the facet's edge uw. Turn about uw through the deleted tetrahedra, starting with t's other face on
-// uw, until a boundary facet is met: the new tetrahedron built on it is the neighbour.
+// the facet's edge uw. Turn about uw through the deleted tetrahedra, starting with t's other face
+// on uw, until a boundary facet is met: the new tetrahedron built on it is the neighbour.
 void Inserter::linkAroundEdge(std::size_t i, int face)
 {
   const BoundaryFacet& facet = cavity_.boundary[i];

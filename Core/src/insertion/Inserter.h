@@ -112,7 +112,7 @@ public:
   enum class Outcome
   {
     Inserted,
-    Deferred, ///< the insertion would change the mesh outside the region, or it is full: nothing done
+    Deferred,  ///< it would change the mesh outside the region, or the region is full: nothing done
     Duplicate, ///< v repeats a vertex of the mesh (only looked for after lookForDuplicates())
     Hidden     ///< weighted: v conflicts with no tetrahedron, so it is no vertex (hidden())
   };

@@ -123,11 +123,12 @@ TetId Inserter::regionStart(VertId v) const
 }
 
 // The visibility walk: until the current tetrahedron is in conflict (or, with a volume threshold or
-// while looking for duplicates, contains the point or is a ghost whose hull face the point lies beyond), cross one of its faces
-// that separates it from the point. In a region, a tetrahedron that is not the inserter's ends the
-// walk with kNoTet (it was read safely: it shares a face with one that is). The faces are tried in order of decreasing distance from the
-// point to the vertex they leave behind, so the tetrahedra close in on the point: on surface
-// samples, whose thin tetrahedra fan out, a random first face made walks many times longer.
+// while looking for duplicates, contains the point or is a ghost whose hull face the point lies
+// beyond), cross one of its faces that separates it from the point. In a region, a tetrahedron that
+// is not the inserter's ends the walk with kNoTet (it was read safely: it shares a face with one
+// that is). The faces are tried in order of decreasing distance from the point to the vertex they
+// leave behind, so the tetrahedra close in on the point: on surface samples, whose thin tetrahedra
+// fan out, a random first face made walks many times longer.
 template <bool Weighted>
 TetId Inserter::walk(TetId t, VertId v)
 {

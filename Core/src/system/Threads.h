@@ -81,7 +81,7 @@ public:
   /// Gives the whole pages of [begin, begin + bytes) back to the system on the team's threads
   /// (fd3::releasePages in Stretches.h), recorded as `phase`.
   void releasePages(void* begin, std::size_t bytes, const char* phase);
-  /// Gives back the memory of `v` beyond its size (fd3::releaseSpareCapacity) on the team's threads.
+  /// Gives back v's memory beyond its size (fd3::releaseSpareCapacity) on the team's threads.
   template <typename T>
   void releaseSpareCapacity(std::vector<T, BulkAllocator<T>>& v, const char* phase)
   {
