@@ -6,6 +6,7 @@
 
 #include "FilterInput.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkAppendFilter.h"
 #include "vtkDataObject.h"
 #include "vtkDataSet.h"
@@ -21,8 +22,8 @@
 namespace fd3vtk
 {
 
-vtkSmartPointer<vtkPointSet> GatheredPoints(
-  vtkMultiProcessController* controller, vtkDataSet* input)
+vtkSmartPointer<vtkPointSet> GatheredPoints(vtkMultiProcessController* controller,
+  vtkDataSet* input, vtkAlgorithm* filter, const char* noPoints)
 {
   // Points and point data only: the cells are not wanted, and are no cost to send.
   vtkNew<vtkPolyData> piece;
@@ -46,7 +47,13 @@ vtkSmartPointer<vtkPointSet> GatheredPoints(
     append->AddInputData(received);
   }
   append->Update();
-  return append->GetOutput();
+  vtkSmartPointer<vtkPointSet> all = append->GetOutput();
+  if (all->GetNumberOfPoints() == 0)
+  {
+    vtkWarningWithObjectMacro(filter, << noPoints);
+    return nullptr;
+  }
+  return all;
 }
 
 } // namespace fd3vtk

@@ -10,6 +10,7 @@
 
 #include "vtkSmartPointer.h"
 
+class vtkAlgorithm;
 class vtkDataSet;
 class vtkMultiProcessController;
 class vtkPointSet;
@@ -18,9 +19,9 @@ namespace fd3vtk
 {
 /// A collective call: on rank 0, the points of every rank's `input` (none where it is null) with
 /// the point data arrays that all of them have, rank after rank, each in its own order; null on
-/// the other ranks.
-vtkSmartPointer<vtkPointSet> GatheredPoints(
-  vtkMultiProcessController* controller, vtkDataSet* input);
+/// the other ranks, and on rank 0 where no rank has a point, after `filter` warns `noPoints`.
+vtkSmartPointer<vtkPointSet> GatheredPoints(vtkMultiProcessController* controller,
+  vtkDataSet* input, vtkAlgorithm* filter, const char* noPoints);
 } // namespace fd3vtk
 
 #endif

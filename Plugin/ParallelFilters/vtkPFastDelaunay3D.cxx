@@ -51,14 +51,10 @@ int vtkPFastDelaunay3D::RequestData(
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
     // Not distributed yet: the first rank triangulates every rank's points, as one process.
-    vtkSmartPointer<vtkPointSet> all = fd3vtk::GatheredPoints(this->Controller, input);
+    vtkSmartPointer<vtkPointSet> all =
+      fd3vtk::GatheredPoints(this->Controller, input, this, "Cannot triangulate; no input points");
     if (!all)
     {
-      return 1;
-    }
-    if (all->GetNumberOfPoints() == 0)
-    {
-      vtkWarningMacro("Cannot triangulate; no input points");
       return 1;
     }
     const bool weighted =

@@ -112,14 +112,10 @@ int vtkPFastVoronoi3D::RequestData(
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
     // Not distributed yet: the first rank computes every rank's points' cells, as one process.
-    vtkSmartPointer<vtkPointSet> all = fd3vtk::GatheredPoints(this->Controller, input);
+    vtkSmartPointer<vtkPointSet> all =
+      fd3vtk::GatheredPoints(this->Controller, input, this, "No Voronoi cells: no input points");
     if (!all)
     {
-      return 1;
-    }
-    if (all->GetNumberOfPoints() == 0)
-    {
-      vtkWarningMacro("No Voronoi cells: no input points");
       return 1;
     }
     return this->OutputCells(all,

@@ -106,4 +106,13 @@ if not np.array_equal(vtk_to_numpy(tets.GetCells().GetConnectivityArray()),
                       vtk_to_numpy(reference.GetCells().GetConnectivityArray())):
     sys.exit("TestMPIPeriodic: the tetrahedra differ from one process")
 print("TestMPIPeriodic: %d periodic tetrahedra on %d ranks, as one process" % (tets.GetNumberOfCells(), ranks))
+# No rank has a point: a warning on the first rank and empty outputs, on every rank alike.
+nothing = ProgrammableSource(OutputDataSetType="vtkPolyData",
+                             Script="self.GetOutput().SetPoints(vtk.vtkPoints())")
+for make in (FastVoronoi3D, FastDelaunay3D):
+    made = make(Input=nothing, **settings)
+    for r in range(ranks):  # not any(): paraview.simple brings its own
+        if servermanager.Fetch(made, r).GetNumberOfCells():
+            sys.exit("TestMPIPeriodic: cells from no points")
+print("TestMPIPeriodic: no points on any rank, no cells")
 print("TestMPIPeriodic: OK")
