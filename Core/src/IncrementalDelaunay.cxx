@@ -1,5 +1,5 @@
 // The kernel's entry points: clean and normalize the points, order them, insert them, and hand
-// back the finite tetrahedra with input point ids. triangulate() is one used once.
+// back the finite tetrahedra with input point ids; triangulate() runs an IncrementalDelaunay once.
 #include "FiniteBounds.h"
 #include "derived/Halo.h"
 #include "exact/Frame.h"
