@@ -30,6 +30,8 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <string>
+#include <vector>
 
 namespace fd3bench
 {
@@ -112,6 +114,9 @@ Measurement runVoropp(const Points& p)
 }
 #endif
 
+/// The sets periodicSet() makes.
+const std::vector<std::string> kPeriodicSets = {"cube", "vacuum", "planes", "clusters"};
+
 /// The set `kind` of n points in the unit box, wrapped into it as every peer takes them.
 Points periodicSet(const std::string& kind, std::size_t n)
 {
@@ -151,10 +156,12 @@ int periodicMain(int argc, char* argv[])
   if (!parseRunSettings(argc, argv, "--periodic", settings))
     return 2;
   for (const std::string& kind : settings.kinds)
-    if (kind != "cube" && kind != "vacuum" && kind != "planes" && kind != "clusters")
+    if (std::find(kPeriodicSets.begin(), kPeriodicSets.end(), kind) == kPeriodicSets.end())
     {
-      std::fprintf(
-        stderr, "Benchmark --periodic: no set %s (cube, vacuum, planes, clusters)\n", kind.c_str());
+      std::string known;
+      for (const std::string& set : kPeriodicSets)
+        known += (known.empty() ? "" : ", ") + set;
+      std::fprintf(stderr, "Benchmark --periodic: no set %s (%s)\n", kind.c_str(), known.c_str());
       return 2;
     }
   const std::vector<ModeMethod<Points>> chosen = methods(settings.methods);
