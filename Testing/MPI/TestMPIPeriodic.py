@@ -111,7 +111,8 @@ nothing = ProgrammableSource(OutputDataSetType="vtkPolyData",
                              Script="self.GetOutput().SetPoints(vtk.vtkPoints())")
 for make in (FastVoronoi3D, FastDelaunay3D):
     made = make(Input=nothing, **settings)
-    for r in range(ranks):  # not any(): paraview.simple brings its own
+    # Not any(): once a Programmable Source has run in this process, `any` is numpy's here.
+    for r in range(ranks):
         if servermanager.Fetch(made, r).GetNumberOfCells():
             sys.exit("TestMPIPeriodic: cells from no points")
 print("TestMPIPeriodic: no points on any rank, no cells")
