@@ -324,7 +324,8 @@ private:
     VertId vertex;
     TetId tet; ///< its Vertex::tet, deleted by the cavity
   };
-  std::vector<CavityVertex> cavityVertices_; // weighted only
+  std::vector<CavityVertex> cavityVertices_; // weighted only: room for every cavity vertex
+  std::size_t cavityCandidates_ = 0;         // the first ones, collectCavityVertices()'s
   // The start of the next walk: the last inserted vertex (unrestricted), or, restricted, a
   // tetrahedron of the region near the last point: the last one created, or the base found for a
   // point that was put off (both the inserter's, unlike a vertex's tetrahedron).
