@@ -11,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
@@ -342,8 +343,20 @@ std::vector<double> IncrementalDelaunay::Impl::framedWeights(const IdArray& orde
     return {};
   std::vector<double> out(order.size());
   const int twice = frame.identity ? 0 : 2 * std::ilogb(frame.scale);
-  for (std::size_t i = 0; i < order.size(); ++i)
-    out[i] = std::ldexp(weights[order[i]], twice);
+  // The product by 2^twice, where that is a double, rounds as ldexp() does; a library call per
+  // weight took most of this pass. Read in insertion order, as vertices() reads the points.
+  const bool representable = twice >= std::numeric_limits<double>::min_exponent - 53 &&
+    twice < std::numeric_limits<double>::max_exponent;
+  const double factor = std::ldexp(1.0, twice);
+  team->forRanges(order.size(), "sort", [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      if (i + kFetchAhead < end)
+        prefetch(weights + order[i + kFetchAhead]);
+      const double w = weights[order[i]];
+      out[i] = representable ? w * factor : std::ldexp(w, twice);
+    }
+  });
   return out;
 }
 
