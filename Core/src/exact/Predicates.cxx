@@ -555,6 +555,30 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
   return x.add(x.add(x.multiply(u[0], cx), x.multiply(u[1], cy)), x.multiply(u[2], cz));
 }
 
+int Predicates::orient3dBeyondStatic(
+  double det, const double* a, const double* b, const double* c, const double* d)
+{
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  if (tuning_.floatExactOrient)
+    return 0;
+  // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
+  // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
+  // filter::kOrientSemiStatic times that product. For images with rounded records, the bound
+  // widened by how far the exact differences may lie from the records' (filter::recordBounds()).
+  const double largest[3] = {std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)}),
+    std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)}),
+    std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)})};
+  const double scale = largest[0] * largest[1] * largest[2];
+  const bool inexact = tuning_.images && anyInexact(a, b, c, d);
+  const double bound = inexact ? filter::recordBounds(largest, tuning_.imageSlack).orient
+                               : filter::kOrientSemiStatic * scale;
+  if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kOrientRange, largest))
+    return -filter::signOf(det);
+  return inexact ? orient3dOfImages(a, b, c, d) : orient3dExact(a, b, c, d);
+}
+
 int Predicates::orient3dExact(const double* a, const double* b, const double* c, const double* d)
 {
   ++exactOrientCalls;

@@ -255,6 +255,10 @@ public:
 private:
   template <int N>
   void gridDifferences(const double* const x[N], const double* y, std::int64_t out[N][3]) const;
+  /// orient3d() for a determinant `det` that the static filter left open: the semi-static filter,
+  /// then the exact stage.
+  int orient3dBeyondStatic(
+    double det, const double* a, const double* b, const double* c, const double* d);
   int orient3dExact(const double* a, const double* b, const double* c, const double* d);
   int inSphereDoubleDouble(
     const double* a, const double* b, const double* c, const double* d, const double* e);
@@ -344,6 +348,8 @@ private:
   void applyBoxBounds();
 };
 
+// Only the static filter is inline: it decides nearly every call, and where the rest was inlined
+// too the compiler left the whole test out of line, a call for each of them.
 inline int Predicates::orient3d(const double* a, const double* b, const double* c, const double* d)
 {
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
@@ -354,22 +360,7 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
     adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
   if (det > tuning_.orientStatic || -det > tuning_.orientStatic)
     return -filter::signOf(det);
-  if (tuning_.floatExactOrient)
-    return 0;
-  // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
-  // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
-  // filter::kOrientSemiStatic times that product. For images with rounded records, the bound
-  // widened by how far the exact differences may lie from the records' (filter::recordBounds()).
-  const double largest[3] = {std::max({std::fabs(adx), std::fabs(bdx), std::fabs(cdx)}),
-    std::max({std::fabs(ady), std::fabs(bdy), std::fabs(cdy)}),
-    std::max({std::fabs(adz), std::fabs(bdz), std::fabs(cdz)})};
-  const double scale = largest[0] * largest[1] * largest[2];
-  const bool inexact = tuning_.images && anyInexact(a, b, c, d);
-  const double bound = inexact ? filter::recordBounds(largest, tuning_.imageSlack).orient
-                               : filter::kOrientSemiStatic * scale;
-  if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kOrientRange, largest))
-    return -filter::signOf(det);
-  return inexact ? orient3dOfImages(a, b, c, d) : orient3dExact(a, b, c, d);
+  return orient3dBeyondStatic(det, a, b, c, d);
 }
 
 /// det[(x-e, |x-e|^2) for x = a,b,c,d]: positive means inside for the negative orientation, i.e.
