@@ -269,6 +269,12 @@ bool PeriodicDelaunay::wrapPoints()
   placeResidual_.resize(count_);
   wraps_.assign(3 * count_, 0);
   representative_.assign(count_, kNoPoint);
+  // A coordinate below this bound and not below lo is in the box already, its own place: the
+  // bound lies a step below the float sum lo + period, whose rounding the step covers, so that
+  // the exact wrap below is left to coordinates that may need one.
+  double inside[3];
+  for (int k = 0; k < 3; ++k)
+    inside[k] = std::nextafter(box_.lo[k] + period_[k], -HUGE_VAL);
   for (std::size_t i = 0; i < count_; ++i)
   {
     const double* p = xyz_ + 3 * i;
@@ -283,7 +289,7 @@ bool PeriodicDelaunay::wrapPoints()
     {
       place_[i][k] = p[k];
       placeResidual_[i][k] = 0;
-      if (!box_.periodic[k])
+      if (!box_.periodic[k] || (p[k] >= box_.lo[k] && p[k] < inside[k]))
         continue;
       const double periods = std::floor((p[k] - box_.lo[k]) / period_[k]);
       if (!(std::fabs(periods) < kMostPeriods))
