@@ -343,8 +343,8 @@ std::vector<double> IncrementalDelaunay::Impl::framedWeights(const IdArray& orde
     return {};
   std::vector<double> out(order.size());
   const int twice = frame.identity ? 0 : 2 * std::ilogb(frame.scale);
-  // The product by 2^twice, where that is a double, rounds as ldexp() does; a library call per
-  // weight took most of this pass. Read in insertion order, as vertices() reads the points.
+  // The product by 2^twice, where that is a double, rounds as ldexp() does, which is a library
+  // call per weight. Read in insertion order, as vertices() reads the points.
   const bool representable = twice >= std::numeric_limits<double>::min_exponent - 53 &&
     twice < std::numeric_limits<double>::max_exponent;
   const double factor = std::ldexp(1.0, twice);

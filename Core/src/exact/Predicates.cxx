@@ -558,11 +558,11 @@ Expansion Predicates::minor3(Expansion const u[3], Expansion const v[3], Expansi
 int Predicates::orient3dBeyondStatic(
   double det, const double* a, const double* b, const double* c, const double* d)
 {
+  if (tuning_.floatExactOrient)
+    return 0;
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-  if (tuning_.floatExactOrient)
-    return 0;
   // Semi-static filter: the permanent is at most 6 times the product of the largest |x|, |y| and
   // |z| differences, so Shewchuk's bound (7 + 56 eps) eps * permanent is below
   // filter::kOrientSemiStatic times that product. For images with rounded records, the bound

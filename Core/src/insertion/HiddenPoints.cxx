@@ -24,8 +24,8 @@ bool Inserter::baseInConflict(TetId base, VertId v)
 // Only a vertex whose own tetrahedron (Vertex::tet) the cavity deletes can lose all of them: each
 // vertex is a candidate in one deleted tetrahedron at most, whose record, and the vertex's, the
 // cavity's tests have in cache. Every vertex of the cavity is written to the list and only the
-// candidates are kept (the count advances by the test's outcome): a branch on it is a coin toss
-// to the predictor, and it ran at about twenty instructions per vertex in a push_back.
+// candidates are kept (the count advances by the test's outcome): a branch on the outcome is a
+// coin toss to the predictor, and a push_back under it costs about twenty instructions a vertex.
 void Inserter::collectCavityVertices()
 {
   const std::size_t deleted = cavity_.deleted.size();
