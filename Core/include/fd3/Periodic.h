@@ -4,6 +4,7 @@
 #ifndef fd3_Periodic_h
 #define fd3_Periodic_h
 
+#include "fd3/Bounds.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Voronoi.h"
 
@@ -133,6 +134,71 @@ AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPl
 /// whole star. Statuses as triangulatePeriodic().
 VoronoiCells voronoiCellsPeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const VoronoiOptions& options = {});
+
+/// One piece of a point set spread over several processes by space (the MPI filters' ranks), for
+/// the runs of a piece below. The points given to such a run are the piece's own, `own` of them,
+/// then its ghosts: every point of the other pieces with an image within `halo` of `region`
+/// (periodicImageWithin()). The pieces together give what one process gives the whole set taken
+/// in the order of `ids`: each periodic tetrahedron once, by the piece whose own point is its
+/// least vertex (least id, then offset 0), and each own point's cell. The predicates and their
+/// perturbation do not depend on the ids (PeriodicImages.h), so every piece decides each sign as
+/// one process would.
+struct PeriodicPiece
+{
+  std::size_t own = 0;
+  /// Per point given, its id in the whole set: which of two repeats is kept, and which piece
+  /// takes a tetrahedron, follow them.
+  const std::uint32_t* ids = nullptr;
+  /// Holds the places of the own points (periodicPlaces()), the same box on every piece that
+  /// sends this one its ghosts.
+  Bounds region;
+  double halo = 0;
+  /// Of the whole set: its finite points, and the extent of their places.
+  std::size_t points = 0;
+  Bounds extent;
+};
+
+/// Each finite point's place in `box` (its wrap into it, rounded to doubles; see
+/// PeriodicTriangulation::wraps), x, y, z, NaN for a point that is not finite: what a piece's own
+/// points are chosen by. False where a point lies more than 2^30 periods from the box.
+bool periodicPlaces(
+  const double* xyz, std::size_t count, const PeriodicBox& box, std::vector<double>& places);
+
+/// Whether an image of a point at `place` (periodicPlaces()) lies within `halo` of `region`, the
+/// test that chooses what a piece sends another, widened against the rounding of places.
+bool periodicImageWithin(
+  const double place[3], const PeriodicBox& box, const Bounds& region, double halo);
+
+/// The first halo of the pieces of `points` finite points whose places span `extent`: a few
+/// spacings of evenly spread points, which uniform points need no wider.
+double firstPeriodicHalo(const PeriodicBox& box, std::size_t points, const Bounds& extent);
+
+/// A piece's share of triangulatePeriodic() (PeriodicPiece).
+struct PeriodicPieceTriangulation
+{
+  /// The tetrahedra whose least vertex is an own point, on the indices of the points given, as
+  /// triangulatePeriodic() gives them; wraps and representative per point given; the statistics
+  /// count the own points and these tetrahedra.
+  PeriodicTriangulation triangulation;
+  /// Where asked: per own point, its density as densities() gives it from the whole set (its
+  /// star, from every piece's tetrahedra, is within the piece), up to the rounding of the sums.
+  std::vector<double> density;
+  /// 0 where the halo was wide enough; else the halo to send the ghosts again with, on every
+  /// piece (the largest any piece asks), and run again. Nothing else is set then.
+  double widerHalo = 0;
+};
+
+/// The periodic tetrahedra of a piece's points, `count` of them, own then ghosts (PeriodicPiece),
+/// with their densities where `density`. Statuses and throws as triangulatePeriodic().
+PeriodicPieceTriangulation triangulatePeriodicPiece(const double* xyz, std::size_t count,
+  const PeriodicBox& box, const PeriodicPiece& piece, bool density,
+  const Options& options = Options());
+
+/// The cells of a piece's own points, as voronoiCellsPeriodic() gives them of the whole set
+/// (generators and neighbours as indices of the points given). `widerHalo` as in
+/// PeriodicPieceTriangulation; there are no cells where it is not 0.
+VoronoiCells voronoiCellsPeriodicPiece(const double* xyz, std::size_t count, const PeriodicBox& box,
+  const PeriodicPiece& piece, double& widerHalo, const VoronoiOptions& options = {});
 
 } // namespace fd3
 

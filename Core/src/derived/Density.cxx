@@ -6,6 +6,7 @@
 // volume near 1e-450, which no double holds, and whose density (near 1e450) rounds to infinity
 // rather than to whatever an underflowed volume would give. Each volume comes from its vertices in
 // one order, whatever the mesh's, so that every run (and every MPI rank) computes it alike.
+#include "derived/Density.h"
 #include "exact/Predicates.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Periodic.h"
@@ -77,10 +78,10 @@ void sixVolumeScaled(const double* const vertices[4], double& mantissa, int& exp
 }
 
 /// The estimate from tetrahedra `tets` on vertices at corner(v), each vertex counted at its input
-/// point source(v).
+/// point source(v), or at none where that is `count` or more (a piece's other points).
 template <typename Corner, typename Source>
 std::vector<double> densitiesOf(std::size_t count, const IdArray& tets,
-  const IdArray& representative, Corner corner, Source source)
+  const std::uint32_t* representative, Corner corner, Source source)
 {
   std::vector<ScaledSum> star(count);
   std::vector<double> mass(count, 0);
@@ -92,18 +93,22 @@ std::vector<double> densitiesOf(std::size_t count, const IdArray& tets,
     int exponent;
     sixVolumeScaled(p, mantissa, exponent);
     for (int k = 0; k < 4; ++k)
-      star[source(v[k])].add(mantissa, exponent);
+    {
+      const std::uint32_t s = source(v[k]);
+      if (s < count)
+        star[s].add(mantissa, exponent);
+    }
   }
   // A point merged into a vertex (an exact duplicate, or one within the tolerance) adds to its
   // mass, and has its density.
   for (std::size_t i = 0; i < count; ++i)
-    if (representative[i] != kNoPoint)
+    if (representative[i] < count)
       mass[representative[i]] += 1;
   std::vector<double> density(count, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < count; ++i)
   {
     const std::uint32_t v = representative[i];
-    if (v != kNoPoint && star[v].mantissa > 0) // 4 m / (six volume / 6)
+    if (v < count && star[v].mantissa > 0) // 4 m / (six volume / 6)
       density[i] = std::ldexp(24 * mass[v] / star[v].mantissa, -star[v].exponent);
   }
   return density;
@@ -116,7 +121,7 @@ std::vector<double> densities(
   if (triangulation.status != Status::Ok)
     return std::vector<double>(count, std::numeric_limits<double>::quiet_NaN());
   return densitiesOf(
-    count, triangulation.tetrahedra, triangulation.representative,
+    count, triangulation.tetrahedra, triangulation.representative.data(),
     [xyz](std::uint32_t v) { return xyz + 3 * std::size_t(v); }, [](std::uint32_t v) { return v; });
 }
 
@@ -128,10 +133,18 @@ std::vector<double> densities(const double* xyz, std::size_t count,
   const double* images = placement.imagePoints.data();
   const std::uint32_t* sources = placement.imageSources.data();
   return densitiesOf(
-    count, placement.tetrahedra, triangulation.representative,
+    count, placement.tetrahedra, triangulation.representative.data(),
     [=](
       std::uint32_t v) { return v < count ? xyz + 3 * std::size_t(v) : images + 3 * (v - count); },
     [=](std::uint32_t v) { return v < count ? v : sources[v - count]; });
+}
+
+std::vector<double> densitiesOfCorners(std::size_t count, const IdArray& tets,
+  const double* corners, const std::uint32_t* source, const std::uint32_t* representative)
+{
+  return densitiesOf(
+    count, tets, representative, [=](std::uint32_t v) { return corners + 3 * std::size_t(v); },
+    [=](std::uint32_t v) { return source[v]; });
 }
 
 } // namespace fd3

@@ -1,11 +1,13 @@
 #include "periodic/PeriodicDelaunay.h"
 
+#include "derived/Density.h"
 #include "exact/Frame.h"
 #include "exact/Predicates.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <stdexcept>
@@ -235,6 +237,31 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
   return SphereBox::Made;
 }
 
+/// For `points` points whose places span `extent` in `box`: the widest shell (the class
+/// documentation's m*) and the spacing of the points, were they spread evenly.
+void measure(
+  const PeriodicBox& box, std::size_t points, const Bounds& extent, double& widest, double& spacing)
+{
+  double halfDiagonal = 0, freeDiagonal = 0, volume = 1;
+  int dimensions = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double e = box.periodic[k] ? box.hi[k] - box.lo[k] : extent.extent(k);
+    if (box.periodic[k])
+      halfDiagonal += 0.25 * e * e;
+    else
+      freeDiagonal += e * e;
+    if (e > 0)
+    {
+      volume *= e;
+      ++dimensions;
+    }
+  }
+  halfDiagonal = std::sqrt(halfDiagonal);
+  widest = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal);
+  spacing = std::pow(volume / double(std::max<std::size_t>(points, 1)), 1.0 / dimensions);
+}
+
 /// Whether the exact value rounded + residual lies below y.
 bool below(double rounded, double residual, double y)
 {
@@ -244,7 +271,7 @@ bool below(double rounded, double residual, double y)
 
 PeriodicDelaunay::PeriodicDelaunay(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options)
-  : xyz_(xyz), count_(count), box_(box), options_(options)
+  : xyz_(xyz), count_(count), own_(count), box_(box), options_(options)
 {
   options_.tolerance = 0;
   options_.volumeThreshold = 0;
@@ -261,6 +288,45 @@ PeriodicDelaunay::PeriodicDelaunay(
   }
   if (periodicAxes_ == 0)
     throw std::invalid_argument("fd3::triangulatePeriodic: no periodic axis (use triangulate())");
+  for (int k = 0; k < 3; ++k)
+  {
+    region_.lo[k] = box_.periodic[k] ? box_.lo[k] : -HUGE_VAL;
+    region_.hi[k] = box_.periodic[k] ? box_.hi[k] : HUGE_VAL;
+  }
+}
+
+PeriodicDelaunay::PeriodicDelaunay(const double* xyz, std::size_t count, const PeriodicBox& box,
+  const Options& options, const PeriodicPiece& piece)
+  : PeriodicDelaunay(xyz, count, box, options)
+{
+  if (piece.own > count || !piece.ids || !(piece.halo > 0) || piece.points < piece.own)
+    throw std::invalid_argument("fd3::PeriodicPiece: more own points than points, no ids, no "
+                                "halo or fewer points in the whole set than own");
+  own_ = piece.own;
+  ids_ = piece.ids;
+  region_ = piece.region;
+  extent_ = piece.extent;
+  piece_ = true;
+  pieceHalo_ = piece.halo;
+  pieceSetPoints_ = piece.points;
+}
+
+double PeriodicDelaunay::firstShell(
+  const PeriodicBox& box, std::size_t points, const Bounds& extent)
+{
+  double widest, spacing;
+  measure(box, points, extent, widest, spacing);
+  return std::min(kFirstShell * spacing, widest);
+}
+
+bool PeriodicDelaunay::places(std::vector<double>& out)
+{
+  if (!wrapPoints())
+    return false;
+  out.assign(3 * count_, std::numeric_limits<double>::quiet_NaN());
+  for (const std::uint32_t id : points_)
+    std::copy(place_[id].begin(), place_[id].end(), out.begin() + 3 * std::size_t(id));
+  return true;
 }
 
 bool PeriodicDelaunay::wrapPoints()
@@ -280,11 +346,11 @@ bool PeriodicDelaunay::wrapPoints()
     const double* p = xyz_ + 3 * i;
     if (!isFinite(p))
     {
-      ++nonFinite_;
+      nonFinite_ += i < own_;
       continue;
     }
     representative_[i] = static_cast<std::uint32_t>(i);
-    points_.push_back(static_cast<std::uint32_t>(i));
+    (i < own_ ? points_ : ghosts_).push_back(static_cast<std::uint32_t>(i));
     for (int k = 0; k < 3; ++k)
     {
       place_[i][k] = p[k];
@@ -329,28 +395,14 @@ bool PeriodicDelaunay::wrapPoints()
 
 void PeriodicDelaunay::chooseFrame()
 {
-  Bounds extent; // of the places, along every axis
-  for (const std::uint32_t id : points_)
-    extent.include(place_[id].data());
-  double halfDiagonal = 0, freeDiagonal = 0, volume = 1;
-  int dimensions = 0;
-  for (int k = 0; k < 3; ++k)
+  if (!piece_) // a piece is given the whole set's
   {
-    const double e = box_.periodic[k] ? period_[k] : extent.extent(k);
-    if (box_.periodic[k])
-      halfDiagonal += 0.25 * e * e;
-    else
-      freeDiagonal += e * e;
-    if (e > 0)
-    {
-      volume *= e;
-      ++dimensions;
-    }
+    extent_ = Bounds(); // of the places, along every axis
+    for (const std::uint32_t id : points_)
+      extent_.include(place_[id].data());
   }
-  halfDiagonal = std::sqrt(halfDiagonal);
-  widest_ = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal);
-  spacing_ = std::pow(volume / double(std::max<std::size_t>(points_.size(), 1)), 1.0 / dimensions);
-  coverBounds_ = extent;
+  measure(box_, piece_ ? pieceSetPoints_ : points_.size(), extent_, widest_, spacing_);
+  coverBounds_ = extent_;
   bool shifts[3] = {true, true, true};
   for (int k = 0; k < 3; ++k)
     if (box_.periodic[k])
@@ -375,21 +427,22 @@ void PeriodicDelaunay::chooseFrame()
   for (std::size_t i = 0; i < far.size(); i += 3)
     frameBox.include(&far[i]);
   std::vector<double> places;
-  places.reserve(3 * points_.size());
-  for (const std::uint32_t id : points_)
-    places.insert(places.end(), place_[id].begin(), place_[id].end());
-  checkShifts(places.data(), points_.size(), frameBox, shifts);
+  places.reserve(3 * (points_.size() + ghosts_.size()));
+  forEachPoint(
+    [&](std::uint32_t id) { places.insert(places.end(), place_[id].begin(), place_[id].end()); });
+  checkShifts(places.data(), places.size() / 3, frameBox, shifts);
   frame_ = frameFor(frameBox, shifts);
   // Every residual must scale exactly too: a multiple of 2^-190 once scaled, as fitsFrame() asks
   // of coordinates (the images' residuals are parts of the places' bits).
-  bool fits = fitsFrame(frame_, places.data(), points_.size());
-  for (const std::uint32_t id : points_)
+  bool fits = fitsFrame(frame_, places.data(), places.size() / 3);
+  forEachPoint([&](std::uint32_t id) {
     for (const double r : placeResidual_[id])
     {
       const double y = r * frame_.scale;
       fits =
         fits && (std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190)));
     }
+  });
   if (!fits)
     frame_ = identityFrame(frameBox);
 }
@@ -420,8 +473,8 @@ bool PeriodicDelaunay::inShell(
     return false;
   for (int k = 0; k < 3; ++k)
   {
-    const double x = place_[id][k] + o[k] * period_[k];
-    if (box_.periodic[k] && !(x >= box_.lo[k] - margin && x <= box_.hi[k] + margin))
+    const double x = shifted(id, k, o[k]);
+    if (!(x >= region_.lo[k] - margin && x <= region_.hi[k] + margin))
       return false;
   }
   return true;
@@ -550,42 +603,36 @@ bool PeriodicDelaunay::addRegionImage(std::uint32_t id, const int shift[3])
 bool PeriodicDelaunay::addShell(double inner, double outer)
 {
   std::vector<std::int8_t> along[3];
-  for (const std::uint32_t id : points_)
-  {
-    // The offsets along each axis that bring the point into [lo - outer, hi + outer].
+  bool added = true;
+  forEachPoint([&](std::uint32_t id) {
+    // The offsets along each axis that bring the point into [lo - outer, hi + outer] of the
+    // region (the box, or a piece's).
     for (int k = 0; k < 3; ++k)
     {
       along[k].clear();
-      if (!box_.periodic[k])
-      {
-        along[k].push_back(0);
-        continue;
-      }
-      const int most = static_cast<int>(std::ceil(outer / period_[k])) + 1;
+      const int most = box_.periodic[k] ? static_cast<int>(std::ceil(outer / period_[k])) + 1 : 0;
       if (most > kMostOffset)
-        return false;
-      for (int j = -most; j <= most; ++j)
+        added = false;
+      for (int j = -most; j <= std::min(most, kMostOffset); ++j)
       {
-        const double x = place_[id][k] + j * period_[k];
-        if (x >= box_.lo[k] - outer && x <= box_.hi[k] + outer)
+        const double x = shifted(id, k, j);
+        if (x >= region_.lo[k] - outer && x <= region_.hi[k] + outer)
           along[k].push_back(static_cast<std::int8_t>(j));
       }
     }
-    auto within = [&](const std::array<std::int8_t, 3>& o, double margin) {
-      return inShell(id, o, margin);
-    };
+    const bool own = id < own_;
     for (const std::int8_t x : along[0])
       for (const std::int8_t y : along[1])
         for (const std::int8_t z : along[2])
         {
           const std::array<std::int8_t, 3> o = {x, y, z};
-          if ((x == 0 && y == 0 && z == 0) || within(o, inner) || present_.count(keyOf(id, o)))
+          if ((own && x == 0 && y == 0 && z == 0) || inShell(id, o, inner) ||
+            present_.count(keyOf(id, o)))
             continue;
-          if (!addImage(id, o))
-            return false;
+          added = added && addImage(id, o);
         }
-  }
-  return true;
+  });
+  return added;
 }
 
 bool PeriodicDelaunay::resolveMerged(const Triangulation& covering)
@@ -598,36 +645,37 @@ bool PeriodicDelaunay::resolveMerged(const Triangulation& covering)
     const std::uint32_t kept = covering.representative[c];
     if (kept == c)
       continue;
-    const std::uint32_t a = covering_[c].owner, b = covering_[kept].owner;
-    const std::uint32_t later = std::max(a, b);
-    const bool repeat = place_[a] == place_[b] && placeResidual_[a] == placeResidual_[b];
-    if (representative_[later] == later)
+    std::uint32_t earlier = covering_[c].owner, later = covering_[kept].owner;
+    if (idOf(later) < idOf(earlier))
+      std::swap(earlier, later);
+    const bool repeat =
+      place_[earlier] == place_[later] && placeResidual_[earlier] == placeResidual_[later];
+    if (representative_[later] == later && later < own_) // a piece counts its own
       ++(repeat ? duplicates_ : close_);
-    representative_[later] = std::min(a, b);
+    representative_[later] = earlier;
     close = close || !repeat;
   }
   for (std::uint32_t& id : representative_)
     if (id != kNoPoint)
       while (representative_[id] != id)
         id = representative_[id];
-  points_.erase(std::remove_if(points_.begin(), points_.end(),
+  for (std::vector<std::uint32_t>* list : {&points_, &ghosts_})
+    list->erase(std::remove_if(list->begin(), list->end(),
                   [&](std::uint32_t id) { return representative_[id] != id; }),
-    points_.end());
+      list->end());
   return close;
 }
 
 PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay& mesh) const
 {
-  // In the frame, where the records are: the box, the shell, the regions and the points' extent
-  // along the axes that are not periodic.
-  Bounds extent;
-  for (const std::uint32_t id : points_)
-    extent.include(place_[id].data());
-  extent = toFrame(frame_, extent);
+  // In the frame, where the records are: the box, the region the shell is about, the regions and
+  // the points' extent along the axes that are not periodic.
+  const Bounds extent = toFrame(frame_, extent_);
   Bounds box;
   std::copy(box_.lo, box_.lo + 3, box.lo);
   std::copy(box_.hi, box_.hi + 3, box.hi);
   box = toFrame(frame_, box);
+  const Bounds around = toFrame(frame_, region_);
   const double scale = frame_.identity ? 1.0 : frame_.scale;
   std::vector<ImageRegion> regions;
   Bounds all;
@@ -740,8 +788,8 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     }
     bool inShell = true;
     for (int k = 0; k < 3; ++k)
-      if (box_.periodic[k])
-        inShell = inShell && sphere.lo[k] > box.lo[k] - margin && sphere.hi[k] < box.hi[k] + margin;
+      inShell =
+        inShell && sphere.lo[k] > around.lo[k] - margin && sphere.hi[k] < around.hi[k] + margin;
     if (inShell)
       return;
     // A region that holds the sphere holds its centre, and is filed where the centre is.
@@ -769,6 +817,17 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     fail(failure, out.spheres);
   });
   return out;
+}
+
+double PeriodicDelaunay::widerHaloFor(const Failures& failed) const
+{
+  if (failed.hull.empty() && failed.spheres.empty() && failed.outerFaces.empty())
+    return 0;
+  double halo = kWidening * margin_;
+  for (const ImageRegion& sphere : failed.spheres)
+    for (int k = 0; k < 3; ++k)
+      halo = std::max({halo, region_.lo[k] - sphere.box.lo[k], sphere.box.hi[k] - region_.hi[k]});
+  return std::min(halo, widest_);
 }
 
 std::vector<ImageRegion> PeriodicDelaunay::coarsened(const std::vector<ImageRegion>& regions) const
@@ -945,7 +1004,7 @@ void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulat
   // representative where every input point is one (its covering id is then its input id): those
   // are written with no lookup by id, whose order is the input's, not space's.
   const std::size_t n = covering.numberOfTetrahedra();
-  const bool ownIds = points_.size() == count_;
+  const bool ownIds = points_.size() == own_;
   out.tetrahedra.resize(4 * n);
   out.offsets.resize(12 * n); // zero: the box's points
   std::uint32_t* ids = out.tetrahedra.data();
@@ -962,9 +1021,13 @@ void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulat
     }
     if (std::min({v[0], v[1], v[2], v[3]}) >= boxPoints_)
       continue;
-    const std::uint64_t least = std::min({rankOf(covering_[v[0]]), rankOf(covering_[v[1]]),
-      rankOf(covering_[v[2]]), rankOf(covering_[v[3]])});
-    if (least != rankOf({static_cast<std::uint32_t>(least >> 24), {0, 0, 0}}))
+    int least = 0;
+    for (int i = 1; i < 4; ++i)
+      if (rankOf(covering_[v[i]]) < rankOf(covering_[v[least]]))
+        least = i;
+    const CoveringPoint& first = covering_[v[least]];
+    if (first.offset != std::array<std::int8_t, 3>{0, 0, 0} ||
+      representative_[first.owner] >= own_) // a piece's ghost
       continue;
     for (int i = 0; i < 4; ++i)
     {
@@ -977,6 +1040,17 @@ void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulat
   out.offsets.resize(std::size_t(offsets - out.offsets.data()));
 }
 
+std::vector<double> PeriodicDelaunay::densitiesOfBoxPoints(const Triangulation& covering) const
+{
+  if (covering.status != Status::Ok)
+    return std::vector<double>(own_, std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::uint32_t> source(covering_.size(), std::uint32_t(own_));
+  for (std::uint32_t c = 0; c < boxPoints_; ++c)
+    source[c] = representative_[covering_[c].owner];
+  return densitiesOfCorners(
+    own_, covering.tetrahedra, coveringXyz_.data(), source.data(), representative_.data());
+}
+
 std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulation& out)
 {
   coveringXyz_.clear();
@@ -985,7 +1059,8 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   regions_.clear();
   present_.clear();
   out.rounds = 0;
-  margin_ = std::min(kFirstShell * spacing_, widest_);
+  widerHalo_ = 0;
+  margin_ = std::min(piece_ ? pieceHalo_ : kFirstShell * spacing_, widest_);
   pointBuckets_.reset(); // the points may have changed: filed again when a region asks
   reserveCovering();
   addPoints(); // first, the cells' generators
@@ -994,6 +1069,12 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
     return nullptr;
   auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
     coveringImages_.data(), options_, frame_);
+  if (piece_) // the other pieces send a wider halo where this one falls short
+  {
+    if (mesh->status() == Status::Ok && margin_ < widest_)
+      widerHalo_ = widerHaloFor(failures(*mesh));
+    return mesh;
+  }
   std::size_t inserted = covering_.size();
   for (int targeted = 0; mesh->status() == Status::Ok && margin_ < widest_;)
   {
@@ -1029,7 +1110,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
 
 Status PeriodicDelaunay::prepare(Statistics& stats)
 {
-  stats.inputPoints = count_;
+  stats.inputPoints = own_;
   if (!wrapPoints())
     return Status::OutOfRange;
   stats.nonFinitePoints = nonFinite_;
@@ -1041,14 +1122,14 @@ Status PeriodicDelaunay::prepare(Statistics& stats)
 
 void PeriodicDelaunay::countPoints(Statistics& stats) const
 {
-  stats.inputPoints = count_;
+  stats.inputPoints = own_;
   stats.nonFinitePoints = nonFinite_;
   stats.duplicatesMerged = duplicates_;
   stats.closePointsSkipped = close_;
   stats.insertedPoints = points_.size();
 }
 
-PeriodicTriangulation PeriodicDelaunay::run()
+PeriodicTriangulation PeriodicDelaunay::run(std::vector<double>* density)
 {
   PeriodicTriangulation out;
   out.status = prepare(out.stats);
@@ -1063,9 +1144,15 @@ PeriodicTriangulation PeriodicDelaunay::run()
       out.status = Status::OutOfRange;
       return out;
     }
+    // A piece's certificate fails on the flat tetrahedra of points within a rounding of each
+    // other too: it stands once they are resolved.
+    if (widerHalo_ > 0 && mesh->mergedPoints() == 0)
+      return out;
     covering = mesh->release();
     // Rare: points within a rounding of each other, whose images' records coincide.
     again = covering.status == Status::Ok && resolveMerged(covering);
+    if (!again && widerHalo_ > 0)
+      return out;
   }
   out.status = covering.status;
   out.stats = covering.stats;
@@ -1074,6 +1161,8 @@ PeriodicTriangulation PeriodicDelaunay::run()
   out.margin = margin_;
   if (out.status == Status::Ok)
     extract(covering, out);
+  if (density)
+    *density = densitiesOfBoxPoints(covering);
   out.stats.tetrahedra = out.numberOfTetrahedra();
   out.wraps = wraps_;
   out.representative.assign(representative_.begin(), representative_.end());
@@ -1108,6 +1197,8 @@ VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
       mesh.reset();
     }
   }
+  if (widerHalo_ > 0)
+    return out;
   VoronoiOptions own = options;
   own.box = clipBox_;
   own.generators = points_.size(); // the covering's first points
@@ -1138,6 +1229,66 @@ PeriodicTriangulation triangulatePeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options)
 {
   return PeriodicDelaunay(xyz, count, box, options).run();
+}
+
+bool periodicPlaces(
+  const double* xyz, std::size_t count, const PeriodicBox& box, std::vector<double>& places)
+{
+  return PeriodicDelaunay(xyz, count, box, Options()).places(places);
+}
+
+bool periodicImageWithin(
+  const double place[3], const PeriodicBox& box, const Bounds& region, double halo)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    // Widened by more than the roundings of places, periods and bounds.
+    const double slack =
+      kSlack * (std::fabs(place[k]) + std::fabs(region.lo[k]) + std::fabs(region.hi[k]) + halo);
+    const double lo = region.lo[k] - halo - slack, hi = region.hi[k] + halo + slack;
+    if (!box.periodic[k])
+    {
+      if (!(place[k] >= lo && place[k] <= hi))
+        return false;
+      continue;
+    }
+    // The image first above lo, or one a period either side where the quotient rounds off.
+    const double period = box.hi[k] - box.lo[k];
+    const double first = std::ceil((lo - place[k]) / period);
+    bool any = false;
+    for (const double periods : {first - 1, first, first + 1})
+    {
+      const double x = place[k] + periods * period;
+      any = any || (x >= lo && x <= hi);
+    }
+    if (!any)
+      return false;
+  }
+  return true;
+}
+
+double firstPeriodicHalo(const PeriodicBox& box, std::size_t points, const Bounds& extent)
+{
+  return PeriodicDelaunay::firstShell(box, points, extent);
+}
+
+PeriodicPieceTriangulation triangulatePeriodicPiece(const double* xyz, std::size_t count,
+  const PeriodicBox& box, const PeriodicPiece& piece, bool density, const Options& options)
+{
+  PeriodicDelaunay run(xyz, count, box, options, piece);
+  PeriodicPieceTriangulation out;
+  out.triangulation = run.run(density ? &out.density : nullptr);
+  out.widerHalo = run.widerHalo();
+  return out;
+}
+
+VoronoiCells voronoiCellsPeriodicPiece(const double* xyz, std::size_t count, const PeriodicBox& box,
+  const PeriodicPiece& piece, double& widerHalo, const VoronoiOptions& options)
+{
+  PeriodicDelaunay run(xyz, count, box, Options(), piece);
+  VoronoiCells out = run.cells(options);
+  widerHalo = run.widerHalo();
+  return out;
 }
 
 } // namespace fd3

@@ -43,9 +43,21 @@ public:
   /// hi <= lo or not finite.
   PeriodicDelaunay(
     const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options);
-  PeriodicTriangulation run();
+  /// The same for a piece of the points (PeriodicPiece), whose own points take the place of the
+  /// box's, and whose region and halo take the place of the box and the shell.
+  PeriodicDelaunay(const double* xyz, std::size_t count, const PeriodicBox& box,
+    const Options& options, const PeriodicPiece& piece);
+  /// The tetrahedralization; with `density`, the densities of the box's points (a piece's own),
+  /// from the covering's tetrahedra at them.
+  PeriodicTriangulation run(std::vector<double>* density = nullptr);
   /// The cells of the box's points (voronoiCellsPeriodic()).
   VoronoiCells cells(const VoronoiOptions& options);
+  /// A piece's: 0 where its halo was wide enough for run() or cells(), else the halo to try next.
+  double widerHalo() const { return widerHalo_; }
+  /// The places of the points (periodicPlaces()); false where one lies too far.
+  bool places(std::vector<double>& out);
+  /// The first shell's width, were there `points` points spanning `extent` (firstPeriodicHalo()).
+  static double firstShell(const PeriodicBox& box, std::size_t points, const Bounds& extent);
 
 private:
   /// A point of the covering: the image of input point `owner` (a vertex of the box), moved by
@@ -96,6 +108,9 @@ private:
     std::vector<std::array<double, 9>> outerFaces;
   };
   Failures failures(const IncrementalDelaunay& mesh) const;
+  /// A piece's halo after a covering whose certificate failed as `failed` says: wide enough for
+  /// the failed spheres, and wider than the last, up to the widest shell; 0 where none failed.
+  double widerHaloFor(const Failures& failed) const;
   /// Where every axis is periodic, the region of a hull face of the covering (Failures::
   /// outerFaces): the images on the face's outer side within the sphere through the face and an
   /// image beyond it, a spacing wider: of the images tried, the one whose sphere has the lowest
@@ -133,21 +148,54 @@ private:
     return std::uint64_t(id) << 24 | std::uint64_t(std::uint8_t(o[0])) << 16 |
       std::uint64_t(std::uint8_t(o[1])) << 8 | std::uint64_t(std::uint8_t(o[2]));
   }
-  /// The covering points in the order that picks each periodic tetrahedron's copy: by owner,
-  /// then by offset, lexicographic. Translating a tetrahedron keeps the order of its vertices.
-  static std::uint64_t rankOf(const CoveringPoint& p)
+  /// A point's id in the whole set: a piece's ids, else its index.
+  std::uint32_t idOf(std::uint32_t point) const { return ids_ ? ids_[point] : point; }
+  /// The covering points in the order that picks each periodic tetrahedron's copy: by the id of
+  /// the point kept for the owner, then by offset, lexicographic. Translating a tetrahedron keeps
+  /// the order of its vertices.
+  std::uint64_t rankOf(const CoveringPoint& p) const
   {
-    return std::uint64_t(p.owner) << 24 | std::uint64_t(p.offset[0] + 128) << 16 |
-      std::uint64_t(p.offset[1] + 128) << 8 | std::uint64_t(p.offset[2] + 128);
+    return std::uint64_t(idOf(representative_[p.owner])) << 24 |
+      std::uint64_t(p.offset[0] + 128) << 16 | std::uint64_t(p.offset[1] + 128) << 8 |
+      std::uint64_t(p.offset[2] + 128);
+  }
+  /// Point id's place moved by `periods` along axis k, in floats (only 0 along an axis that is
+  /// not periodic, whose period may be no number).
+  double shifted(std::uint32_t id, int k, int periods) const
+  {
+    return periods == 0 ? place_[id][k] : place_[id][k] + periods * period_[k];
+  }
+  /// Calls visit(id) for the box's points, then for a piece's ghosts.
+  template <typename Visit>
+  void forEachPoint(Visit&& visit) const
+  {
+    for (const std::uint32_t id : points_)
+      visit(id);
+    for (const std::uint32_t id : ghosts_)
+      visit(id);
   }
   /// Whether the hull face (a, b, c) of covering points is parallel to every periodic axis,
   /// exactly.
   bool parallelToPeriods(const std::uint32_t face[3]) const;
   void extract(const Triangulation& covering, PeriodicTriangulation& out) const;
+  /// Per box point (a piece's own), densities() from the covering's tetrahedra at it: each
+  /// periodic tetrahedron at a point has one copy at its place, whatever copy takes it.
+  std::vector<double> densitiesOfBoxPoints(const Triangulation& covering) const;
 
   const double* xyz_;
   std::size_t count_;
+  // The points whose tetrahedra and cells are made, the first ones: all of them, or a piece's
+  // own; and a piece's ids.
+  std::size_t own_;
+  const std::uint32_t* ids_ = nullptr;
   PeriodicBox box_;
+  // Where the box's points lie, about which the shell is: the box along the periodic axes and
+  // everywhere along the others, or a piece's region. Its points' extent, or the whole set's.
+  Bounds region_, extent_;
+  bool piece_ = false;
+  double pieceHalo_ = 0;
+  std::size_t pieceSetPoints_ = 0;
+  double widerHalo_ = 0;
   Options options_;
   double period_[3];
   int periodicAxes_ = 0;
@@ -164,6 +212,7 @@ private:
   std::vector<std::int32_t> wraps_;
   std::vector<std::uint32_t> representative_;
   std::vector<std::uint32_t> points_; // the box's points: the representatives of themselves
+  std::vector<std::uint32_t> ghosts_; // a piece's other points, each its own representative
   std::size_t duplicates_ = 0, close_ = 0, nonFinite_ = 0;
   // The covering, batch after batch: its records (input units), images, and what each point is.
   std::vector<double> coveringXyz_;
