@@ -10,7 +10,6 @@
 #include "vtkCellArray.h"
 #include "vtkCommunicator.h"
 #include "vtkDataArrayRange.h"
-#include "vtkDataSetAttributesFieldList.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
 #include "vtkIdTypeArray.h"
@@ -112,29 +111,6 @@ void AppendPoints(vtkDataArray* coordinates, Coordinates& xyz)
 {
   ForEachPoint(
     coordinates, [&xyz](vtkIdType, const double x[3]) { xyz.insert(xyz.end(), x, x + 3); });
-}
-
-/// The point data of `parts` one after the other: the arrays that all of them have, as
-/// vtkAppendFilter keeps them.
-vtkSmartPointer<vtkPointData> GatherPointData(const std::vector<vtkPointData*>& parts)
-{
-  vtkDataSetAttributesFieldList arrays(static_cast<int>(parts.size()));
-  vtkIdType count = 0;
-  for (vtkPointData* part : parts)
-  {
-    part == parts[0] ? arrays.InitializeFieldList(part) : arrays.IntersectFieldList(part);
-    count += part->GetNumberOfTuples();
-  }
-  auto data = vtkSmartPointer<vtkPointData>::New();
-  data->CopyAllocate(arrays, count);
-  vtkIdType next = 0;
-  for (std::size_t k = 0; k < parts.size(); ++k)
-  {
-    const vtkIdType n = parts[k]->GetNumberOfTuples();
-    arrays.CopyData(static_cast<int>(k), parts[k], 0, n, data, next);
-    next += n;
-  }
-  return data;
 }
 
 /// Marks the point ids from `first` on that the cells use: used[id - first] = 0.

@@ -7,6 +7,7 @@
 #include "vtkCommunicator.h"
 #include "vtkDIYUtilities.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributesFieldList.h"
 #include "vtkFieldData.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointData.h"
@@ -59,6 +60,29 @@ void Take(diy::Master& master, const RankGroup& ranks, Received& received)
   }
 }
 } // namespace
+
+/// The point data of `parts` one after the other: the arrays that all of them have, as
+/// vtkAppendFilter keeps them.
+vtkSmartPointer<vtkPointData> GatherPointData(const std::vector<vtkPointData*>& parts)
+{
+  vtkDataSetAttributesFieldList arrays(static_cast<int>(parts.size()));
+  vtkIdType count = 0;
+  for (vtkPointData* part : parts)
+  {
+    part == parts[0] ? arrays.InitializeFieldList(part) : arrays.IntersectFieldList(part);
+    count += part->GetNumberOfTuples();
+  }
+  auto data = vtkSmartPointer<vtkPointData>::New();
+  data->CopyAllocate(arrays, count);
+  vtkIdType next = 0;
+  for (std::size_t k = 0; k < parts.size(); ++k)
+  {
+    const vtkIdType n = parts[k]->GetNumberOfTuples();
+    arrays.CopyData(static_cast<int>(k), parts[k], 0, n, data, next);
+    next += n;
+  }
+  return data;
+}
 
 bool PointExchange::BalancedCuts(
   vtkDataArray* coordinates, const std::vector<vtkIdType>& finite, SpaceCuts& cuts)

@@ -19,6 +19,7 @@
 #include <vector>
 
 class vtkDataArray;
+class vtkPointData;
 class vtkPointSet;
 class vtkPolyData;
 
@@ -95,6 +96,10 @@ struct Received
   std::vector<vtkSmartPointer<vtkPointSet>> Parts;
   std::vector<int> Senders;
 };
+
+/// The point data of `parts` one after the other: the arrays that all of them have, as
+/// vtkAppendFilter keeps them.
+vtkSmartPointer<vtkPointData> GatherPointData(const std::vector<vtkPointData*>& parts);
 
 /// Points moved between ranks: the split of space that balances them, and the exchange of point
 /// sets as raw arrays. Nothing in it is particular to Delaunay.
