@@ -41,6 +41,33 @@ std::vector<Vertices> sortedTetrahedra(
   return out;
 }
 
+/// The volume of a piece's tetrahedra placed: its `own` points keep their places, ghosts and
+/// images are moved.
+double placedVolume(const Points& xyz, std::size_t own, const fd3::PeriodicTriangulation& t,
+  const fd3::PeriodicBox& box)
+{
+  const fd3::PeriodicPlacement placed = fd3::placePeriodic(xyz.data(), own, t, box);
+  double volume = 0;
+  for (std::size_t c = 0; c < placed.tetrahedra.size(); c += 4)
+  {
+    const double* v[4];
+    for (int i = 0; i < 4; ++i)
+    {
+      const std::uint32_t id = placed.tetrahedra[c + i];
+      v[i] = id < own ? &xyz[3 * id] : &placed.imagePoints[3 * (id - own)];
+    }
+    double e[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        e[i][k] = v[i + 1][k] - v[0][k];
+    volume += (e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0])) /
+      6;
+  }
+  return volume;
+}
+
 /// The pieces' own points: `pieces` slabs of equal counts along x, then halved along y where
 /// asked, by place.
 std::vector<std::vector<std::uint32_t>> split(
@@ -81,6 +108,7 @@ struct PieceRuns
   std::vector<double> density; // by input id
   std::vector<double> volume;  // of each input point's cell
   std::vector<std::size_t> neighbors;
+  double placedVolume = 0; // of the pieces' tetrahedra, placed (placePeriodic())
   int exchanges = 0;
 };
 
@@ -112,6 +140,7 @@ PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pi
     again = false;
     double wider = 0;
     out.tetrahedra.clear();
+    out.placedVolume = 0;
     for (std::size_t r = 0; r < own.size(); ++r)
     {
       // The piece's points: its own, then the others' with an image in its halo.
@@ -143,6 +172,7 @@ PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pi
         continue;
       EXPECT_EQ(t.triangulation.status, fd3::Status::Ok);
       const std::vector<Vertices> mine = sortedTetrahedra(t.triangulation, ids);
+      out.placedVolume += placedVolume(xyz, piece.own, t.triangulation, box);
       out.tetrahedra.insert(out.tetrahedra.end(), mine.begin(), mine.end());
       for (std::size_t i = 0; i < piece.own; ++i)
         out.density[ids[i]] = t.density[i];
@@ -184,6 +214,12 @@ int expectOneProcessResult(
   const std::vector<Vertices> expected = sortedTetrahedra(whole, identity);
   EXPECT_EQ(runs.tetrahedra.size(), expected.size());
   EXPECT_TRUE(runs.tetrahedra == expected) << "the pieces' tetrahedra are not the whole set's";
+  if (box.periodic[0] && box.periodic[1] && box.periodic[2])
+  {
+    const double period =
+      (box.hi[0] - box.lo[0]) * (box.hi[1] - box.lo[1]) * (box.hi[2] - box.lo[2]);
+    EXPECT_NEAR(runs.placedVolume, period, 1e-9 * period) << "the placed tetrahedra tile a period";
+  }
   for (std::size_t i = 0; i < n; ++i)
     if (whole.representative[i] == i)
       EXPECT_NEAR(runs.density[i], density[i], 1e-12 * density[i]) << "point " << i;

@@ -103,7 +103,9 @@ struct PeriodicPlacement
 /// The tetrahedra of `triangulation` (triangulatePeriodic() of the same points and box) placed:
 /// their volumes add up to a period's (for a box periodic on every axis, the box's), up to the
 /// rounding of the images' coordinates. Images are numbered in the order the tetrahedra first use
-/// them, so the placement is as deterministic as the tetrahedra.
+/// them, so the placement is as deterministic as the tetrahedra. A piece's tetrahedra
+/// (triangulatePeriodicPiece()) also name its ghosts, after its `count` own points in xyz: those
+/// are image points wherever they are.
 PeriodicPlacement placePeriodic(const double* xyz, std::size_t count,
   const PeriodicTriangulation& triangulation, const PeriodicBox& box);
 

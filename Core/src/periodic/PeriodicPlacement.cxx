@@ -45,7 +45,7 @@ PeriodicPlacement placePeriodic(const double* xyz, std::size_t count,
   {
     const std::uint32_t id = triangulation.tetrahedra[v];
     Image image{id, {0, 0, 0}};
-    bool moved = false;
+    bool moved = id >= count; // a piece's ghost
     for (int a = 0; a < 3; ++a)
     {
       image.shift[a] = std::int32_t(triangulation.offsets[3 * v + a]) -
