@@ -183,9 +183,9 @@ void SetPointsAndImages(
 }
 
 /// The input's point data on its points, each image with its input point's values, and
-/// "SourcePointId": the input point each output point copies.
-void SetPointDataAndImages(
-  vtkPointData* out, vtkPointData* in, vtkIdType count, const fd3::PeriodicPlacement& placement)
+/// "SourcePointId": the input point each output point copies (ids[i] of point i, where given).
+void SetPointDataAndImages(vtkPointData* out, vtkPointData* in, vtkIdType count,
+  const fd3::PeriodicPlacement& placement, const std::uint32_t* ids)
 {
   const vtkIdType images = static_cast<vtkIdType>(placement.numberOfImages());
   vtkNew<vtkIdList> sources, targets;
@@ -194,13 +194,14 @@ void SetPointDataAndImages(
   auto sourceId = fd3vtk::NamedArray<vtkIdTypeArray>("SourcePointId", count + images);
   for (vtkIdType i = 0; i < count; ++i)
   {
-    sourceId->SetValue(i, i);
+    sourceId->SetValue(i, ids ? ids[i] : i);
   }
   for (vtkIdType k = 0; k < images; ++k)
   {
     sources->SetId(k, placement.imageSources[k]);
     targets->SetId(k, count + k);
-    sourceId->SetValue(count + k, placement.imageSources[k]);
+    const std::uint32_t source = placement.imageSources[k];
+    sourceId->SetValue(count + k, ids ? ids[source] : source);
   }
   if (in)
   {
@@ -538,7 +539,8 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
   }
 
   const auto conversionStart = std::chrono::steady_clock::now();
-  this->SetPeriodicOutput(output, points, pointData, xyz, result, placement);
+  this->SetPeriodicOutput(output, points, pointData, xyz, placement,
+    this->ComputeDensity ? fd3::densities(xyz, count, result, placement) : std::vector<double>());
   this->OutputSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
@@ -546,25 +548,25 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
 }
 
 void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points,
-  vtkPointData* pointData, const double* xyz, const fd3::PeriodicTriangulation& result,
-  fd3::PeriodicPlacement& placement)
+  vtkPointData* pointData, const double* xyz, fd3::PeriodicPlacement& placement,
+  std::vector<double> density, const std::uint32_t* ids)
 {
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
-  const vtkIdType images = static_cast<vtkIdType>(placement.numberOfImages());
+  const std::size_t images = placement.numberOfImages();
   SetPointsAndImages(output, points, placement);
   SetPointDataAndImages(
-    output->GetPointData(), pointData, static_cast<vtkIdType>(count), placement);
+    output->GetPointData(), pointData, static_cast<vtkIdType>(count), placement, ids);
   std::vector<double> converted;
   const double* placed = CoordinatesAsDoubles(output->GetPoints(), converted);
   if (this->ComputeDensity)
   {
-    std::vector<double> density = fd3::densities(xyz, count, result, placement);
-    density.resize(count + static_cast<std::size_t>(images));
-    for (vtkIdType k = 0; k < images; ++k)
+    std::vector<double> all(count + images);
+    std::copy_n(density.begin(), count, all.begin());
+    for (std::size_t k = 0; k < images; ++k)
     {
-      density[count + k] = density[placement.imageSources[k]];
+      all[count + k] = density[placement.imageSources[k]];
     }
-    AddDensity(output, density);
+    AddDensity(output, all);
   }
   if (this->Alpha > 0)
   {

@@ -459,11 +459,15 @@ protected:
   /// its alpha shape, and their image points; an error where the input is `weighted`. Returns as
   /// RequestData does.
   int TriangulatePeriodic(vtkDataSet* input, vtkUnstructuredGrid* output, bool weighted);
-  /// The periodic output: the input's `points` (kernel coordinates `xyz`) and `pointData`, the
-  /// images of `placement` (of `result`) after them, the tetrahedra or the alpha shape (taking
-  /// placement.tetrahedra over), Density and the cell arrays asked for.
+  /// The periodic output: the input's `points` and their `pointData`, the images of `placement`
+  /// after them, the tetrahedra or the alpha shape (taking placement.tetrahedra over), Density and
+  /// the cell arrays asked for. `xyz`: the kernel's coordinates, of the points and then, in an MPI
+  /// rank's piece, of its ghosts, which `pointData` and `density` (with ComputeDensity, a value
+  /// per point) cover too, and `ids` (null: the points' indices), which name each output point's
+  /// input point in SourcePointId.
   void SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData,
-    const double* xyz, const fd3::PeriodicTriangulation& result, fd3::PeriodicPlacement& placement);
+    const double* xyz, fd3::PeriodicPlacement& placement, std::vector<double> density,
+    const std::uint32_t* ids = nullptr);
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   /// (`weighted`: the points had weights, whose NaN or Inf leaves a point out too.)

@@ -202,36 +202,14 @@ struct RankFigures
 
   void Reduce(vtkMultiProcessController* controller)
   {
-    std::vector<double> sums;
-    for (auto field : fd3::Statistics::counts())
-    {
-      sums.push_back(double(this->Stats.*field));
-    }
-    sums.insert(sums.end(), { this->MeshInsertions, this->Ghosts });
-    std::vector<double> maxima = { double(this->Stats.maxWalkSteps) };
-    for (auto field : fd3::Statistics::seconds())
-    {
-      maxima.push_back(this->Stats.*field);
-    }
-    maxima.push_back(this->StatusRank);
-    std::vector<double> total(sums.size()), slowest(maxima.size());
-    controller->AllReduce(sums.data(), total.data(), sums.size(), vtkCommunicator::SUM_OP);
-    controller->AllReduce(maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
-
-    auto sum = total.begin();
-    for (auto field : fd3::Statistics::counts())
-    {
-      this->Stats.*field = static_cast<std::size_t>(*sum++);
-    }
-    this->MeshInsertions = *sum++;
-    this->Ghosts = *sum++;
-    auto largest = slowest.begin();
-    this->Stats.maxWalkSteps = static_cast<std::size_t>(*largest++);
-    for (auto field : fd3::Statistics::seconds())
-    {
-      this->Stats.*field = *largest++;
-    }
-    this->StatusRank = *largest++;
+    SumFigures(controller, this->Stats);
+    const double sums[2] = { this->MeshInsertions, this->Ghosts };
+    double total[2];
+    controller->AllReduce(sums, total, 2, vtkCommunicator::SUM_OP);
+    this->MeshInsertions = total[0];
+    this->Ghosts = total[1];
+    const double rank = this->StatusRank;
+    controller->AllReduce(&rank, &this->StatusRank, 1, vtkCommunicator::MAX_OP);
     // Walks and cavities of ghost insertions count too: that is the work done.
     const double perVertex =
       double(this->Stats.insertedPoints) / std::max(this->MeshInsertions, 1.0);
@@ -260,6 +238,34 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 
 } // namespace
 
+void SumFigures(vtkMultiProcessController* controller, fd3::Statistics& stats)
+{
+  std::vector<double> sums;
+  for (auto field : fd3::Statistics::counts())
+  {
+    sums.push_back(double(stats.*field));
+  }
+  std::vector<double> maxima = { double(stats.maxWalkSteps) };
+  for (auto field : fd3::Statistics::seconds())
+  {
+    maxima.push_back(stats.*field);
+  }
+  std::vector<double> total(sums.size()), slowest(maxima.size());
+  controller->AllReduce(sums.data(), total.data(), sums.size(), vtkCommunicator::SUM_OP);
+  controller->AllReduce(maxima.data(), slowest.data(), maxima.size(), vtkCommunicator::MAX_OP);
+  auto sum = total.begin();
+  for (auto field : fd3::Statistics::counts())
+  {
+    stats.*field = static_cast<std::size_t>(*sum++);
+  }
+  auto largest = slowest.begin();
+  stats.maxWalkSteps = static_cast<std::size_t>(*largest++);
+  for (auto field : fd3::Statistics::seconds())
+  {
+    stats.*field = *largest++;
+  }
+}
+
 InputWeights ReadInputWeights(vtkDataArray* array, vtkIdType points, bool radii)
 {
   InputWeights weights;
@@ -276,7 +282,8 @@ DistributedRun::DistributedRun(vtkMultiProcessController* controller, int thread
   : Ranks(controller), Threads(threads), Exchange(this->Ranks)
 {}
 
-bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points, const InputWeights& weights)
+bool DistributedRun::Redistribute(
+  vtkDataSet* input, vtkPoints* points, const InputWeights& weights, vtkDataArray* cutBy)
 {
   const vtkIdType count = input ? input->GetNumberOfPoints() : 0;
   std::vector<vtkIdType> counts(this->Ranks.Size);
@@ -313,7 +320,7 @@ bool DistributedRun::Redistribute(vtkDataSet* input, vtkPoints* points, const In
     return false;
   }
   Received parts;
-  if (!this->SpreadFinite(points->GetData(), data, finite, parts))
+  if (!this->SpreadFinite(points->GetData(), cutBy, data, finite, parts))
   {
     return false;
   }
@@ -576,19 +583,20 @@ void DistributedRun::SetOutputPoints(vtkUnstructuredGrid* output)
   this->SetOutputPointData(output, ghostId);
 }
 
-bool DistributedRun::SpreadFinite(
-  vtkDataArray* coordinates, vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts)
+bool DistributedRun::SpreadFinite(vtkDataArray* coordinates, vtkDataArray* cutBy,
+  vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts)
 {
   int mine = !finite.empty(), any = 0;
   this->Ranks.Controller->AllReduce(&mine, &any, 1, vtkCommunicator::MAX_OP);
   SpaceCuts cuts;
-  if (!any || !this->Exchange.BalancedCuts(coordinates, finite, cuts))
+  vtkDataArray* places = cutBy ? cutBy : coordinates;
+  if (!any || !this->Exchange.BalancedCuts(places, finite, cuts))
   {
     return !any;
   }
   std::vector<std::vector<vtkIdType>> lists(this->Ranks.Size);
   if (!this->Ranks.Local([&] {
-        ForEachPoint(coordinates, [&](vtkIdType i, const double x[3]) {
+        ForEachPoint(places, [&](vtkIdType i, const double x[3]) {
           if (fd3::isFinite(x))
           {
             lists[cuts.RankOf(x)].push_back(i);

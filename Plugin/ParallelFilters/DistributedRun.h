@@ -44,6 +44,10 @@ constexpr const char* kWeights = "FastDelaunay3DWeights";
 
 using fd3::Coordinates;
 
+/// The figures of every rank's run summed, with each thing counted by the rank that owns it: the
+/// counts summed, the times and longest walk the largest.
+void SumFigures(vtkMultiProcessController* controller, fd3::Statistics& stats);
+
 /// Weighted points, as one rank read them from its input piece before the run.
 struct InputWeights
 {
@@ -78,8 +82,10 @@ public:
   /// with their point data and input ids, this rank's non-finite ones after them. `points`: the
   /// input's, in the output's precision. The run is weighted where any rank found `weights`; each
   /// point's weight then travels with it (kWeights), and a piece with points but no weights, or
-  /// a Problem on any rank, stops every rank.
-  bool Redistribute(vtkDataSet* input, vtkPoints* points, const InputWeights& weights = {});
+  /// a Problem on any rank, stops every rank. `cutBy`, where given, places each point for the
+  /// cuts instead of its coordinates (a periodic point's place in the box), NaN where not finite.
+  bool Redistribute(vtkDataSet* input, vtkPoints* points, const InputWeights& weights = {},
+    vtkDataArray* cutBy = nullptr);
 
   /// Step 2: one exact frame for every rank, from the global bounds (computed here once, for the
   /// diagonal too) and the shifts that are exact on every rank. `later`, where given, makes from
@@ -121,6 +127,15 @@ public:
   /// This rank's own points, the first of Xyz: the finite ones in its part of space, then its
   /// non-finite ones.
   std::size_t OwnCount() const { return this->Own.Count; }
+  /// The finite ones of them, the first.
+  std::size_t OwnFinite() const { return this->Own.Finite; }
+  /// Until step 3 takes them: the own points' coordinates, 3 each.
+  const Coordinates& OwnXyz() const { return this->Own.Xyz; }
+  /// From step 1: the type of the output's points, as one process's output would have them.
+  int OutputPointType() const { return this->PointType; }
+  /// The own points `halo`, at `xyz` (3 each), with their point data: a part to send.
+  vtkSmartPointer<vtkPolyData> HaloPart(
+    const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz) const;
   /// The point data of the own points, with every point's input id (kInputIds).
   vtkPointData* OwnData() const { return this->Own.Data; }
   /// From step 5: the input id of each point of Xyz, the own points' and the received ones'.
@@ -149,8 +164,8 @@ private:
 
   /// The finite points `finite` sent to the ranks whose part of space holds them; `parts`: those
   /// this rank gets, its own among them, in rank order.
-  bool SpreadFinite(
-    vtkDataArray* coordinates, vtkPointData* data, std::vector<vtkIdType>& finite, Received& parts);
+  bool SpreadFinite(vtkDataArray* coordinates, vtkDataArray* cutBy, vtkPointData* data,
+    std::vector<vtkIdType>& finite, Received& parts);
 
   /// The weights array (kWeights) that `parts` carry, appended to Weights, and taken out of
   /// their point data where `remove`.
@@ -166,10 +181,6 @@ private:
   /// Every finite point for every other rank: without a tetrahedron to choose from, any point
   /// might matter.
   std::vector<std::vector<std::uint32_t>> AllToAll() const;
-
-  /// The own points `halo`, at `xyz` (3 each), with their point data.
-  vtkSmartPointer<vtkPolyData> HaloPart(
-    const std::vector<std::uint32_t>& halo, const std::vector<double>& xyz) const;
 
   /// The counts of what this rank owns, in place of its mesh's: its vertices, the points merged
   /// into them or skipped, and the tetrahedra.

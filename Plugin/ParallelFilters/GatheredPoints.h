@@ -3,7 +3,8 @@
   SPDX-License-Identifier: BSD-3-Clause
 =========================================================================*/
 // Every rank's points and point data on the first rank, for the runs that are not distributed
-// yet (periodic boxes): that rank then computes the one-process result of all the points. A
+// (a periodic box's alpha shape, and weights in a periodic box): that rank then computes the
+// one-process result of all the points. A
 // private header of the ParallelFilters module.
 #ifndef GatheredPoints_h
 #define GatheredPoints_h

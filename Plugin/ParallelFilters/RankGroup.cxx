@@ -15,6 +15,14 @@ bool IsDistributed(vtkMultiProcessController* controller)
   return vtkMPIController::SafeDownCast(controller) && controller->GetNumberOfProcesses() > 1;
 }
 
+bool AnyRank(vtkMultiProcessController* controller, bool mine)
+{
+  const int local = mine;
+  int any = 0;
+  controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
+  return any != 0;
+}
+
 RankGroup::RankGroup(vtkMultiProcessController* controller)
   : Controller(controller), Rank(controller->GetLocalProcessId()),
     Size(controller->GetNumberOfProcesses())

@@ -18,6 +18,9 @@ namespace fd3vtk
 /// (else they run as their one-process superclasses).
 bool IsDistributed(vtkMultiProcessController* controller);
 
+/// Whether `mine` holds on any rank: a collective call.
+bool AnyRank(vtkMultiProcessController* controller, bool mine);
+
 /// The ranks of a run and its one error protocol. The local work of each step runs in Local(),
 /// which catches what it throws; then every rank learns whether all got through, before any
 /// further collective call. A rank that fails (out of memory) or is aborted thus never leaves the

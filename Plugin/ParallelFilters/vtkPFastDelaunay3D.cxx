@@ -9,7 +9,9 @@
 #include "FilterCells.h"
 #include "FilterInput.h"
 #include "GatheredPoints.h"
+#include "PeriodicRun.h"
 
+#include "vtkCommunicator.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
@@ -21,6 +23,7 @@
 #include <chrono>
 #include <exception>
 #include <string>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkPFastDelaunay3D);
@@ -50,7 +53,15 @@ int vtkPFastDelaunay3D::RequestData(
   this->RecordFigures(fd3::Statistics());
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
-    // Not distributed yet: the first rank triangulates every rank's points, as one process.
+    if (this->Alpha <= 0 &&
+      !fd3vtk::AnyRank(this->Controller,
+        fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector)))
+    {
+      return this->TriangulatePeriodicPieces(input, output);
+    }
+    // An alpha shape's triangles and edges are kept by the tetrahedra on every side of them,
+    // which the pieces split, and weights are not periodic yet: the first rank triangulates
+    // every rank's points, as one process.
     vtkSmartPointer<vtkPointSet> all =
       fd3vtk::GatheredPoints(this->Controller, input, this, "Cannot triangulate; no input points");
     if (!all)
@@ -142,6 +153,106 @@ int vtkPFastDelaunay3D::RequestData(
   }
   figures.secondsOutput +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
+  this->RecordFigures(figures);
+  this->AddFigures(output->GetFieldData());
+  return 1;
+}
+
+int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstructuredGrid* output)
+{
+  vtkSmartPointer<vtkPoints> inputPoints =
+    fd3vtk::PointsInPrecision(input, this->OutputPointsPrecision);
+  vtkPointData* inputData = input ? input->GetPointData() : nullptr;
+  const bool root = this->Controller->GetLocalProcessId() == 0;
+  const fd3::Bounds bounds = fd3vtk::GlobalFiniteBounds(this->Controller, inputPoints);
+  const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(
+    fd3vtk::BoxInUse(this, this->UseInputBounds, this->Bounds, bounds), this->Periodic);
+  const std::string problem = fd3vtk::PeriodicBoxProblem(box); // alike on every rank
+  if (!problem.empty())
+  {
+    if (root)
+    {
+      vtkWarningMacro(
+        "Cannot triangulate: " << problem << "; the output holds the points and no cells");
+    }
+    fd3vtk::SetPointsWithoutCells(output, inputPoints, inputData);
+    return 1;
+  }
+
+  fd3vtk::DistributedRun run(this->Controller, fd3vtk::ThreadCount(this->NumberOfThreads));
+  fd3vtk::PeriodicRun periodic(run, box);
+  if (!periodic.Redistribute(input, inputPoints))
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed, output, inputPoints, inputData);
+  }
+  if (run.InputPoints == 0)
+  {
+    if (root)
+    {
+      vtkWarningMacro("Cannot triangulate; no input points");
+    }
+    fd3vtk::SetPointsWithoutCells(output, nullptr, nullptr);
+    return 1;
+  }
+  const fd3::Options options = this->KernelOptions(bounds.diagonal());
+  fd3::PeriodicPieceTriangulation piece;
+  std::vector<double> ghostDensity;
+  if (!periodic.Run([&](const fd3::PeriodicPiece& own, double& widerHalo) {
+        piece = fd3::triangulatePeriodicPiece(
+          periodic.Xyz.data(), periodic.Xyz.size() / 3, box, own, this->ComputeDensity, options);
+        widerHalo = piece.widerHalo;
+        return piece.triangulation.status != fd3::Status::Aborted;
+      }) ||
+    (this->ComputeDensity && !periodic.GhostValues(piece.density, ghostDensity)))
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed, output, inputPoints, inputData);
+  }
+  this->NumberOfGhostPoints = periodic.GhostPoints;
+
+  // One status for all ranks: one whose points lie too far apart for the images' doubles tells,
+  // else one with tetrahedra.
+  const fd3::Status mine = piece.triangulation.status;
+  const int rank = mine == fd3::Status::OutOfRange ? 2 : mine == fd3::Status::Ok ? 1 : 0;
+  int worst = 0;
+  this->Controller->AllReduce(&rank, &worst, 1, vtkCommunicator::MAX_OP);
+  const fd3::Status status = worst == 2 ? fd3::Status::OutOfRange
+    : worst == 1                        ? fd3::Status::Ok
+                                        : fd3::Status::Empty;
+  fd3::Statistics figures = piece.triangulation.stats;
+  fd3vtk::SumFigures(this->Controller, figures);
+  figures.inputPoints = static_cast<std::size_t>(run.InputPoints);
+  this->RecordFigures(figures);
+  const bool hasCells =
+    root ? this->ReportOnInput(status, figures, run.InputPoints) : status == fd3::Status::Ok;
+  if (!hasCells)
+  {
+    fd3vtk::SetPointsWithoutCells(output, inputPoints, inputData);
+    return 1;
+  }
+  try // no rank waits for this one from here on
+  {
+    const auto outputStart = std::chrono::steady_clock::now();
+    const std::size_t own = run.OwnCount();
+    fd3::PeriodicPlacement placement =
+      fd3::placePeriodic(periodic.Xyz.data(), own, piece.triangulation, box);
+    vtkNew<vtkPoints> points;
+    points->SetDataType(run.OutputPointType());
+    points->SetNumberOfPoints(static_cast<vtkIdType>(own));
+    for (std::size_t i = 0; i < own; ++i)
+    {
+      points->SetPoint(static_cast<vtkIdType>(i), &periodic.Xyz[3 * i]);
+    }
+    std::vector<double> density = std::move(piece.density);
+    density.insert(density.end(), ghostDensity.begin(), ghostDensity.end());
+    this->SetPeriodicOutput(output, points, periodic.PointData(), periodic.Xyz.data(), placement,
+      std::move(density), periodic.Ids.data());
+    figures.secondsOutput +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
+  }
+  catch (const std::exception& error)
+  {
+    return this->Stop(error.what(), true, output, inputPoints, inputData);
+  }
   this->RecordFigures(figures);
   this->AddFigures(output->GetFieldData());
   return 1;

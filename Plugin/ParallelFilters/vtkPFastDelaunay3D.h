@@ -35,6 +35,21 @@
  * data) count all ranks. With one process, or a controller that is not MPI, this is
  * vtkFastDelaunay3D.
  *
+ * A periodic box (Periodic) is spread by the points' places in the box, wrapped into it. Each
+ * rank receives every other rank's points with an image within a halo of its region (the bounds
+ * of its places), a few spacings wide at first, and triangulates its points among their images
+ * and those points' (fd3::triangulatePeriodicPiece). Where a tetrahedron at one of its points
+ * might reach beyond the halo, the rank asks for a wider one, and every rank exchanges and runs
+ * again with the widest asked (a cluster in an empty box, a slab's caps). Each rank then outputs
+ * the periodic tetrahedra whose least vertex (least input id, then offset 0) is one of its
+ * points: its points first, then the image points its tetrahedra use (another rank's point, or
+ * a point a period away), each with its input point's point data and "SourcePointId", its input
+ * id. Density comes from each point's whole star; an image takes its input point's, sent back by
+ * the rank that owns it. Together the pieces are the one-process output's tetrahedra, each once.
+ * With Alpha, or with Weights, the first rank gathers every rank's points and runs as one
+ * process: an alpha shape's triangles and edges are kept by the tetrahedra on every side of
+ * them, which the pieces split, and weights are not periodic yet.
+ *
  * @warning
  * Output point ids are not input point ids under MPI: the points move between ranks; GlobalIds
  * maps them back. BoundingTriangulation is not available across ranks (the output is empty, with
@@ -81,6 +96,10 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  /// The periodic tetrahedralization, each rank's piece (fd3vtk::PeriodicRun): its tetrahedra
+  /// whose least vertex it owns, its points and the image points those use. Returns as
+  /// RequestData does.
+  int TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstructuredGrid* output);
   /// Ends an execution that some rank could not finish: aborted, it runs again on the next update;
   /// failed (`failure`: this rank's reason, when it was this rank), the output keeps the points.
   int Stop(const std::string& failure, bool anyFailed, vtkUnstructuredGrid* output,

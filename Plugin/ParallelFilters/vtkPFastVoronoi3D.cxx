@@ -8,6 +8,7 @@
 #include "FilterBox.h"
 #include "FilterInput.h"
 #include "GatheredPoints.h"
+#include "PeriodicRun.h"
 
 #include "vtkCellData.h"
 #include "vtkCommunicator.h"
@@ -111,7 +112,12 @@ int vtkPFastVoronoi3D::RequestData(
   this->RecordFigures(0, 0, 0);
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
-    // Not distributed yet: the first rank computes every rank's points' cells, as one process.
+    if (!fd3vtk::AnyRank(this->Controller,
+          fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector)))
+    {
+      return this->PeriodicPieceCells(input, output, faces);
+    }
+    // Weights are not periodic yet: the first rank reports it as one process does.
     vtkSmartPointer<vtkPointSet> all =
       fd3vtk::GatheredPoints(this->Controller, input, this, "No Voronoi cells: no input points");
     if (!all)
@@ -174,12 +180,71 @@ int vtkPFastVoronoi3D::RequestData(
   }
   this->KernelSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
-  const std::size_t ghosts = run.Xyz.size() / 3 - run.OwnCount();
-  const std::vector<vtkIdType> inputIds =
-    this->GenerateFaces ? run.InputIds() : std::vector<vtkIdType>();
+  return this->OutputPieceCells(cells, run.Xyz, run.OwnData(),
+    this->GenerateFaces ? run.InputIds() : std::vector<vtkIdType>(), run.OwnCount(),
+    run.InputPoints, run.Weighted, options.box, output, faces);
+}
+
+int vtkPFastVoronoi3D::PeriodicPieceCells(
+  vtkDataSet* input, vtkUnstructuredGrid* output, vtkPolyData* faces)
+{
+  vtkSmartPointer<vtkPoints> inputPoints =
+    fd3vtk::PointsInPrecision(input, vtkAlgorithm::DEFAULT_PRECISION);
+  const bool root = this->Controller->GetLocalProcessId() == 0;
+  const fd3::VoronoiOptions options =
+    this->KernelOptions(fd3vtk::GlobalFiniteBounds(this->Controller, inputPoints));
+  const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(options.box, this->Periodic);
+  const std::string problem = fd3vtk::PeriodicBoxProblem(box); // alike on every rank
+  if (!problem.empty())
+  {
+    if (root)
+    {
+      vtkErrorMacro("Voronoi cells failed: " << problem << "; the output is empty");
+    }
+    return 0;
+  }
+
+  const auto kernelStart = std::chrono::steady_clock::now();
+  fd3vtk::DistributedRun run(this->Controller, options.threads);
+  fd3vtk::PeriodicRun periodic(run, box);
+  if (!periodic.Redistribute(input, inputPoints))
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
+  }
+  if (run.InputPoints == 0)
+  {
+    if (root)
+    {
+      vtkWarningMacro("No Voronoi cells: no input points");
+    }
+    return 1;
+  }
+  fd3::VoronoiCells cells;
+  if (!periodic.Run([&](const fd3::PeriodicPiece& own, double& widerHalo) {
+        cells = fd3::voronoiCellsPeriodicPiece(
+          periodic.Xyz.data(), periodic.Xyz.size() / 3, box, own, widerHalo, options);
+        return cells.status != fd3::Status::Aborted;
+      }))
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed);
+  }
+  this->KernelSeconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
+  return this->OutputPieceCells(cells, periodic.Xyz, run.OwnData(),
+    std::vector<vtkIdType>(periodic.Ids.begin(), periodic.Ids.end()), run.OwnCount(),
+    run.InputPoints, false, options.box, output, faces);
+}
+
+int vtkPFastVoronoi3D::OutputPieceCells(fd3::VoronoiCells& cells, fd3::Coordinates& xyz,
+  vtkPointData* ownData, const std::vector<vtkIdType>& inputIds, std::size_t own,
+  vtkIdType inputPoints, bool weighted, const fd3::Bounds& box, vtkUnstructuredGrid* output,
+  vtkPolyData* faces)
+{
+  const bool root = this->Controller->GetLocalProcessId() == 0;
+  const std::size_t ghosts = xyz.size() / 3 - own;
   if (this->GeneratePolyhedra)
   {
-    fd3::Coordinates().swap(run.Xyz); // else the generators' points come from it
+    fd3::Coordinates().swap(xyz); // else the generators' points come from it
   }
 
   CellFigures figures;
@@ -197,18 +262,17 @@ int vtkPFastVoronoi3D::RequestData(
   const fd3::Status status = figures.OutOfRange > 0 ? fd3::Status::OutOfRange
     : figures.Cells > 0                             ? fd3::Status::Ok
                                                     : fd3::Status::Empty;
-  const bool hasCells = root
-    ? this->ReportOnInput(status, options.box, run.InputPoints, run.Weighted)
-    : status == fd3::Status::Ok;
+  const bool hasCells =
+    root ? this->ReportOnInput(status, box, inputPoints, weighted) : status == fd3::Status::Ok;
   if (!hasCells)
   {
     return 1;
   }
   const auto conversionStart = std::chrono::steady_clock::now();
-  fd3::Workers workers(options.threads);
-  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, run.Xyz.data(), workers);
+  fd3::Workers workers(fd3vtk::ThreadCount(this->NumberOfThreads));
+  vtkSmartPointer<vtkPoints> vertices = this->SetGeometry(output, cells, xyz.data(), workers);
   this->UpdateProgress(0.9);
-  AddCellData(output, cells, run.OwnData(), workers);
+  AddCellData(output, cells, ownData, workers);
   SetGeneratorIds(output);
   if (this->GenerateFaces)
   {

@@ -20,6 +20,12 @@
  * run; a hidden point's cell is empty on the rank that owns it. The figures (getters, field data)
  * count all ranks. With one process, or a controller that is not MPI, this is vtkFastVoronoi3D.
  *
+ * In a periodic box (Periodic), each rank gets the other ranks' points with an image within its
+ * halo, widened until every tetrahedron at its points is certain, as vtkPFastDelaunay3D does, and
+ * outputs its own points' periodic cells (fd3::voronoiCellsPeriodicPiece). With Weights, the
+ * first rank gathers every point and reports, as one process does, that weights are not
+ * periodic yet.
+ *
  * @warning
  * Coplanar or collinear input has no tetrahedron to find a halo with: every rank then receives
  * all points.
@@ -34,6 +40,15 @@
 #include "vtkFastVoronoi3D.h"
 
 #include <string> // for std::string
+#include <vector> // for std::vector
+
+namespace fd3
+{
+template <typename T>
+struct BulkAllocator; // the allocator of fd3::Coordinates
+struct Bounds;
+struct VoronoiCells;
+} // namespace fd3
 
 class vtkMultiProcessController;
 
@@ -65,6 +80,17 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 private:
+  /// The periodic cells, each rank its own points' (fd3vtk::PeriodicRun). Returns as RequestData
+  /// does.
+  int PeriodicPieceCells(vtkDataSet* input, vtkUnstructuredGrid* output, vtkPolyData* faces);
+  /// A rank's output from the cells of its `own` points, the first of `xyz` (then its ghosts,
+  /// whose input ids `inputIds` gives after the own points', where GenerateFaces asks for them),
+  /// with the figures of every rank. The generators' coordinates come from `xyz`, which is freed
+  /// where the polyhedra do not need it. Returns as RequestData does.
+  int OutputPieceCells(fd3::VoronoiCells& cells,
+    std::vector<double, fd3::BulkAllocator<double>>& xyz, vtkPointData* ownData,
+    const std::vector<vtkIdType>& inputIds, std::size_t own, vtkIdType inputPoints, bool weighted,
+    const fd3::Bounds& box, vtkUnstructuredGrid* output, vtkPolyData* faces);
   /// Ends an execution that some rank could not finish: aborted, it runs again on the next update;
   /// failed (`failure`: this rank's reason, when it was this rank), the output is empty.
   int Stop(const std::string& failure, bool anyFailed);

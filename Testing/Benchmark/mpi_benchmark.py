@@ -4,8 +4,9 @@
 usage: mpiexec -np N pvbatch --mpi mpi_benchmark.py <plugin .so> <points> [kind] [filter]
 
 Every rank generates its share of uniform points (kind "cube"), of uniform points with radii in
-[0.001, 0.01] that weigh them ("radii", the weighted benchmark's set) or of a torus surface
-("torus") over the whole domain, so that no file reading is timed; the time is the filter's update,
+[0.001, 0.01] that weigh them ("radii", the weighted benchmark's set), of a torus surface
+("torus") or of uniform points in the periodic unit box ("periodic") over the whole domain, so
+that no file reading is timed; the time is the filter's update,
 redistribution and exchange included: FastDelaunay3D's, or with filter "voronoi" FastVoronoi3D's
 (its cells' polyhedra, in the points' bounds).
 """
@@ -40,6 +41,8 @@ if "%s" == "radii":
     dsa.WrapDataObject(self.GetOutput()).PointData.append(0.001 + 0.009 * rng.random(n), "Radius")
 """ % (count, count, kind, kind)
 weights = {"Weights": ["POINTS", "Radius"]} if kind == "radii" else {}
+if kind == "periodic":
+    weights = dict(Periodic=[1, 1, 1], UseInputBounds=0, Bounds=[0, 1, 0, 1, 0, 1])
 cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
 cloud.UpdatePipeline()
 if voronoi:
@@ -59,7 +62,7 @@ delaunay.UpdatePipeline()
 seconds = time.perf_counter() - start
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 info = delaunay.GetDataInformation()
-ghosts = info.GetNumberOfPoints() - count
+ghosts = info.GetNumberOfPoints() - count  # periodic: the image points
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 fields = info.DataInformation.GetFieldDataInformation()  # the figures, times of the slowest rank
 figure = lambda name: fields.GetArrayInformation(name).GetComponentRange(0)[0]

@@ -1,7 +1,13 @@
-"""pvbatch under MPI: a periodic box whose particles are spread over the ranks (some of them a
-period outside the box). Fast Voronoi 3D's and Fast Delaunay 3D's periodic outputs equal, bit for
-bit, those of the VTK classes run in this one process on all the particles, in rank order (the
-order in which the first rank gathers them; each particle's "Id" travels with it).
+"""pvbatch under MPI: periodic boxes whose particles are spread over the ranks (some of them a
+period outside the box). Each rank computes the cells of its own particles and the tetrahedra
+whose least vertex is one of them, from the other ranks' particles within its halo (their images
+across the box included), widened where a rank finds it too narrow. Together the ranks' outputs
+are those of the VTK classes run in this one process on all the particles in rank order (the
+order of the input ids; each particle's "Id" travels with it): the same cells and tetrahedra, each
+once, with the same values to 1e-12.
+
+Cases: uniform particles in a box periodic on every axis; a cluster in a corner of a large box,
+whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y.
 
 usage: mpiexec -np N pvbatch --mpi TestMPIPeriodic.py <plugin .so>
 (with the build's Python modules on PYTHONPATH, for the one-process classes)
@@ -18,15 +24,24 @@ from fastdelaunay3d.FastDelaunay3DFilters import vtkFastDelaunay3D, vtkFastVoron
 LoadPlugin(sys.argv[1], remote=False, ns=globals())
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
 
+# Each case: the particles (the same code runs in the Programmable Source on every rank), the box
+# and the periodic axes.
+CASES = {
+    "uniform": ("p = rng.random((3000, 3)) * 4\np[::17, 1] += 4", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
+    "cluster": ("p = rng.random((600, 3)) + 0.5", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
+    "slab": ("p = rng.random((1500, 3)) * [4, 4, 1]\np[::13, 0] -= 4", [0, 4, 0, 4, 0, 1],
+             [1, 1, 0]),
+}
 
-def particles():
+
+def particles(make):
     rng = np.random.default_rng(11)
-    p = rng.random((3000, 3)) * 4
-    p[::17, 1] += 4  # a period outside the box
-    return p
+    scope = {"rng": rng}
+    exec(make, {}, scope)
+    return scope["p"]
 
 
-script = """
+SCRIPT = """
 import numpy as np
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 from vtkmodules.numpy_interface import dataset_adapter as dsa
@@ -34,33 +49,27 @@ from vtkmodules.vtkCommonCore import vtkPoints
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 rng = np.random.default_rng(11)
-p = rng.random((3000, 3)) * 4
-p[::17, 1] += 4
+%s
 points = vtkPoints()
 points.SetData(dsa.numpyTovtkDataArray(np.ascontiguousarray(p[rank::ranks]), "Points"))
 self.GetOutput().SetPoints(points)
-dsa.WrapDataObject(self.GetOutput()).PointData.append(np.arange(3000.0)[rank::ranks], "Id")
+dsa.WrapDataObject(self.GetOutput()).PointData.append(np.arange(float(len(p)))[rank::ranks], "Id")
 """
-cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=script)
-box = [0, 4, 0, 4, 0, 4]
-settings = dict(Periodic=[1, 1, 1], UseInputBounds=0, Bounds=box, ComputeDensity=1)
-
-# The same particles in one process, in the order the first rank gathers them.
-p = particles()
-order = np.concatenate([np.arange(3000)[r::ranks] for r in range(ranks)])
-whole = vtkPolyData()
-points = vtkPoints()
-points.SetData(numpy_to_vtk(np.ascontiguousarray(p[order]), deep=True))
-whole.SetPoints(points)
-ids = numpy_to_vtk(order.astype(float), deep=True)
-ids.SetName("Id")
-whole.GetPointData().AddArray(ids)
 
 
-def one_process(filter_class):
+def one_process(filter_class, p, box, periodic):
+    """The filter in this process on the particles in rank order: the order of their input ids."""
+    order = np.concatenate([np.arange(len(p))[r::ranks] for r in range(ranks)])
+    whole = vtkPolyData()
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(p[order]), deep=True))
+    whole.SetPoints(points)
+    ids = numpy_to_vtk(order.astype(float), deep=True)
+    ids.SetName("Id")
+    whole.GetPointData().AddArray(ids)
     f = filter_class()
     f.SetInputData(whole)
-    f.SetPeriodic(1, 1, 1)
+    f.SetPeriodic(*periodic)
     f.UseInputBoundsOff()
     f.SetBounds(*box)
     f.ComputeDensityOn()
@@ -69,48 +78,103 @@ def one_process(filter_class):
 
 
 def pieces(proxy):
-    """The first rank's piece; every other rank's is empty."""
+    """Every rank's piece of the output; at least two of them hold cells."""
     fetched = [servermanager.Fetch(proxy, r) for r in range(ranks)]
-    for r in range(1, ranks):
-        if fetched[r].GetNumberOfPoints() or fetched[r].GetNumberOfCells():
-            sys.exit("TestMPIPeriodic: rank %d holds part of the output" % r)
-    return fetched[0]
+    # Not sum() or min(): once a Programmable Source has run in this process, those are numpy's
+    # here.
+    if len([f for f in fetched if f.GetNumberOfCells()]) < (2 if ranks > 1 else 1):
+        sys.exit("TestMPIPeriodic: the cells are not spread over the ranks")
+    return fetched
 
 
-def same(a, b, what):
-    for kind, x, y in (("cell", a.GetCellData(), b.GetCellData()),
-                       ("point", a.GetPointData(), b.GetPointData())):
-        for i in range(y.GetNumberOfArrays()):
-            name = y.GetArrayName(i)
-            if x.GetArray(name) is None or not np.array_equal(
-                    vtk_to_numpy(x.GetArray(name)), vtk_to_numpy(y.GetArray(name)), equal_nan=True):
-                sys.exit("TestMPIPeriodic: %s %s array %s differs from one process" % (what, kind, name))
-    if not np.array_equal(vtk_to_numpy(a.GetPoints().GetData()), vtk_to_numpy(b.GetPoints().GetData())):
-        sys.exit("TestMPIPeriodic: %s points differ from one process" % what)
+def cell_arrays(data):
+    d = data.GetCellData()
+    return {d.GetArrayName(i): vtk_to_numpy(d.GetArray(i)) for i in range(d.GetNumberOfArrays())}
 
 
-cells = pieces(FastVoronoi3D(Input=cloud, **settings))
-reference = one_process(vtkFastVoronoi3D)
-if cells.GetNumberOfCells() != 3000 or reference.GetNumberOfCells() != 3000:
-    sys.exit("TestMPIPeriodic: %d cells" % cells.GetNumberOfCells())
-same(cells, reference, "Voronoi")
-volume = vtk_to_numpy(cells.GetCellData().GetArray("Volume")).sum()
-if abs(volume - 64) > 1e-12 * 64:
-    sys.exit("TestMPIPeriodic: the cells' volume is %r, not the box's" % volume)
-print("TestMPIPeriodic: %d periodic cells on %d ranks, as one process" % (3000, ranks))
+def close(a, b, what):
+    """Equal, and floats to 1e-12 relative: a rank sums in another order."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    if a.shape != b.shape or not np.allclose(a, b, rtol=1e-12, atol=0, equal_nan=True):
+        sys.exit("TestMPIPeriodic: %s differs from one process" % what)
 
-tets = pieces(FastDelaunay3D(Input=cloud, ComputeVolume=1, **settings))
-reference = one_process(vtkFastDelaunay3D)
-same(tets, reference, "Delaunay")
-if not np.array_equal(vtk_to_numpy(tets.GetCells().GetConnectivityArray()),
-                      vtk_to_numpy(reference.GetCells().GetConnectivityArray())):
-    sys.exit("TestMPIPeriodic: the tetrahedra differ from one process")
-print("TestMPIPeriodic: %d periodic tetrahedra on %d ranks, as one process" % (tets.GetNumberOfCells(), ranks))
+
+def check_cells(case, cloud, p, box, periodic):
+    """Fast Voronoi 3D: each rank the cells of its own particles, as one process has them."""
+    reference = one_process(vtkFastVoronoi3D, p, box, periodic)
+    cells = {}
+    for part in pieces(FastVoronoi3D(Input=cloud, Periodic=periodic, UseInputBounds=0, Bounds=box,
+                                     ComputeDensity=1)):
+        for name, values in cell_arrays(part).items():
+            cells.setdefault(name, []).append(values)
+    cells = {name: np.concatenate(values) for name, values in cells.items()}
+    mine, theirs = cells["Id"], vtk_to_numpy(reference.GetCellData().GetArray("Id"))
+    if len(mine) != len(p) or len(np.unique(mine)) != len(p):
+        sys.exit("TestMPIPeriodic: %s: %d cells, not one per particle" % (case, len(mine)))
+    order, reference_order = np.argsort(mine), np.argsort(theirs)
+    for name, values in cell_arrays(reference).items():
+        if name not in cells:
+            sys.exit("TestMPIPeriodic: %s: no %s array in the ranks' cells" % (case, name))
+        close(cells[name][order], values[reference_order], case + ": the cells' " + name)
+    if periodic == [1, 1, 1]:
+        volume, period = cells["Volume"].sum(), np.prod(np.diff(np.reshape(box, (3, 2))))
+        if abs(volume - period) > 1e-12 * period:
+            sys.exit("TestMPIPeriodic: %s: the cells' volume is %r, not the box's" % (case, volume))
+    print("TestMPIPeriodic: %s: %d periodic cells on %d ranks, as one process" % (case, len(p), ranks))
+
+
+def tetrahedra(data):
+    """Each tetrahedron as its sorted vertices (input point, then place) with its cell values,
+    and each point's input point and place with its density."""
+    ids = vtk_to_numpy(data.GetPointData().GetArray("SourcePointId"))
+    xyz = vtk_to_numpy(data.GetPoints().GetData())
+    vertex = [(int(ids[i]),) + tuple(xyz[i]) for i in range(len(ids))]
+    cells = vtk_to_numpy(data.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    arrays = cell_arrays(data)
+    keyed = {tuple(sorted(vertex[v] for v in c)): {n: a[k] for n, a in arrays.items()}
+             for k, c in enumerate(cells)}
+    if len(keyed) != len(cells):
+        sys.exit("TestMPIPeriodic: a tetrahedron twice")
+    density = vtk_to_numpy(data.GetPointData().GetArray("Density"))
+    return keyed, {vertex[i]: density[i] for i in range(len(ids))}
+
+
+def check_tetrahedra(case, cloud, p, box, periodic):
+    """Fast Delaunay 3D: each periodic tetrahedron once, on the rank of its least vertex."""
+    reference, reference_density = tetrahedra(one_process(vtkFastDelaunay3D, p, box, periodic))
+    tets, density = {}, {}
+    for part in pieces(FastDelaunay3D(Input=cloud, Periodic=periodic, UseInputBounds=0,
+                                      Bounds=box, ComputeDensity=1, ComputeVolume=1)):
+        keyed, values = tetrahedra(part)
+        if set(keyed) & set(tets):
+            sys.exit("TestMPIPeriodic: %s: two ranks output the same tetrahedron" % case)
+        tets.update(keyed)
+        density.update(values)
+    if set(tets) != set(reference):
+        sys.exit("TestMPIPeriodic: %s: the tetrahedra differ from one process (%d against %d)"
+                 % (case, len(tets), len(reference)))
+    keys = sorted(reference)
+    for name in reference[keys[0]]:
+        close([tets[k][name] for k in keys], [reference[k][name] for k in keys],
+              case + ": the tetrahedra's " + name)
+    points = sorted(density)
+    if set(points) - set(reference_density):
+        sys.exit("TestMPIPeriodic: %s: a point that one process does not output" % case)
+    close([density[v] for v in points], [reference_density[v] for v in points], case + ": Density")
+    print("TestMPIPeriodic: %s: %d periodic tetrahedra on %d ranks, as one process"
+          % (case, len(tets), ranks))
+
+
+for case, (make, box, periodic) in CASES.items():
+    cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCRIPT % make)
+    check_cells(case, cloud, particles(make), box, periodic)
+    check_tetrahedra(case, cloud, particles(make), box, periodic)
+
 # No rank has a point: a warning on the first rank and empty outputs, on every rank alike.
 nothing = ProgrammableSource(OutputDataSetType="vtkPolyData",
                              Script="self.GetOutput().SetPoints(vtk.vtkPoints())")
 for make in (FastVoronoi3D, FastDelaunay3D):
-    made = make(Input=nothing, **settings)
+    made = make(Input=nothing, Periodic=[1, 1, 1], UseInputBounds=0, Bounds=[0, 4, 0, 4, 0, 4])
     # Not any(): once a Programmable Source has run in this process, `any` is numpy's here.
     for r in range(ranks):
         if servermanager.Fetch(made, r).GetNumberOfCells():

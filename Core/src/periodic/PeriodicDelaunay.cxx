@@ -299,9 +299,9 @@ PeriodicDelaunay::PeriodicDelaunay(const double* xyz, std::size_t count, const P
   const Options& options, const PeriodicPiece& piece)
   : PeriodicDelaunay(xyz, count, box, options)
 {
-  if (piece.own > count || !piece.ids || !(piece.halo > 0) || piece.points < piece.own)
-    throw std::invalid_argument("fd3::PeriodicPiece: more own points than points, no ids, no "
-                                "halo or fewer points in the whole set than own");
+  if (piece.own > count || !piece.ids || !(piece.halo > 0))
+    throw std::invalid_argument("fd3::PeriodicPiece: more own points than points, no ids or no "
+                                "halo");
   own_ = piece.own;
   ids_ = piece.ids;
   region_ = piece.region;
