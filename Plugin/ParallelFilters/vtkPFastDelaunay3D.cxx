@@ -20,8 +20,10 @@
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -202,22 +204,29 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
           periodic.Xyz.data(), periodic.Xyz.size() / 3, box, own, this->ComputeDensity, options);
         widerHalo = piece.widerHalo;
         return piece.triangulation.status != fd3::Status::Aborted;
-      }) ||
-    (this->ComputeDensity && !periodic.GhostValues(piece.density, ghostDensity)))
+      }))
   {
     return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed, output, inputPoints, inputData);
   }
   this->NumberOfGhostPoints = periodic.GhostPoints;
 
   // One status for all ranks: one whose points lie too far apart for the images' doubles tells,
-  // else one with tetrahedra.
-  const fd3::Status mine = piece.triangulation.status;
-  const int rank = mine == fd3::Status::OutOfRange ? 2 : mine == fd3::Status::Ok ? 1 : 0;
-  int worst = 0;
-  this->Controller->AllReduce(&rank, &worst, 1, vtkCommunicator::MAX_OP);
-  const fd3::Status status = worst == 2 ? fd3::Status::OutOfRange
-    : worst == 1                        ? fd3::Status::Ok
-                                        : fd3::Status::Empty;
+  // else one with tetrahedra, else the most telling (the pieces widen their halo until every
+  // rank with points has tetrahedra, or none has).
+  constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
+    fd3::Status::Degenerate, fd3::Status::Ok, fd3::Status::OutOfRange };
+  const int mine = static_cast<int>(
+    std::find(std::begin(kByRank), std::end(kByRank), piece.triangulation.status) - kByRank);
+  int most = 0;
+  this->Controller->AllReduce(&mine, &most, 1, vtkCommunicator::MAX_OP);
+  const fd3::Status status = kByRank[std::min(most, 4)];
+  // A rank's densities are there where its piece is Ok, and sent where all are: every rank then
+  // has tetrahedra or no points.
+  if (status == fd3::Status::Ok && this->ComputeDensity &&
+    !periodic.GhostValues(piece.density, ghostDensity))
+  {
+    return this->Stop(run.Ranks.Failure, run.Ranks.AnyFailed, output, inputPoints, inputData);
+  }
   fd3::Statistics figures = piece.triangulation.stats;
   fd3vtk::SumFigures(this->Controller, figures);
   figures.inputPoints = static_cast<std::size_t>(run.InputPoints);

@@ -305,3 +305,16 @@ TEST(PeriodicPieces, PointsWithinARounding)
   p.insert(p.end(), {p[0] + 1, p[1], p[2] - 1});
   expectOneProcessResult(p, fd3::PeriodicBox(), 3);
 }
+
+TEST(PeriodicPieces, APlaneAndOnePointAbove)
+{
+  // A slab's points on one plane but one: the pieces away from that point see only the plane
+  // within their first halo, and must widen it to find the tetrahedra up to the point.
+  fd3::PeriodicBox slab;
+  slab.periodic[2] = false;
+  Points p = fd3test::uniformCube(4000, 14);
+  for (std::size_t i = 2; i < p.size(); i += 3)
+    p[i] = 0;
+  p.insert(p.end(), {0.5, 0.5, 0.3});
+  EXPECT_GT(expectOneProcessResult(p, slab, 3), 1);
+}

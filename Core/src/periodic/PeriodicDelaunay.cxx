@@ -1069,12 +1069,16 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
     return nullptr;
   auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
     coveringImages_.data(), options_, frame_);
-  if (piece_) // the other pieces send a wider halo where this one falls short
+  if (piece_ && margin_ < widest_) // the other pieces send a wider halo where this one falls short
   {
-    if (mesh->status() == Status::Ok && margin_ < widest_)
+    const Status status = mesh->status();
+    if (status == Status::Ok)
       widerHalo_ = widerHaloFor(failures(*mesh));
-    return mesh;
+    else if (status == Status::TooFewPoints || status == Status::Degenerate)
+      widerHalo_ = widest_; // flat here, as a slab's plane far from its other points
   }
+  if (piece_)
+    return mesh;
   std::size_t inserted = covering_.size();
   for (int targeted = 0; mesh->status() == Status::Ok && margin_ < widest_;)
   {
