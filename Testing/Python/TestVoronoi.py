@@ -1,7 +1,8 @@
-"""pvpython: Fast Voronoi 3D through the plugin. The proxy's properties; one polyhedron per
-point of a clustered cloud, whose volumes (Volume, summed) fill the box, as ParaView's own
-Integrate Variables measures them; the same volumes on vertex cells without polyhedra; the Bounds
-clip; and an image regression of the cells, shrunk and coloured by volume.
+"""pvpython: Fast Voronoi 3D through the plugin. The proxy's properties (a unit box given as
+either filter is made is kept); one polyhedron per point of a clustered cloud, whose volumes
+(Volume, summed) fill the box, as ParaView's own Integrate Variables measures them; the same
+volumes on vertex cells without polyhedra; the Bounds clip; and an image regression of the
+cells, shrunk and coloured by volume.
 
 usage: pvpython TestVoronoi.py <plugin .so> -V <absolute baseline> -T <output dir>
 """
@@ -37,6 +38,14 @@ assert voronoi.GeneratePolyhedra == 1
 assert voronoi.UseInputBounds == 1 and list(voronoi.Periodic) == [0, 0, 0]
 # The panel shows the box in use: the input's bounds.
 assert list(voronoi.Bounds) == list(servermanager.Fetch(cloud).GetBounds()), voronoi.Bounds
+# A box given as the filter is made is kept, the unit cube too (the XML default's value would
+# take the input's bounds instead), whether or not the input has run.
+fresh = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=cloud.Script)
+for source in (fresh, cloud):
+    for make in (FastVoronoi3D, FastDelaunay3D):
+        unit = make(Input=source, UseInputBounds=0, Bounds=[0, 1, 0, 1, 0, 1])
+        assert list(unit.Bounds) == [0, 1, 0, 1, 0, 1], (make, list(unit.Bounds))
+        Delete(unit)
 voronoi.UpdatePipeline()
 output = servermanager.Fetch(voronoi)
 assert output.GetNumberOfCells() == 1200, output.GetNumberOfCells()
