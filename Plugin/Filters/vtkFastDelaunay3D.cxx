@@ -212,6 +212,36 @@ void SetPointDataAndImages(vtkPointData* out, vtkPointData* in, vtkIdType count,
   out->AddArray(sourceId);
 }
 
+/// Of the alpha shape of an MPI rank's placed stars (`count` own points, input ids `ids`), what
+/// the rank owns: the tetrahedra `owned` says, the triangles and lines whose least vertex (least
+/// input id) is one of its points, and its points' vertex cells.
+void KeepOwned(fd3::AlphaComplex& shape, const fd3::PeriodicPlacement& placement, std::size_t count,
+  const std::uint32_t* ids, const std::vector<std::uint8_t>& owned)
+{
+  auto source = [&](std::uint32_t v) { return v < count ? v : placement.imageSources[v - count]; };
+  auto keep = [&](std::vector<std::uint32_t>& list, int size) {
+    std::size_t kept = 0;
+    for (std::size_t s = 0; s < list.size(); s += size)
+    {
+      std::uint32_t least = source(list[s]);
+      for (int k = 1; k < size; ++k)
+      {
+        least = ids[source(list[s + k])] < ids[least] ? source(list[s + k]) : least;
+      }
+      if (least < count)
+      {
+        kept += std::copy_n(&list[s], size, &list[kept]) - &list[kept];
+      }
+    }
+    list.resize(kept);
+  };
+  keep(shape.triangles, 3);
+  keep(shape.lines, 2);
+  shape.tetrahedra.erase(std::remove_if(shape.tetrahedra.begin(), shape.tetrahedra.end(),
+                           [&](std::uint32_t t) { return !owned[t]; }),
+    shape.tetrahedra.end());
+}
+
 using fd3vtk::AddFieldValue;
 using fd3vtk::CellBlock;
 using fd3vtk::CoordinatesAsDoubles;
@@ -549,7 +579,7 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
 
 void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points,
   vtkPointData* pointData, const double* xyz, fd3::PeriodicPlacement& placement,
-  std::vector<double> density, const std::uint32_t* ids)
+  std::vector<double> density, const std::uint32_t* ids, const std::vector<std::uint8_t>* owned)
 {
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   const std::size_t images = placement.numberOfImages();
@@ -570,12 +600,28 @@ void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints
   }
   if (this->Alpha > 0)
   {
-    const fd3::AlphaComplex shape =
+    fd3::AlphaComplex shape =
       fd3::alphaComplex(xyz, count, placement, this->Alpha, ThreadCount(this->NumberOfThreads));
+    if (owned)
+    {
+      KeepOwned(shape, placement, count, ids, *owned);
+    }
     this->SetAlphaShape(output, placement.tetrahedra.data(), shape);
   }
   else
   {
+    if (owned)
+    {
+      std::size_t kept = 0;
+      for (std::size_t t = 0; t < owned->size(); ++t)
+      {
+        if ((*owned)[t])
+        {
+          std::copy_n(&placement.tetrahedra[4 * t], 4, &placement.tetrahedra[4 * kept++]);
+        }
+      }
+      placement.tetrahedra.resize(4 * kept);
+    }
     SetTetrahedra(output, std::move(placement.tetrahedra));
   }
   this->AddCellArrays(output, placed);

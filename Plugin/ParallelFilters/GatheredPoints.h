@@ -2,9 +2,9 @@
   FastDelaunay3D
   SPDX-License-Identifier: BSD-3-Clause
 =========================================================================*/
-// Every rank's points and point data on the first rank, for the runs that are not distributed
-// (a periodic box's alpha shape, and weights in a periodic box): that rank then computes the
-// one-process result of all the points. A
+// Every rank's points and point data on the first rank, for the run that is not distributed
+// (weights in a periodic box, which one process reports it cannot use): that rank then runs as
+// one process on all the points. A
 // private header of the ParallelFilters module.
 #ifndef GatheredPoints_h
 #define GatheredPoints_h

@@ -55,15 +55,12 @@ int vtkPFastDelaunay3D::RequestData(
   this->RecordFigures(fd3::Statistics());
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
-    if (this->Alpha <= 0 &&
-      !fd3vtk::AnyRank(this->Controller,
-        fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector)))
+    if (!fd3vtk::AnyRank(this->Controller,
+          fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, inputVector)))
     {
       return this->TriangulatePeriodicPieces(input, output);
     }
-    // An alpha shape's triangles and edges are kept by the tetrahedra on every side of them,
-    // which the pieces split, and weights are not periodic yet: the first rank triangulates
-    // every rank's points, as one process.
+    // Weights are not periodic yet: the first rank reports it as one process does.
     vtkSmartPointer<vtkPointSet> all =
       fd3vtk::GatheredPoints(this->Controller, input, this, "Cannot triangulate; no input points");
     if (!all)
@@ -199,7 +196,10 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
   const fd3::Options options = this->KernelOptions(bounds.diagonal());
   fd3::PeriodicPieceTriangulation piece;
   std::vector<double> ghostDensity;
-  if (!periodic.Run([&](const fd3::PeriodicPiece& own, double& widerHalo) {
+  if (!periodic.Run([&](fd3::PeriodicPiece own, double& widerHalo) {
+        // An alpha shape's triangles and edges are kept by the tetrahedra all round them: the
+        // rank walks its points' stars.
+        own.stars = this->Alpha > 0;
         piece = fd3::triangulatePeriodicPiece(
           periodic.Xyz.data(), periodic.Xyz.size() / 3, box, own, this->ComputeDensity, options);
         widerHalo = piece.widerHalo;
@@ -254,7 +254,7 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
     std::vector<double> density = std::move(piece.density);
     density.insert(density.end(), ghostDensity.begin(), ghostDensity.end());
     this->SetPeriodicOutput(output, points, periodic.PointData(), periodic.Xyz.data(), placement,
-      std::move(density), periodic.Ids.data());
+      std::move(density), periodic.Ids.data(), this->Alpha > 0 ? &piece.owned : nullptr);
     figures.secondsOutput +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
   }

@@ -45,10 +45,11 @@
  * points: its points first, then the image points its tetrahedra use (another rank's point, or
  * a point a period away), each with its input point's point data and "SourcePointId", its input
  * id. Density comes from each point's whole star; an image takes its input point's, sent back by
- * the rank that owns it. Together the pieces are the one-process output's tetrahedra, each once.
- * With Alpha, or with Weights, the first rank gathers every rank's points and runs as one
- * process: an alpha shape's triangles and edges are kept by the tetrahedra on every side of
- * them, which the pieces split, and weights are not periodic yet.
+ * the rank that owns it. With Alpha, each rank takes the stars of its points (every periodic
+ * tetrahedron at them), whose alpha shape holds every simplex at them as the whole set's does,
+ * and keeps the simplices whose least vertex is one of its points. Together the pieces are the
+ * one-process output's cells, each once. With Weights, the first rank gathers every rank's
+ * points and reports, as one process does, that weights are not periodic yet.
  *
  * @warning
  * Output point ids are not input point ids under MPI: the points move between ranks; GlobalIds

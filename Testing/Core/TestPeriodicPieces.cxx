@@ -101,9 +101,51 @@ std::vector<std::vector<std::uint32_t>> split(
   return out;
 }
 
+/// A simplex of an alpha complex by its vertices' input ids and shifts from its least vertex,
+/// sorted: the same for every translate, in a piece or in one process.
+using Simplex = std::vector<std::array<std::int64_t, 4>>;
+
+/// The simplices of `shape` (alphaComplex() of `placement`, of `count` points whose input ids are
+/// `ids`) that `keep` accepts, each given the input ids of its vertices.
+template <typename Keep>
+std::vector<Simplex> simplices(const fd3::AlphaComplex& shape,
+  const fd3::PeriodicPlacement& placement, std::size_t count, const std::vector<std::uint32_t>& ids,
+  Keep keep)
+{
+  auto vertex = [&](std::uint32_t id) {
+    if (id < count)
+      return std::array<std::int64_t, 4>{ids[id], 0, 0, 0};
+    const std::size_t k = id - count;
+    return std::array<std::int64_t, 4>{ids[placement.imageSources[k]], placement.imageShifts[3 * k],
+      placement.imageShifts[3 * k + 1], placement.imageShifts[3 * k + 2]};
+  };
+  std::vector<Simplex> out;
+  auto add = [&](const std::uint32_t* v, int size) {
+    Simplex simplex;
+    for (int i = 0; i < size; ++i)
+      simplex.push_back(vertex(v[i]));
+    std::sort(simplex.begin(), simplex.end());
+    for (int i = size - 1; i >= 0; --i)
+      for (int k = 1; k < 4; ++k)
+        simplex[i][k] -= simplex[0][k];
+    if (keep(simplex))
+      out.push_back(simplex);
+  };
+  for (const std::uint32_t t : shape.tetrahedra)
+    add(&placement.tetrahedra[4 * t], 4);
+  for (std::size_t k = 0; k < shape.triangles.size(); k += 3)
+    add(&shape.triangles[k], 3);
+  for (std::size_t k = 0; k < shape.lines.size(); k += 2)
+    add(&shape.lines[k], 2);
+  for (const std::uint32_t v : shape.vertices)
+    add(&v, 1);
+  return out;
+}
+
 /// What the pieces give, in input ids, and how many exchanges they took.
 struct PieceRuns
 {
+  std::vector<Simplex> alphaComplex; // sorted
   std::vector<Vertices> tetrahedra;
   std::vector<double> density; // by input id
   std::vector<double> volume;  // of each input point's cell
@@ -112,8 +154,10 @@ struct PieceRuns
   int exchanges = 0;
 };
 
-/// Runs the pieces (split()) of p in box until no piece asks for a wider halo.
-PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pieces, bool alongY)
+/// Runs the pieces (split()) of p in box until no piece asks for a wider halo; with `alpha`,
+/// each piece's stars and alpha complex.
+PieceRuns runPieces(
+  const Points& p, const fd3::PeriodicBox& box, std::size_t pieces, bool alongY, double alpha)
 {
   const std::size_t n = p.size() / 3;
   std::vector<double> places;
@@ -140,6 +184,7 @@ PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pi
     again = false;
     double wider = 0;
     out.tetrahedra.clear();
+    out.alphaComplex.clear();
     out.placedVolume = 0;
     for (std::size_t r = 0; r < own.size(); ++r)
     {
@@ -159,7 +204,8 @@ PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pi
       piece.halo = halo;
       piece.points = finite;
       piece.extent = extent;
-      const fd3::PeriodicPieceTriangulation t =
+      piece.stars = alpha > 0;
+      fd3::PeriodicPieceTriangulation t =
         fd3::triangulatePeriodicPiece(xyz.data(), ids.size(), box, piece, true);
       double cellsWider = 0;
       fd3::VoronoiOptions options;
@@ -171,6 +217,34 @@ PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pi
       if (t.widerHalo > 0)
         continue;
       EXPECT_EQ(t.triangulation.status, fd3::Status::Ok);
+      if (alpha > 0)
+      {
+        // The piece's alpha complex from the stars of its points: the simplices whose least
+        // vertex is one of them are its own.
+        const fd3::PeriodicPlacement stars =
+          fd3::placePeriodic(xyz.data(), piece.own, t.triangulation, box);
+        const fd3::AlphaComplex shape = fd3::alphaComplex(xyz.data(), piece.own, stars, alpha);
+        const std::vector<std::uint32_t> local(ids.begin(), ids.begin() + piece.own);
+        const std::vector<Simplex> mine =
+          simplices(shape, stars, piece.own, ids, [&](const Simplex& simplex) {
+            return std::find(local.begin(), local.end(), simplex[0][0]) != local.end();
+          });
+        out.alphaComplex.insert(out.alphaComplex.end(), mine.begin(), mine.end());
+        // The tetrahedra it owns, for the comparisons below.
+        EXPECT_EQ(t.owned.size(), t.triangulation.numberOfTetrahedra());
+        std::size_t kept = 0;
+        for (std::size_t c = 0; c < t.owned.size(); ++c)
+          if (t.owned[c])
+          {
+            std::copy_n(
+              &t.triangulation.tetrahedra[4 * c], 4, &t.triangulation.tetrahedra[4 * kept]);
+            std::copy_n(&t.triangulation.offsets[12 * c], 12, &t.triangulation.offsets[12 * kept]);
+            ++kept;
+          }
+        t.triangulation.tetrahedra.resize(4 * kept);
+        t.triangulation.offsets.resize(12 * kept);
+        EXPECT_EQ(t.triangulation.stats.tetrahedra, kept);
+      }
       const std::vector<Vertices> mine = sortedTetrahedra(t.triangulation, ids);
       out.placedVolume += placedVolume(xyz, piece.own, t.triangulation, box);
       out.tetrahedra.insert(out.tetrahedra.end(), mine.begin(), mine.end());
@@ -191,13 +265,14 @@ PieceRuns runPieces(const Points& p, const fd3::PeriodicBox& box, std::size_t pi
     }
   }
   std::sort(out.tetrahedra.begin(), out.tetrahedra.end());
+  std::sort(out.alphaComplex.begin(), out.alphaComplex.end());
   return out;
 }
 
 /// Whether the pieces give what one process gives: the same periodic tetrahedra, each once, and
 /// the same densities and cells, up to the order of their sums. Returns the exchanges taken.
-int expectOneProcessResult(
-  const Points& p, const fd3::PeriodicBox& box, std::size_t pieces, bool alongY = false)
+int expectOneProcessResult(const Points& p, const fd3::PeriodicBox& box, std::size_t pieces,
+  bool alongY = false, double alpha = 0)
 {
   const std::size_t n = p.size() / 3;
   const fd3::PeriodicTriangulation whole = fd3::triangulatePeriodic(p.data(), n, box);
@@ -210,7 +285,16 @@ int expectOneProcessResult(
   options.polyhedra = false;
   const fd3::VoronoiCells cells = fd3::voronoiCellsPeriodic(p.data(), n, box, options);
 
-  const PieceRuns runs = runPieces(p, box, pieces, alongY);
+  const PieceRuns runs = runPieces(p, box, pieces, alongY, alpha);
+  if (alpha > 0)
+  {
+    std::vector<Simplex> shape = simplices(fd3::alphaComplex(p.data(), n, placement, alpha),
+      placement, n, identity, [](const Simplex&) { return true; });
+    std::sort(shape.begin(), shape.end());
+    EXPECT_GT(shape.size(), n / 2);
+    EXPECT_EQ(runs.alphaComplex.size(), shape.size());
+    EXPECT_TRUE(runs.alphaComplex == shape) << "the pieces' alpha complex is not the whole set's";
+  }
   const std::vector<Vertices> expected = sortedTetrahedra(whole, identity);
   EXPECT_EQ(runs.tetrahedra.size(), expected.size());
   EXPECT_TRUE(runs.tetrahedra == expected) << "the pieces' tetrahedra are not the whole set's";
@@ -317,4 +401,26 @@ TEST(PeriodicPieces, APlaneAndOnePointAbove)
     p[i] = 0;
   p.insert(p.end(), {0.5, 0.5, 0.3});
   EXPECT_GT(expectOneProcessResult(p, slab, 3), 1);
+}
+
+TEST(PeriodicPieces, AlphaComplexFromTheStars)
+{
+  // Each piece lists the simplices whose least vertex is one of its points, from the stars of its
+  // points: together the whole set's complex, each simplex once.
+  Points p = fd3test::uniformCube(1500, 31);
+  for (std::size_t i = 1; i < p.size(); i += 51)
+    p[i] += 1; // a period outside the box
+  for (const double alpha : {0.06, 0.1, 1.0})
+    expectOneProcessResult(p, fd3::PeriodicBox(), 2, true, alpha);
+  fd3::PeriodicBox slab;
+  slab.periodic[2] = false;
+  expectOneProcessResult(fd3test::uniformCube(800, 4), slab, 3, false, 0.1);
+  fd3::PeriodicBox four;
+  for (int k = 0; k < 3; ++k)
+    four.hi[k] = 4;
+  Points q = fd3test::scaled(fd3test::uniformCube(3000, 11), 4);
+  for (std::size_t i = 1; i < q.size(); i += 51)
+    q[i] += 4;
+  for (std::size_t pieces : {2, 3})
+    expectOneProcessResult(q, four, pieces, false, 0.25);
 }

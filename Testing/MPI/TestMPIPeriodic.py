@@ -1,13 +1,15 @@
 """pvbatch under MPI: periodic boxes whose particles are spread over the ranks (some of them a
 period outside the box). Each rank computes the cells of its own particles and the tetrahedra
 whose least vertex is one of them, from the other ranks' particles within its halo (their images
-across the box included), widened where a rank finds it too narrow. Together the ranks' outputs
+across the box included), widened where a rank finds it too narrow; with Alpha, the simplices of
+the alpha shape whose least vertex is one of them, from the stars of its particles. Together the ranks' outputs
 are those of the VTK classes run in this one process on all the particles in rank order (the
 order of the input ids; each particle's "Id" travels with it): the same cells and tetrahedra, each
 once, with the same values to 1e-12.
 
 Cases: uniform particles in a box periodic on every axis; a cluster in a corner of a large box,
-whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y.
+whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y; the
+first and the last with an alpha shape too, every kind of simplex in it.
 
 usage: mpiexec -np N pvbatch --mpi TestMPIPeriodic.py <plugin .so>
 (with the build's Python modules on PYTHONPATH, for the one-process classes)
@@ -57,7 +59,7 @@ dsa.WrapDataObject(self.GetOutput()).PointData.append(np.arange(float(len(p)))[r
 """
 
 
-def one_process(filter_class, p, box, periodic):
+def one_process(filter_class, p, box, periodic, **properties):
     """The filter in this process on the particles in rank order: the order of their input ids."""
     order = np.concatenate([np.arange(len(p))[r::ranks] for r in range(ranks)])
     whole = vtkPolyData()
@@ -73,6 +75,8 @@ def one_process(filter_class, p, box, periodic):
     f.UseInputBoundsOff()
     f.SetBounds(*box)
     f.ComputeDensityOn()
+    for name, value in properties.items():
+        getattr(f, "Set" + name)(value)
     f.Update()
     return f.GetOutput()
 
@@ -123,52 +127,65 @@ def check_cells(case, cloud, p, box, periodic):
     print("TestMPIPeriodic: %s: %d periodic cells on %d ranks, as one process" % (case, len(p), ranks))
 
 
-def tetrahedra(data):
-    """Each tetrahedron as its sorted vertices (input point, then place) with its cell values,
-    and each point's input point and place with its density."""
-    ids = vtk_to_numpy(data.GetPointData().GetArray("SourcePointId"))
+def cells_by_key(data, p, box):
+    """Each cell (a tetrahedron, or a simplex of the alpha shape) keyed by its vertices' input
+    points and their periods from the cell's least vertex, the same for every translate, with its
+    cell values; and each point's input point and place with its density."""
+    ids = vtk_to_numpy(data.GetPointData().GetArray("SourcePointId")).astype(int)
     xyz = vtk_to_numpy(data.GetPoints().GetData())
-    vertex = [(int(ids[i]),) + tuple(xyz[i]) for i in range(len(ids))]
-    cells = vtk_to_numpy(data.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    lo, hi = np.reshape(box, (3, 2)).T
+    in_rank_order = p[np.concatenate([np.arange(len(p))[r::ranks] for r in range(ranks)])]
+    shifts = np.rint((xyz - in_rank_order[ids]) / (hi - lo)).astype(int)
+    offsets = vtk_to_numpy(data.GetCells().GetOffsetsArray())
+    connectivity = vtk_to_numpy(data.GetCells().GetConnectivityArray())
     arrays = cell_arrays(data)
-    keyed = {tuple(sorted(vertex[v] for v in c)): {n: a[k] for n, a in arrays.items()}
-             for k, c in enumerate(cells)}
-    if len(keyed) != len(cells):
-        sys.exit("TestMPIPeriodic: a tetrahedron twice")
+    keyed = {}
+    for c in range(data.GetNumberOfCells()):
+        vertices = sorted((ids[v],) + tuple(shifts[v]) for v in connectivity[offsets[c]:offsets[c + 1]])
+        key = tuple((v[0],) + tuple(np.subtract(v[1:], vertices[0][1:])) for v in vertices)
+        if key in keyed:
+            sys.exit("TestMPIPeriodic: a cell twice")
+        keyed[key] = {n: a[c] for n, a in arrays.items()}
     density = vtk_to_numpy(data.GetPointData().GetArray("Density"))
-    return keyed, {vertex[i]: density[i] for i in range(len(ids))}
+    return keyed, {(ids[i],) + tuple(xyz[i]): density[i] for i in range(len(ids))}
 
 
-def check_tetrahedra(case, cloud, p, box, periodic):
-    """Fast Delaunay 3D: each periodic tetrahedron once, on the rank of its least vertex."""
-    reference, reference_density = tetrahedra(one_process(vtkFastDelaunay3D, p, box, periodic))
+def check_tetrahedra(case, cloud, p, box, periodic, alpha=0):
+    """Fast Delaunay 3D: each periodic tetrahedron (or simplex of the alpha shape) once, on the rank
+    of its least vertex."""
+    reference, reference_density = cells_by_key(
+        one_process(vtkFastDelaunay3D, p, box, periodic, Alpha=alpha), p, box)
     tets, density = {}, {}
     for part in pieces(FastDelaunay3D(Input=cloud, Periodic=periodic, UseInputBounds=0,
-                                      Bounds=box, ComputeDensity=1, ComputeVolume=1)):
-        keyed, values = tetrahedra(part)
+                                      Bounds=box, ComputeDensity=1, ComputeVolume=1, Alpha=alpha,
+                                      AlphaLines=1, AlphaVerts=1)):  # as the VTK class
+        keyed, values = cells_by_key(part, p, box)
         if set(keyed) & set(tets):
-            sys.exit("TestMPIPeriodic: %s: two ranks output the same tetrahedron" % case)
+            sys.exit("TestMPIPeriodic: %s: two ranks output the same cell" % case)
         tets.update(keyed)
         density.update(values)
+    what = "tetrahedra" if alpha == 0 else "alpha shape's cells (Alpha %g)" % alpha
     if set(tets) != set(reference):
-        sys.exit("TestMPIPeriodic: %s: the tetrahedra differ from one process (%d against %d)"
-                 % (case, len(tets), len(reference)))
+        sys.exit("TestMPIPeriodic: %s: the %s differ from one process (%d against %d)"
+                 % (case, what, len(tets), len(reference)))
     keys = sorted(reference)
     for name in reference[keys[0]]:
         close([tets[k][name] for k in keys], [reference[k][name] for k in keys],
-              case + ": the tetrahedra's " + name)
+              "%s: the %s' %s" % (case, what, name))
     points = sorted(density)
     if set(points) - set(reference_density):
         sys.exit("TestMPIPeriodic: %s: a point that one process does not output" % case)
     close([density[v] for v in points], [reference_density[v] for v in points], case + ": Density")
-    print("TestMPIPeriodic: %s: %d periodic tetrahedra on %d ranks, as one process"
-          % (case, len(tets), ranks))
+    print("TestMPIPeriodic: %s: %d periodic %s on %d ranks, as one process"
+          % (case, len(tets), what, ranks))
 
 
 for case, (make, box, periodic) in CASES.items():
     cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCRIPT % make)
     check_cells(case, cloud, particles(make), box, periodic)
     check_tetrahedra(case, cloud, particles(make), box, periodic)
+    if case != "cluster":
+        check_tetrahedra(case, cloud, particles(make), box, periodic, alpha=0.25)
 
 # No rank has a point: a warning on the first rank and empty outputs, on every rank alike.
 nothing = ProgrammableSource(OutputDataSetType="vtkPolyData",

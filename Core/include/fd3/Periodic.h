@@ -121,7 +121,9 @@ std::vector<double> densities(const double* xyz, std::size_t count,
 /// placement.tetrahedra / 4, triangles and lines on the ids of the placement (an input point, or
 /// count + an image) of a tetrahedron that holds them, each periodic simplex once; vertices as
 /// input ids. Faces and edges are followed across the box. On `threads` threads, the same result
-/// for any count.
+/// for any count. A piece's placement of the stars of its `count` own points (PeriodicPiece::
+/// stars) gives every simplex at them as the whole set's gives it; those beyond (of ghosts only,
+/// or whose tetrahedra around are not all there) are for another piece to give.
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPlacement& placement,
   double alpha, int threads = 1);
 
@@ -158,6 +160,10 @@ struct PeriodicPiece
   /// Of the whole set: its finite points, and the extent of their places.
   std::size_t points = 0;
   Bounds extent;
+  /// Whether the run gives every periodic tetrahedron at an own point, once each, not only those
+  /// the piece owns: the stars of its points, which its alpha shape walks
+  /// (PeriodicPieceTriangulation::owned).
+  bool stars = false;
 };
 
 /// Each finite point's place in `box` (its wrap into it, rounded to doubles; see
@@ -188,6 +194,8 @@ struct PeriodicPieceTriangulation
   /// 0 where the halo was wide enough; else the halo to send the ghosts again with, on every
   /// piece (the largest any piece asks), and run again. Nothing else is set then.
   double widerHalo = 0;
+  /// With PeriodicPiece::stars, per tetrahedron: whether the piece owns it.
+  std::vector<std::uint8_t> owned;
 };
 
 /// The periodic tetrahedra of a piece's points, `count` of them, own then ghosts (PeriodicPiece),

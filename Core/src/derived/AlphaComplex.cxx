@@ -208,11 +208,13 @@ template <typename Mesh>
 class AlphaBuilder
 {
 public:
-  AlphaBuilder(
-    const Mesh& mesh, const double* weights, std::size_t count, double alpha, ThreadTeam& team)
+  /// `sources`: the points that vertices are images of, the `count` whose unused ones are
+  /// vertices of the complex and a piece's ghosts.
+  AlphaBuilder(const Mesh& mesh, const double* weights, std::size_t count, std::size_t sources,
+    double alpha, ThreadTeam& team)
     : mesh_(mesh), weights_(weights), count_(count), alpha2_(alpha * alpha),
       tets_(mesh.tetrahedra()), team_(team), kept_(tets_),
-      used_(new std::atomic<std::uint8_t>[count]())
+      used_(new std::atomic<std::uint8_t>[std::max(count, sources)]())
   {}
 
   AlphaComplex build()
@@ -406,7 +408,7 @@ AlphaComplex alphaComplex(const double* xyz, const double* weights, std::size_t 
 {
   ThreadTeam team(boundedThreads(threads));
   const PlainMesh mesh(xyz, triangulation);
-  return AlphaBuilder<PlainMesh>(mesh, weights, count, alpha, team).build();
+  return AlphaBuilder<PlainMesh>(mesh, weights, count, count, alpha, team).build();
 }
 
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPlacement& placement,
@@ -414,7 +416,10 @@ AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPl
 {
   ThreadTeam team(boundedThreads(threads));
   const PeriodicMesh mesh(xyz, count, placement);
-  return AlphaBuilder<PeriodicMesh>(mesh, nullptr, count, alpha, team).build();
+  std::size_t sources = count; // a piece's images are also of its ghosts, after its points
+  for (const std::uint32_t source : placement.imageSources)
+    sources = std::max<std::size_t>(sources, source + 1);
+  return AlphaBuilder<PeriodicMesh>(mesh, nullptr, count, sources, alpha, team).build();
 }
 
 } // namespace fd3

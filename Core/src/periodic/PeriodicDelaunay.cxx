@@ -309,6 +309,7 @@ PeriodicDelaunay::PeriodicDelaunay(const double* xyz, std::size_t count, const P
   piece_ = true;
   pieceHalo_ = piece.halo;
   pieceSetPoints_ = piece.points;
+  stars_ = piece.stars;
 }
 
 double PeriodicDelaunay::firstShell(
@@ -997,6 +998,61 @@ bool PeriodicDelaunay::parallelToPeriods(const std::uint32_t face[3]) const
   return true;
 }
 
+bool PeriodicDelaunay::extractStars(const Triangulation& covering, PeriodicTriangulation& out)
+{
+  // A tetrahedron by its vertices' ranks once its least vertex is moved to offset 0: the same for
+  // every copy.
+  using Key = std::array<std::uint64_t, 4>;
+  struct KeyHash
+  {
+    std::size_t operator()(const Key& key) const
+    {
+      std::uint64_t h = 0x9E3779B97F4A7C15ull;
+      for (const std::uint64_t x : key)
+        h = (h ^ x) * 0x100000001B3ull;
+      return std::size_t(h ^ (h >> 31));
+    }
+  };
+  std::unordered_set<Key, KeyHash> seen;
+  out.tetrahedra.clear();
+  out.offsets.clear();
+  owned_.clear();
+  for (std::size_t t = 0; t < covering.numberOfTetrahedra(); ++t)
+  {
+    const std::uint32_t* v = &covering.tetrahedra[4 * t];
+    if (std::min({v[0], v[1], v[2], v[3]}) >= boxPoints_)
+      continue;
+    int least = 0;
+    for (int i = 1; i < 4; ++i)
+      if (rankOf(covering_[v[i]]) < rankOf(covering_[v[least]]))
+        least = i;
+    CoveringPoint moved[4];
+    Key key;
+    for (int i = 0; i < 4; ++i)
+    {
+      moved[i] = covering_[v[i]];
+      for (int k = 0; k < 3; ++k)
+      {
+        const int o = moved[i].offset[k] - covering_[v[least]].offset[k];
+        if (std::abs(o) > kMostOffset)
+          return false;
+        moved[i].offset[k] = static_cast<std::int8_t>(o);
+      }
+      key[i] = rankOf(moved[i]);
+    }
+    std::sort(key.begin(), key.end());
+    if (!seen.insert(key).second)
+      continue;
+    for (const CoveringPoint& p : moved)
+    {
+      out.tetrahedra.push_back(representative_[p.owner]);
+      out.offsets.insert(out.offsets.end(), p.offset.begin(), p.offset.end());
+    }
+    owned_.push_back(representative_[moved[least].owner] < own_);
+  }
+  return true;
+}
+
 void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulation& out) const
 {
   // The copy of each tetrahedron whose least vertex is in the box: as many as the box's points
@@ -1163,11 +1219,15 @@ PeriodicTriangulation PeriodicDelaunay::run(std::vector<double>* density)
   countPoints(out.stats);
   out.imagePoints = covering_.size() - boxPoints_;
   out.margin = margin_;
-  if (out.status == Status::Ok)
+  if (out.status == Status::Ok && !stars_)
     extract(covering, out);
+  if (out.status == Status::Ok && stars_ && !extractStars(covering, out))
+    out.status = Status::OutOfRange;
   if (density)
     *density = densitiesOfBoxPoints(covering);
-  out.stats.tetrahedra = out.numberOfTetrahedra();
+  out.stats.tetrahedra = stars_
+    ? std::size_t(std::count(owned_.begin(), owned_.end(), std::uint8_t(1)))
+    : out.numberOfTetrahedra();
   out.wraps = wraps_;
   out.representative.assign(representative_.begin(), representative_.end());
   return out;
@@ -1283,6 +1343,7 @@ PeriodicPieceTriangulation triangulatePeriodicPiece(const double* xyz, std::size
   PeriodicPieceTriangulation out;
   out.triangulation = run.run(density ? &out.density : nullptr);
   out.widerHalo = run.widerHalo();
+  out.owned = std::move(run.owned());
   return out;
 }
 

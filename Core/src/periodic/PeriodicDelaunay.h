@@ -54,6 +54,8 @@ public:
   VoronoiCells cells(const VoronoiOptions& options);
   /// A piece's: 0 where its halo was wide enough for run() or cells(), else the halo to try next.
   double widerHalo() const { return widerHalo_; }
+  /// A piece's run() with PeriodicPiece::stars: whether it owns each of its tetrahedra.
+  std::vector<std::uint8_t>& owned() { return owned_; }
   /// The places of the points (periodicPlaces()); false where one lies too far.
   bool places(std::vector<double>& out);
   /// The first shell's width, were there `points` points spanning `extent` (firstPeriodicHalo()).
@@ -178,6 +180,10 @@ private:
   /// exactly.
   bool parallelToPeriods(const std::uint32_t face[3]) const;
   void extract(const Triangulation& covering, PeriodicTriangulation& out) const;
+  /// A piece's extract() with PeriodicPiece::stars: every periodic tetrahedron at an own point,
+  /// as the copy at its least vertex, once, and owned_; false where a copy spans more periods
+  /// than the offsets' bytes hold.
+  bool extractStars(const Triangulation& covering, PeriodicTriangulation& out);
   /// Per box point (a piece's own), densities() from the covering's tetrahedra at it: each
   /// periodic tetrahedron at a point has one copy at its place, whatever copy takes it.
   std::vector<double> densitiesOfBoxPoints(const Triangulation& covering) const;
@@ -192,7 +198,8 @@ private:
   // Where the box's points lie, about which the shell is: the box along the periodic axes and
   // everywhere along the others, or a piece's region. Its points' extent, or the whole set's.
   Bounds region_, extent_;
-  bool piece_ = false;
+  bool piece_ = false, stars_ = false;
+  std::vector<std::uint8_t> owned_;
   double pieceHalo_ = 0;
   std::size_t pieceSetPoints_ = 0;
   double widerHalo_ = 0;
