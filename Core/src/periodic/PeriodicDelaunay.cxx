@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -1191,6 +1192,7 @@ void PeriodicDelaunay::countPoints(Statistics& stats) const
 
 PeriodicTriangulation PeriodicDelaunay::run(std::vector<double>* density)
 {
+  const auto start = std::chrono::steady_clock::now();
   PeriodicTriangulation out;
   out.status = prepare(out.stats);
   if (out.status != Status::Ok)
@@ -1228,6 +1230,8 @@ PeriodicTriangulation PeriodicDelaunay::run(std::vector<double>* density)
   out.stats.tetrahedra = stars_
     ? std::size_t(std::count(owned_.begin(), owned_.end(), std::uint8_t(1)))
     : out.numberOfTetrahedra();
+  out.stats.secondsTotal =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.wraps = wraps_;
   out.representative.assign(representative_.begin(), representative_.end());
   return out;

@@ -17,6 +17,11 @@
 // circumcentre c of a tetrahedron at point p lies in p's cell, within h of p along the periodic
 // axes (p's own images bound it), and its sphere meets the points' extent within
 // sqrt(h^2 + H^2) of c there, or it would hold an image of every point, a whole period, inside.
+//
+// A piece (PeriodicPiece, an MPI rank's share) has its own points in place of the box's, and its
+// region and halo in place of the box and the shell: its covering is its points and every image
+// within the halo of its region, the certificate is the same about the region, and where it
+// fails the piece cannot add images it does not have, so it asks for a wider halo instead.
 #ifndef fd3_PeriodicDelaunay_h
 #define fd3_PeriodicDelaunay_h
 
