@@ -337,6 +337,7 @@ bool PeriodicDelaunay::wrapPoints()
   placeResidual_.resize(count_);
   wraps_.assign(3 * count_, 0);
   representative_.assign(count_, kNoPoint);
+  merged_ = false;
   // A coordinate below this bound and not below lo is in the box already, its own place: the
   // bound lies a step below the float sum lo + period, whose rounding the step covers, so that
   // the exact wrap below is left to coordinates that may need one.
@@ -655,6 +656,7 @@ bool PeriodicDelaunay::resolveMerged(const Triangulation& covering)
     if (representative_[later] == later && later < own_) // a piece counts its own
       ++(repeat ? duplicates_ : close_);
     representative_[later] = earlier;
+    merged_ = true;
     close = close || !repeat;
   }
   for (std::uint32_t& id : representative_)
@@ -1023,10 +1025,7 @@ bool PeriodicDelaunay::extractStars(const Triangulation& covering, PeriodicTrian
     const std::uint32_t* v = &covering.tetrahedra[4 * t];
     if (std::min({v[0], v[1], v[2], v[3]}) >= boxPoints_)
       continue;
-    int least = 0;
-    for (int i = 1; i < 4; ++i)
-      if (rankOf(covering_[v[i]]) < rankOf(covering_[v[least]]))
-        least = i;
+    const int least = leastVertex(v);
     CoveringPoint moved[4];
     Key key;
     for (int i = 0; i < 4; ++i)
@@ -1078,10 +1077,7 @@ void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulat
     }
     if (std::min({v[0], v[1], v[2], v[3]}) >= boxPoints_)
       continue;
-    int least = 0;
-    for (int i = 1; i < 4; ++i)
-      if (rankOf(covering_[v[i]]) < rankOf(covering_[v[least]]))
-        least = i;
+    const int least = leastVertex(v);
     const CoveringPoint& first = covering_[v[least]];
     if (first.offset != std::array<std::int8_t, 3>{0, 0, 0} ||
       representative_[first.owner] >= own_) // a piece's ghost

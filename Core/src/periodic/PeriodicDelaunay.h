@@ -162,9 +162,22 @@ private:
   /// the order of its vertices.
   std::uint64_t rankOf(const CoveringPoint& p) const
   {
-    return std::uint64_t(idOf(representative_[p.owner])) << 24 |
-      std::uint64_t(p.offset[0] + 128) << 16 | std::uint64_t(p.offset[1] + 128) << 8 |
-      std::uint64_t(p.offset[2] + 128);
+    const std::uint32_t kept = merged_ ? representative_[p.owner] : p.owner;
+    return std::uint64_t(idOf(kept)) << 24 | std::uint64_t(p.offset[0] + 128) << 16 |
+      std::uint64_t(p.offset[1] + 128) << 8 | std::uint64_t(p.offset[2] + 128);
+  }
+  /// Which of the covering tetrahedron v's vertices comes first in rankOf()'s order.
+  int leastVertex(const std::uint32_t v[4]) const
+  {
+    int least = 0;
+    std::uint64_t first = rankOf(covering_[v[0]]);
+    for (int i = 1; i < 4; ++i)
+      if (const std::uint64_t rank = rankOf(covering_[v[i]]); rank < first)
+      {
+        first = rank;
+        least = i;
+      }
+    return least;
   }
   /// Point id's place moved by `periods` along axis k, in floats (only 0 along an axis that is
   /// not periodic, whose period may be no number).
@@ -223,6 +236,7 @@ private:
   std::vector<std::array<double, 3>> place_, placeResidual_;
   std::vector<std::int32_t> wraps_;
   std::vector<std::uint32_t> representative_;
+  bool merged_ = false;               // whether any point has another as its representative
   std::vector<std::uint32_t> points_; // the box's points: the representatives of themselves
   std::vector<std::uint32_t> ghosts_; // a piece's other points, each its own representative
   std::size_t duplicates_ = 0, close_ = 0, nonFinite_ = 0;
