@@ -24,6 +24,7 @@
 #include <chrono>
 #include <exception>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -251,7 +252,9 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
     {
       points->SetPoint(static_cast<vtkIdType>(i), &periodic.Xyz[3 * i]);
     }
+    // A rank whose points are all NaN or Inf has no piece, and no densities.
     std::vector<double> density = std::move(piece.density);
+    density.resize(own, std::numeric_limits<double>::quiet_NaN());
     density.insert(density.end(), ghostDensity.begin(), ghostDensity.end());
     this->SetPeriodicOutput(output, points, periodic.PointData(), periodic.Xyz.data(), placement,
       std::move(density), periodic.Ids.data(), this->Alpha > 0 ? &piece.owned : nullptr);

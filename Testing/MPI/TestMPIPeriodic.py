@@ -8,8 +8,9 @@ order of the input ids; each particle's "Id" travels with it): the same cells an
 once, with the same values to 1e-12.
 
 Cases: uniform particles in a box periodic on every axis; a cluster in a corner of a large box,
-whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y; the
-first and the last with an alpha shape too, every kind of simplex in it.
+whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y, these
+first and last with an alpha shape too, every kind of simplex in it; and one finite particle
+among NaNs, which leaves a rank with no point, or only NaNs.
 
 usage: mpiexec -np N pvbatch --mpi TestMPIPeriodic.py <plugin .so>
 (with the build's Python modules on PYTHONPATH, for the one-process classes)
@@ -33,12 +34,14 @@ CASES = {
     "cluster": ("p = rng.random((600, 3)) + 0.5", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
     "slab": ("p = rng.random((1500, 3)) * [4, 4, 1]\np[::13, 0] -= 4", [0, 4, 0, 4, 0, 1],
              [1, 1, 0]),
+    # One finite particle among NaNs: a rank has none, or only NaNs.
+    "lone": ("p = rng.random((200, 3)) * 4\np[1:] = np.nan", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
 }
 
 
 def particles(make):
     rng = np.random.default_rng(11)
-    scope = {"rng": rng}
+    scope = {"rng": rng, "np": np}
     exec(make, {}, scope)
     return scope["p"]
 
@@ -81,12 +84,12 @@ def one_process(filter_class, p, box, periodic, **properties):
     return f.GetOutput()
 
 
-def pieces(proxy):
-    """Every rank's piece of the output; at least two of them hold cells."""
+def pieces(proxy, spread=True):
+    """Every rank's piece of the output; where `spread`, at least two of them hold cells."""
     fetched = [servermanager.Fetch(proxy, r) for r in range(ranks)]
     # Not sum() or min(): once a Programmable Source has run in this process, those are numpy's
     # here.
-    if len([f for f in fetched if f.GetNumberOfCells()]) < (2 if ranks > 1 else 1):
+    if len([f for f in fetched if f.GetNumberOfCells()]) < (2 if ranks > 1 and spread else 1):
         sys.exit("TestMPIPeriodic: the cells are not spread over the ranks")
     return fetched
 
@@ -107,13 +110,14 @@ def check_cells(case, cloud, p, box, periodic):
     """Fast Voronoi 3D: each rank the cells of its own particles, as one process has them."""
     reference = one_process(vtkFastVoronoi3D, p, box, periodic)
     cells = {}
+    finite = int(np.isfinite(p).all(axis=1).sum())
     for part in pieces(FastVoronoi3D(Input=cloud, Periodic=periodic, UseInputBounds=0, Bounds=box,
-                                     ComputeDensity=1)):
+                                     ComputeDensity=1), spread=finite > 1):
         for name, values in cell_arrays(part).items():
             cells.setdefault(name, []).append(values)
     cells = {name: np.concatenate(values) for name, values in cells.items()}
     mine, theirs = cells["Id"], vtk_to_numpy(reference.GetCellData().GetArray("Id"))
-    if len(mine) != len(p) or len(np.unique(mine)) != len(p):
+    if len(mine) != finite or len(np.unique(mine)) != finite:
         sys.exit("TestMPIPeriodic: %s: %d cells, not one per particle" % (case, len(mine)))
     order, reference_order = np.argsort(mine), np.argsort(theirs)
     for name, values in cell_arrays(reference).items():
@@ -124,7 +128,7 @@ def check_cells(case, cloud, p, box, periodic):
         volume, period = cells["Volume"].sum(), np.prod(np.diff(np.reshape(box, (3, 2))))
         if abs(volume - period) > 1e-12 * period:
             sys.exit("TestMPIPeriodic: %s: the cells' volume is %r, not the box's" % (case, volume))
-    print("TestMPIPeriodic: %s: %d periodic cells on %d ranks, as one process" % (case, len(p), ranks))
+    print("TestMPIPeriodic: %s: %d periodic cells on %d ranks, as one process" % (case, finite, ranks))
 
 
 def cells_by_key(data, p, box):
@@ -136,10 +140,11 @@ def cells_by_key(data, p, box):
     lo, hi = np.reshape(box, (3, 2)).T
     in_rank_order = p[np.concatenate([np.arange(len(p))[r::ranks] for r in range(ranks)])]
     shifts = np.rint((xyz - in_rank_order[ids]) / (hi - lo)).astype(int)
-    offsets = vtk_to_numpy(data.GetCells().GetOffsetsArray())
-    connectivity = vtk_to_numpy(data.GetCells().GetConnectivityArray())
-    arrays = cell_arrays(data)
     keyed = {}
+    if data.GetNumberOfCells():
+        offsets = vtk_to_numpy(data.GetCells().GetOffsetsArray())
+        connectivity = vtk_to_numpy(data.GetCells().GetConnectivityArray())
+        arrays = cell_arrays(data)
     for c in range(data.GetNumberOfCells()):
         vertices = sorted((ids[v],) + tuple(shifts[v]) for v in connectivity[offsets[c]:offsets[c + 1]])
         key = tuple((v[0],) + tuple(np.subtract(v[1:], vertices[0][1:])) for v in vertices)
@@ -147,7 +152,8 @@ def cells_by_key(data, p, box):
             sys.exit("TestMPIPeriodic: a cell twice")
         keyed[key] = {n: a[c] for n, a in arrays.items()}
     density = vtk_to_numpy(data.GetPointData().GetArray("Density"))
-    return keyed, {(ids[i],) + tuple(xyz[i]): density[i] for i in range(len(ids))}
+    return keyed, {(ids[i],) + tuple(xyz[i]): density[i] for i in range(len(ids))
+                   if np.isfinite(xyz[i]).all()}
 
 
 def check_tetrahedra(case, cloud, p, box, periodic, alpha=0):
@@ -158,7 +164,8 @@ def check_tetrahedra(case, cloud, p, box, periodic, alpha=0):
     tets, density = {}, {}
     for part in pieces(FastDelaunay3D(Input=cloud, Periodic=periodic, UseInputBounds=0,
                                       Bounds=box, ComputeDensity=1, ComputeVolume=1, Alpha=alpha,
-                                      AlphaLines=1, AlphaVerts=1)):  # as the VTK class
+                                      AlphaLines=1, AlphaVerts=1),  # as the VTK class
+                       spread=np.isfinite(p).all(axis=1).sum() > 1):
         keyed, values = cells_by_key(part, p, box)
         if set(keyed) & set(tets):
             sys.exit("TestMPIPeriodic: %s: two ranks output the same cell" % case)
@@ -184,7 +191,7 @@ for case, (make, box, periodic) in CASES.items():
     cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCRIPT % make)
     check_cells(case, cloud, particles(make), box, periodic)
     check_tetrahedra(case, cloud, particles(make), box, periodic)
-    if case != "cluster":
+    if case in ("uniform", "slab"):
         check_tetrahedra(case, cloud, particles(make), box, periodic, alpha=0.25)
 
 # No rank has a point: a warning on the first rank and empty outputs, on every rank alike.

@@ -300,7 +300,7 @@ PeriodicDelaunay::PeriodicDelaunay(const double* xyz, std::size_t count, const P
   const Options& options, const PeriodicPiece& piece)
   : PeriodicDelaunay(xyz, count, box, options)
 {
-  if (piece.own > count || !piece.ids || !(piece.halo > 0))
+  if (piece.own > count || (!piece.ids && count > 0) || !(piece.halo > 0))
     throw std::invalid_argument("fd3::PeriodicPiece: more own points than points, no ids or no "
                                 "halo");
   own_ = piece.own;
