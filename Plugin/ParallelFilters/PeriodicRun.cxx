@@ -130,52 +130,71 @@ bool PeriodicRun::Run(
   {
     own.extent.include(r);
   }
-  own.halo = fd3::firstPeriodicHalo(this->Box, own.points, own.extent);
+  // Each rank's halo, widened where its piece asks: the others' pieces stand as they are.
+  std::vector<double> halos(ranks.Size, fd3::firstPeriodicHalo(this->Box, own.points, own.extent));
+  std::vector<double> wider(ranks.Size, 0.0);
+  std::vector<char> again(ranks.Size, 1);
+  this->Sent.assign(ranks.Size, {});
   for (this->Exchanges = 1;; ++this->Exchanges)
   {
-    double wider = 0;
-    if (!this->ExchangeGhosts(own.halo) || !ranks.Local([&] {
+    double mine = 0;
+    own.halo = halos[ranks.Rank];
+    if (!this->ExchangeGhosts(halos, again) || !ranks.Local([&] {
           own.ids = this->Ids.data();
-          return piece(own, wider);
+          return !again[ranks.Rank] || piece(own, mine);
         }))
     {
       return false;
     }
-    double widest = 0;
-    ranks.Controller->AllReduce(&wider, &widest, 1, vtkCommunicator::MAX_OP);
-    if (!(widest > 0))
+    ranks.Controller->AllGather(&mine, wider.data(), 1);
+    bool any = false;
+    for (int r = 0; r < ranks.Size; ++r)
     {
+      again[r] = wider[r] > 0;
+      halos[r] = again[r] ? wider[r] : halos[r];
+      any = any || again[r];
+    }
+    if (!any)
+    {
+      const auto ghosts = static_cast<vtkIdType>(this->Xyz.size() / 3 - own.own);
+      ranks.Controller->AllReduce(&ghosts, &this->GhostPoints, 1, vtkCommunicator::SUM_OP);
       return true;
     }
-    own.halo = widest;
   }
 }
 
-bool PeriodicRun::ExchangeGhosts(double halo)
+bool PeriodicRun::ExchangeGhosts(const std::vector<double>& halos, const std::vector<char>& to)
 {
   RankGroup& ranks = this->Distributed.Ranks;
-  this->Sent.assign(ranks.Size, {});
+  std::vector<bool> sendTo(ranks.Size, false);
   if (!ranks.Local([&] {
         const std::size_t finite = this->Distributed.OwnFinite();
         for (int r = 0; r < ranks.Size; ++r)
         {
+          if (!to[r])
+          {
+            continue;
+          }
+          this->Sent[r].clear();
           for (std::uint32_t i = 0; r != ranks.Rank && i < finite; ++i)
           {
-            if (fd3::periodicImageWithin(&this->Places[3 * i], this->Box, this->Regions[r], halo))
+            if (fd3::periodicImageWithin(
+                  &this->Places[3 * i], this->Box, this->Regions[r], halos[r]))
             {
               this->Sent[r].push_back(i);
             }
           }
+          sendTo[r] = !this->Sent[r].empty();
         }
         return true;
       }))
   {
     return false;
   }
-  this->Ghosts = Received();
+  Received received;
   const Coordinates& own = this->Distributed.OwnXyz();
   if (!this->Exchange.Send(
-        NonEmpty(this->Sent),
+        sendTo,
         [&](int r) {
           std::vector<double> xyz;
           for (const std::uint32_t i : this->Sent[r])
@@ -184,30 +203,28 @@ bool PeriodicRun::ExchangeGhosts(double halo)
           }
           return this->Distributed.HaloPart(this->Sent[r], xyz);
         },
-        this->Ghosts))
+        received))
   {
     return false;
   }
-  vtkIdType received = 0;
-  if (!ranks.Local([&] {
-        this->Xyz.assign(own.begin(), own.end());
-        this->Ids.clear();
-        AppendInputIds(this->Distributed.OwnData(), this->Ids);
-        for (const auto& part : this->Ghosts.Parts)
-        {
-          std::vector<double> converted;
-          const double* xyz = CoordinatesAsDoubles(part->GetPoints(), converted);
-          this->Xyz.insert(this->Xyz.end(), xyz, xyz + 3 * part->GetNumberOfPoints());
-          AppendInputIds(part->GetPointData(), this->Ids);
-          received += part->GetNumberOfPoints();
-        }
-        return true;
-      }))
+  if (!to[ranks.Rank]) // no rank sent to this one: its ghosts stand
   {
-    return false;
+    return true;
   }
-  ranks.Controller->AllReduce(&received, &this->GhostPoints, 1, vtkCommunicator::SUM_OP);
-  return true;
+  this->Ghosts = std::move(received);
+  return ranks.Local([&] {
+    this->Xyz.assign(own.begin(), own.end());
+    this->Ids.clear();
+    AppendInputIds(this->Distributed.OwnData(), this->Ids);
+    for (const auto& part : this->Ghosts.Parts)
+    {
+      std::vector<double> converted;
+      const double* xyz = CoordinatesAsDoubles(part->GetPoints(), converted);
+      this->Xyz.insert(this->Xyz.end(), xyz, xyz + 3 * part->GetNumberOfPoints());
+      AppendInputIds(part->GetPointData(), this->Ids);
+    }
+    return true;
+  });
 }
 
 bool PeriodicRun::GhostValues(const std::vector<double>& own, std::vector<double>& ghosts)

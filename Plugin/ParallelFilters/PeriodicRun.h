@@ -45,8 +45,8 @@ public:
   bool Redistribute(vtkDataSet* input, vtkPoints* points);
 
   /// Step 2: every rank's region (the bounds of its points' places), the ghosts within the first
-  /// halo, and `piece` run on Xyz; then, where a rank's piece asks for a wider halo, its ghosts
-  /// and every rank's piece again with the widest asked. `piece` sets the halo it asks for (0:
+  /// halo, and `piece` run on Xyz; then, on the ranks whose piece asks for a wider halo, the
+  /// ghosts within it and `piece` again, until none asks. `piece` sets the halo it asks for (0:
   /// none) and returns false when aborted.
   bool Run(const std::function<bool(const fd3::PeriodicPiece&, double& widerHalo)>& piece);
 
@@ -60,20 +60,21 @@ public:
   Coordinates Xyz;
   /// The input id of each point of Xyz.
   std::vector<std::uint32_t> Ids;
-  vtkIdType GhostPoints = 0; ///< all ranks', in the last exchange
+  vtkIdType GhostPoints = 0; ///< all ranks', in the halos their pieces stood in
   int Exchanges = 0;         ///< of ghosts
 
 private:
-  /// Sends every other rank the own points with an image within `halo` of its region.
-  bool ExchangeGhosts(double halo);
+  /// Sends each other rank r that `to` names the own points with an image within halos[r] of its
+  /// region; the ranks named take what they receive as their ghosts, the others keep theirs.
+  bool ExchangeGhosts(const std::vector<double>& halos, const std::vector<char>& to);
 
   DistributedRun& Distributed;
   const fd3::PeriodicBox Box;
   PointExchange Exchange;
   std::vector<double> Places;       ///< of the own points, 3 each (NaN where not finite)
   std::vector<fd3::Bounds> Regions; ///< of every rank
-  Received Ghosts;
-  std::vector<std::vector<std::uint32_t>> Sent; ///< the own points sent to each rank
+  Received Ghosts;                  ///< of the halo this rank's piece stood in
+  std::vector<std::vector<std::uint32_t>> Sent; ///< the own points each rank holds as ghosts
 };
 } // namespace fd3vtk
 

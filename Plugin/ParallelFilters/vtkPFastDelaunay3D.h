@@ -39,8 +39,8 @@
  * rank receives every other rank's points with an image within a halo of its region (the bounds
  * of its places), a few spacings wide at first, and triangulates its points among their images
  * and those points' (fd3::triangulatePeriodicPiece). Where a tetrahedron at one of its points
- * might reach beyond the halo, the rank asks for a wider one, and every rank exchanges and runs
- * again with the widest asked (a cluster in an empty box, a slab's caps). Each rank then outputs
+ * might reach beyond the halo, the rank asks for a wider one, which the other ranks fill, and
+ * runs again (a cluster in an empty box, a slab's caps). Each rank then outputs
  * the periodic tetrahedra whose least vertex (least input id, then offset 0) is one of its
  * points: its points first, then the image points its tetrahedra use (another rank's point, or
  * a point a period away), each with its input point's point data and "SourcePointId", its input

@@ -191,8 +191,8 @@ struct PeriodicPieceTriangulation
   /// Where asked: per own point, its density as densities() gives it from the whole set (its
   /// star, from every piece's tetrahedra, is within the piece), up to the rounding of the sums.
   std::vector<double> density;
-  /// 0 where the halo was wide enough; else the halo to send the ghosts again with, on every
-  /// piece (the largest any piece asks), and run again. Nothing else is set then.
+  /// 0 where the halo was wide enough; else the halo to run again with, once the other pieces
+  /// have sent the ghosts within it. Nothing else is set then.
   double widerHalo = 0;
   /// With PeriodicPiece::stars, per tetrahedron: whether the piece owns it.
   std::vector<std::uint8_t> owned;
