@@ -207,12 +207,12 @@ bool PeriodicRun::ExchangeGhosts(const std::vector<double>& halos, const std::ve
   {
     return false;
   }
-  if (!to[ranks.Rank]) // no rank sent to this one: its ghosts stand
-  {
-    return true;
-  }
-  this->Ghosts = std::move(received);
   return ranks.Local([&] {
+    if (!to[ranks.Rank]) // no rank sent to this one: its ghosts stand
+    {
+      return true;
+    }
+    this->Ghosts = std::move(received);
     this->Xyz.assign(own.begin(), own.end());
     this->Ids.clear();
     AppendInputIds(this->Distributed.OwnData(), this->Ids);

@@ -211,16 +211,16 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
   }
   this->NumberOfGhostPoints = periodic.GhostPoints;
 
-  // One status for all ranks: one whose points lie too far apart for the images' doubles tells,
-  // else one with tetrahedra, else the most telling (the pieces widen their halo until every
+  // One status for all ranks: a failed check or points too far apart for the images' doubles,
+  // else tetrahedra, else the most telling (the pieces widen their halo until every
   // rank with points has tetrahedra, or none has).
   constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
-    fd3::Status::Degenerate, fd3::Status::Ok, fd3::Status::OutOfRange };
+    fd3::Status::Degenerate, fd3::Status::Ok, fd3::Status::OutOfRange, fd3::Status::CheckFailed };
   const int mine = static_cast<int>(
     std::find(std::begin(kByRank), std::end(kByRank), piece.triangulation.status) - kByRank);
   int most = 0;
   this->Controller->AllReduce(&mine, &most, 1, vtkCommunicator::MAX_OP);
-  const fd3::Status status = kByRank[std::min(most, 4)];
+  const fd3::Status status = kByRank[std::min(most, 5)];
   // A rank's densities are there where its piece is Ok, and sent where all are: every rank then
   // has tetrahedra or no points.
   if (status == fd3::Status::Ok && this->ComputeDensity &&
@@ -258,6 +258,8 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
     density.insert(density.end(), ghostDensity.begin(), ghostDensity.end());
     this->SetPeriodicOutput(output, points, periodic.PointData(), periodic.Xyz.data(), placement,
       std::move(density), periodic.Ids.data(), this->Alpha > 0 ? &piece.owned : nullptr);
+    // SourcePointId holds the input ids: GlobalIds, which images repeat, would pass for unique.
+    output->GetPointData()->RemoveArray(fd3vtk::kInputIds);
     figures.secondsOutput +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - outputStart).count();
   }

@@ -9,7 +9,8 @@ once, with the same values to 1e-12.
 
 Cases: uniform particles in a box periodic on every axis; a cluster in a corner of a large box,
 whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y, these
-first and last with an alpha shape too, every kind of simplex in it; and one finite particle
+first and last with an alpha shape too, every kind of simplex in it; a void, which only
+the ranks whose particles border it widen their halo for; and one finite particle
 among NaNs, which leaves a rank with no point, or only NaNs.
 
 usage: mpiexec -np N pvbatch --mpi TestMPIPeriodic.py <plugin .so>
@@ -34,6 +35,10 @@ CASES = {
     "cluster": ("p = rng.random((600, 3)) + 0.5", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
     "slab": ("p = rng.random((1500, 3)) * [4, 4, 1]\np[::13, 0] -= 4", [0, 4, 0, 4, 0, 1],
              [1, 1, 0]),
+    # A void: the ranks whose particles border it widen their halo; on 3 ranks, the one whose
+    # region holds the void within its first halo does not, and the ranks exchange unevenly.
+    "void": ("p = rng.random((5000, 3)) * 4\np = p[np.linalg.norm(p - [3, 2, 2], axis=1) > 1.2]",
+             [0, 4, 0, 4, 0, 4], [1, 1, 1]),
     # One finite particle among NaNs: a rank has none, or only NaNs.
     "lone": ("p = rng.random((200, 3)) * 4\np[1:] = np.nan", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
 }

@@ -184,12 +184,16 @@ double firstPeriodicHalo(const PeriodicBox& box, std::size_t points, const Bound
 /// A piece's share of triangulatePeriodic() (PeriodicPiece).
 struct PeriodicPieceTriangulation
 {
-  /// The tetrahedra whose least vertex is an own point, on the indices of the points given, as
-  /// triangulatePeriodic() gives them; wraps and representative per point given; the statistics
-  /// count the own points and these tetrahedra.
+  /// The tetrahedra whose least vertex is an own point (with PeriodicPiece::stars, every one at an
+  /// own point, and `owned`), on the indices of the points given, as triangulatePeriodic() gives
+  /// them; wraps and representative per point given; the statistics count the own points and
+  /// the tetrahedra the piece owns.
   PeriodicTriangulation triangulation;
   /// Where asked: per own point, its density as densities() gives it from the whole set (its
   /// star, from every piece's tetrahedra, is within the piece), up to the rounding of the sums.
+  /// Rare exceptions, as exact repeats share a place and so a piece: an own point merged into
+  /// another piece's point within a rounding of it gets NaN, and that point counts its own mass
+  /// only.
   std::vector<double> density;
   /// 0 where the halo was wide enough; else the halo to run again with, once the other pieces
   /// have sent the ghosts within it. Nothing else is set then.
