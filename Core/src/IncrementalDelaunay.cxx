@@ -1005,7 +1005,8 @@ const char* toString(Status status)
     case Status::CheckFailed:
       return "the kernel's mesh check failed (a bug; please report it)";
     case Status::OutOfRange:
-      return "the points and box span more than the Voronoi vertices' doubles hold";
+      return "the points and box span more than doubles hold (Voronoi vertices, or images of "
+             "points far from a periodic box)";
   }
   return "unknown";
 }

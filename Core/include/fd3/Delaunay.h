@@ -39,7 +39,8 @@ enum class Status
   Degenerate,   ///< all distinct points collinear or coplanar: no tetrahedron exists
   Aborted,      ///< the progress callback asked to stop
   CheckFailed,  ///< Options::checkMesh found a broken invariant (a bug): see checkReport
-  OutOfRange    ///< voronoiCells(): the points and box span more than its vertices' doubles hold
+  OutOfRange    ///< the points and box span more than doubles hold: voronoiCells()' vertices,
+                ///< triangulatePeriodic()'s images (fd3/Periodic.h)
 };
 
 /// The most threads per hardware thread that Options::threads starts, where that is more than
