@@ -610,18 +610,6 @@ void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints
   }
   else
   {
-    if (owned)
-    {
-      std::size_t kept = 0;
-      for (std::size_t t = 0; t < owned->size(); ++t)
-      {
-        if ((*owned)[t])
-        {
-          std::copy_n(&placement.tetrahedra[4 * t], 4, &placement.tetrahedra[4 * kept++]);
-        }
-      }
-      placement.tetrahedra.resize(4 * kept);
-    }
     SetTetrahedra(output, std::move(placement.tetrahedra));
   }
   this->AddCellArrays(output, placed);

@@ -464,9 +464,9 @@ protected:
   /// the cell arrays asked for. `xyz`: the kernel's coordinates, of the points and then, in an MPI
   /// rank's piece, of its ghosts, which `pointData` and `density` (with ComputeDensity, a value
   /// per point) cover too, and `ids` (null: the points' indices), which name each output point's
-  /// input point in SourcePointId. `owned`, for a rank's placed stars (fd3::PeriodicPiece::stars):
-  /// the tetrahedra it owns; the rest are not output, nor the alpha shape's triangles and lines
-  /// whose least vertex (least id) is no point of the rank's.
+  /// input point in SourcePointId. `owned`, with Alpha, for a rank's placed stars
+  /// (fd3::PeriodicPiece::stars): the tetrahedra it owns; of the alpha shape, the rest are not
+  /// output, nor the triangles and lines whose least vertex (least id) is no point of the rank's.
   void SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData,
     const double* xyz, fd3::PeriodicPlacement& placement, std::vector<double> density,
     const std::uint32_t* ids = nullptr, const std::vector<std::uint8_t>* owned = nullptr);

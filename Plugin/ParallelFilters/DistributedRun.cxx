@@ -28,6 +28,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -187,18 +188,12 @@ vtkSmartPointer<vtkPointData> InputData(
 }
 
 /// One rank's figures, then all ranks' together (Reduce()): counts are summed, with each vertex
-/// and tetrahedron counted by its owner; times and the status are the slowest or best rank's.
+/// and tetrahedron counted by its owner; times are the slowest rank's.
 struct RankFigures
 {
   fd3::Statistics Stats;
   double MeshInsertions = 0; ///< vertices of the rank's mesh, ghosts included
   double Ghosts = 0;         ///< points received
-  double StatusRank = 0;     ///< the index of the rank's status in kByRank
-
-  /// The order of the statuses across ranks: the whole is Ok when any rank has tetrahedra, else
-  /// the most telling. A failed check or an abort never gets here.
-  static constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
-    fd3::Status::Degenerate, fd3::Status::Ok };
 
   void Reduce(vtkMultiProcessController* controller)
   {
@@ -208,8 +203,6 @@ struct RankFigures
     controller->AllReduce(sums, total, 2, vtkCommunicator::SUM_OP);
     this->MeshInsertions = total[0];
     this->Ghosts = total[1];
-    const double rank = this->StatusRank;
-    controller->AllReduce(&rank, &this->StatusRank, 1, vtkCommunicator::MAX_OP);
     // Walks and cavities of ghost insertions count too: that is the work done.
     const double perVertex =
       double(this->Stats.insertedPoints) / std::max(this->MeshInsertions, 1.0);
@@ -237,6 +230,19 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 }
 
 } // namespace
+
+fd3::Status StatusOfAllRanks(vtkMultiProcessController* controller, fd3::Status mine)
+{
+  // The order of the statuses across ranks, from the least telling.
+  constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
+    fd3::Status::Degenerate, fd3::Status::Ok, fd3::Status::OutOfRange, fd3::Status::CheckFailed };
+  constexpr int kLast = static_cast<int>(std::size(kByRank)) - 1;
+  const int rank = std::min(
+    static_cast<int>(std::find(std::begin(kByRank), std::end(kByRank), mine) - kByRank), kLast);
+  int most = 0;
+  controller->AllReduce(&rank, &most, 1, vtkCommunicator::MAX_OP);
+  return kByRank[most];
+}
 
 void SumFigures(vtkMultiProcessController* controller, fd3::Statistics& stats)
 {
@@ -480,12 +486,9 @@ fd3::Statistics DistributedRun::GlobalFigures(fd3::Status& status)
   figures.Stats = this->Result.stats;
   figures.MeshInsertions = double(this->Result.stats.insertedPoints);
   figures.Ghosts = double(this->Xyz.size() / 3 - this->Own.Count);
-  const auto& byRank = RankFigures::kByRank;
-  figures.StatusRank =
-    double(std::find(std::begin(byRank), std::end(byRank), this->Result.status) - byRank);
   this->CountOwned(figures.Stats);
   figures.Reduce(this->Ranks.Controller);
-  status = byRank[static_cast<int>(figures.StatusRank)];
+  status = StatusOfAllRanks(this->Ranks.Controller, this->Result.status);
   this->GhostPoints = static_cast<vtkIdType>(figures.Ghosts);
   figures.Stats.inputPoints = static_cast<std::size_t>(this->InputPoints);
   return figures.Stats;

@@ -44,6 +44,11 @@ constexpr const char* kWeights = "FastDelaunay3DWeights";
 
 using fd3::Coordinates;
 
+/// One status for every rank's run (a collective call): a failed check, or points too far apart
+/// for doubles, on any rank; else Ok where any rank has tetrahedra; else the most telling of
+/// Degenerate, TooFewPoints and Empty. A status outside these (an abort) counts as a failed check.
+fd3::Status StatusOfAllRanks(vtkMultiProcessController* controller, fd3::Status mine);
+
 /// The figures of every rank's run summed, with each thing counted by the rank that owns it: the
 /// counts summed, the times and longest walk the largest.
 void SumFigures(vtkMultiProcessController* controller, fd3::Statistics& stats);

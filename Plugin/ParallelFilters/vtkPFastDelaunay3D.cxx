@@ -11,7 +11,6 @@
 #include "GatheredPoints.h"
 #include "PeriodicRun.h"
 
-#include "vtkCommunicator.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
@@ -20,10 +19,8 @@
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
-#include <algorithm>
 #include <chrono>
 #include <exception>
-#include <iterator>
 #include <limits>
 #include <string>
 #include <utility>
@@ -211,16 +208,8 @@ int vtkPFastDelaunay3D::TriangulatePeriodicPieces(vtkDataSet* input, vtkUnstruct
   }
   this->NumberOfGhostPoints = periodic.GhostPoints;
 
-  // One status for all ranks: a failed check or points too far apart for the images' doubles,
-  // else tetrahedra, else the most telling (the pieces widen their halo until every
-  // rank with points has tetrahedra, or none has).
-  constexpr fd3::Status kByRank[] = { fd3::Status::Empty, fd3::Status::TooFewPoints,
-    fd3::Status::Degenerate, fd3::Status::Ok, fd3::Status::OutOfRange, fd3::Status::CheckFailed };
-  const int mine = static_cast<int>(
-    std::find(std::begin(kByRank), std::end(kByRank), piece.triangulation.status) - kByRank);
-  int most = 0;
-  this->Controller->AllReduce(&mine, &most, 1, vtkCommunicator::MAX_OP);
-  const fd3::Status status = kByRank[std::min(most, 5)];
+  // The pieces widen their halo until every rank with points has tetrahedra, or none has.
+  const fd3::Status status = fd3vtk::StatusOfAllRanks(this->Controller, piece.triangulation.status);
   // A rank's densities are there where its piece is Ok, and sent where all are: every rank then
   // has tetrahedra or no points.
   if (status == fd3::Status::Ok && this->ComputeDensity &&

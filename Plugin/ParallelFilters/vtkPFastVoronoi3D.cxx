@@ -231,8 +231,9 @@ int vtkPFastVoronoi3D::PeriodicPieceCells(
   this->KernelSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - kernelStart).count();
   return this->OutputPieceCells(cells, periodic.Xyz, run.OwnData(),
-    std::vector<vtkIdType>(periodic.Ids.begin(), periodic.Ids.end()), run.OwnCount(),
-    run.InputPoints, false, options.box, output, faces);
+    this->GenerateFaces ? std::vector<vtkIdType>(periodic.Ids.begin(), periodic.Ids.end())
+                        : std::vector<vtkIdType>(),
+    run.OwnCount(), run.InputPoints, false, options.box, output, faces);
 }
 
 int vtkPFastVoronoi3D::OutputPieceCells(fd3::VoronoiCells& cells, fd3::Coordinates& xyz,
