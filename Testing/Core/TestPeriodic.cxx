@@ -4,7 +4,7 @@
 // repeats, any thread count, and bad input; the tetrahedra placed for drawing, and the periodic
 // density. Then the periodic Voronoi cells: their volumes fill the box and equal Voro++'s
 // periodic containers'.
-#include "PeriodicValidator.h"
+#include "PeriodicTestUtilities.h"
 #include "PointSets.h"
 #include "fd3/Periodic.h"
 #ifdef FD3_TEST_WITH_VOROPP
@@ -24,32 +24,11 @@
 
 namespace
 {
+using fd3test::canonical;
+using fd3test::domainOf;
 using fd3test::Points;
-
-fd3test::PeriodicDomain domainOf(const fd3::PeriodicBox& box)
-{
-  fd3test::PeriodicDomain domain;
-  for (int k = 0; k < 3; ++k)
-  {
-    domain.lo[k] = box.lo[k];
-    domain.hi[k] = box.hi[k];
-    domain.periodic[k] = box.periodic[k];
-  }
-  return domain;
-}
-
-std::vector<fd3test::PeriodicTetrahedron> tetrahedraOf(const fd3::PeriodicTriangulation& t)
-{
-  std::vector<fd3test::PeriodicTetrahedron> out(t.numberOfTetrahedra());
-  for (std::size_t c = 0; c < out.size(); ++c)
-    for (int i = 0; i < 4; ++i)
-    {
-      out[c].ids[i] = t.tetrahedra[4 * c + i];
-      for (int k = 0; k < 3; ++k)
-        out[c].offsets[i][k] = t.offsets[12 * c + 3 * i + k];
-    }
-  return out;
-}
+using fd3test::sum;
+using fd3test::tetrahedraOf;
 
 /// The periodic tetrahedralization of p in box, checked by the validator.
 fd3::PeriodicTriangulation checked(
@@ -63,22 +42,6 @@ fd3::PeriodicTriangulation checked(
   EXPECT_TRUE(report.valid()) << report.summary();
   EXPECT_EQ(t.stats.tetrahedra, t.numberOfTetrahedra());
   return t;
-}
-
-/// The tetrahedra as sets of (id, offset) up to a translation, for comparing two runs.
-std::set<std::array<std::array<int, 4>, 4>> canonical(const fd3::PeriodicTriangulation& t)
-{
-  std::set<std::array<std::array<int, 4>, 4>> out;
-  for (std::size_t c = 0; c < t.numberOfTetrahedra(); ++c)
-  {
-    std::array<std::array<int, 4>, 4> v;
-    for (int i = 0; i < 4; ++i)
-      v[i] = {int(t.tetrahedra[4 * c + i]), t.offsets[12 * c + 3 * i],
-        t.offsets[12 * c + 3 * i + 1], t.offsets[12 * c + 3 * i + 2]};
-    std::sort(v.begin(), v.end());
-    out.insert(v);
-  }
-  return out;
 }
 
 Points cubicLattice(int k, double spacing)
@@ -548,14 +511,6 @@ TEST(Periodic, AlphaComplexOfOnePoint)
   EXPECT_EQ(axes, (std::set<int>{0, 1, 2}));
   // A larger alpha keeps every tetrahedron: six of the cube's, a unit of volume.
   EXPECT_EQ(fd3::alphaComplex(p.data(), 1, placed, 10).tetrahedra.size(), t.numberOfTetrahedra());
-}
-
-double sum(const fd3::VoronoiCells::Doubles& values)
-{
-  double total = 0;
-  for (const double v : values)
-    total += v;
-  return total;
 }
 
 /// Each face's neighbour has a face back to the cell (as many faces each way: a point's own
