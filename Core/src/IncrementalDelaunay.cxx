@@ -745,15 +745,15 @@ IncrementalDelaunay::IncrementalDelaunay(Coordinates xyz, const Options& options
 
 IncrementalDelaunay::IncrementalDelaunay() : impl_(std::make_unique<Impl>()) {}
 
-std::unique_ptr<IncrementalDelaunay> IncrementalDelaunay::ofImages(
-  Coordinates xyz, const ImageOf* images, const Options& options, const Frame& frame)
+std::unique_ptr<IncrementalDelaunay> IncrementalDelaunay::ofImages(Coordinates xyz,
+  const ImageOf* images, const Options& options, const Frame& frame, const double* weights)
 {
   std::unique_ptr<IncrementalDelaunay> mesh(new IncrementalDelaunay());
   Impl& impl = *mesh->impl_;
   impl.images = images;
   impl.takesPoints = true;
   impl.held = std::move(xyz);
-  impl.start(impl.held.data(), impl.held.size() / 3, options, frame, 0, nullptr);
+  impl.start(impl.held.data(), impl.held.size() / 3, options, frame, 0, weights);
   impl.images = nullptr; // the caller's, read during the call only
   return mesh;
 }
@@ -764,12 +764,13 @@ std::size_t IncrementalDelaunay::mergedPoints() const
     (impl_->triangulator ? impl_->triangulator->duplicates().size() : 0);
 }
 
-void IncrementalDelaunay::addImages(const double* xyz, const ImageOf* images, std::size_t count)
+void IncrementalDelaunay::addImages(
+  const double* xyz, const ImageOf* images, std::size_t count, const double* weights)
 {
   if (!impl_->triangulator)
     throw std::logic_error("fd3::IncrementalDelaunay::addImages: the mesh has not started");
   impl_->images = images;
-  add(xyz, count);
+  add(xyz, count, weights);
   impl_->images = nullptr;
 }
 

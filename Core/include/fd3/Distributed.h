@@ -155,10 +155,13 @@ private:
   /// in the input's units), and so for every addImages(). Points with the same record are merged
   /// as repeats, whatever their residuals: the caller tells them apart (mergedPoints(), then
   /// Triangulation::representative). add() inserts points that are no images (the Voronoi
-  /// cells' far points).
-  static std::unique_ptr<IncrementalDelaunay> ofImages(
-    Coordinates xyz, const ImageOf* images, const Options& options, const Frame& frame);
-  void addImages(const double* xyz, const ImageOf* images, std::size_t count);
+  /// cells' far points). With `weights` (then with every addImages() too), a weighted mesh, as
+  /// the constructors make it: points with the same record and another weight are no repeats,
+  /// the heavier hiding the lighter.
+  static std::unique_ptr<IncrementalDelaunay> ofImages(Coordinates xyz, const ImageOf* images,
+    const Options& options, const Frame& frame, const double* weights = nullptr);
+  void addImages(
+    const double* xyz, const ImageOf* images, std::size_t count, const double* weights = nullptr);
   /// How many points so far were merged into another.
   std::size_t mergedPoints() const;
   /// Calls visit(ids, xyz) for every live finite tetrahedron: its point ids, positively

@@ -370,7 +370,10 @@ void Predicates::adaptToWeights(double lowest, double highest)
   // 1% for the rounding of both. Products of the normal range keep the relative bounds.
   const bool safe = !tuning_.anyMagnitude && scale > filter::kUnderflowGuard && scale < 0x1p900 &&
     std::isfinite(spread);
-  tuning_.powerStatic = safe ? filter::kPowerSemiStatic * scale * 1.01 : HUGE_VAL;
+  // Images' records (useImages()) widen the differences by the slack of their rounding.
+  const double bound = tuning_.images ? filter::powerRecordBound(e, spread, tuning_.imageSlack)
+                                      : filter::kPowerSemiStatic * scale * 1.01;
+  tuning_.powerStatic = safe ? bound : HUGE_VAL;
 }
 
 void Predicates::include(const double* xyz, std::size_t count, std::size_t stride)
@@ -773,7 +776,6 @@ int Predicates::inSphereExact(
 
 int Predicates::powerTest(const double* const p[4], const double* pe, const double w[4], double we)
 {
-  assert(!tuning_.images && "periodic images carry no weights");
   double d[4][3], lift[4], largest[3] = {0, 0, 0}, largestWeight = 0;
   for (int r = 0; r < 4; ++r)
   {
@@ -796,11 +798,26 @@ int Predicates::powerTest(const double* const p[4], const double* pe, const doub
     (lift[3] * minor3(0, 1, 2) - lift[2] * minor3(0, 1, 3));
   const double m = std::max({largest[0], largest[1], largest[2]});
   const double scale = largest[0] * largest[1] * largest[2] * (3 * m * m + largestWeight);
-  const double bound = filter::kPowerSemiStatic * scale;
+  const bool inexact = tuning_.images && anyInexact(p[0], p[1], p[2], p[3], pe);
+  const double bound = inexact
+    ? filter::powerRecordBound(largest, largestWeight, tuning_.imageSlack)
+    : filter::kPowerSemiStatic * scale;
   // An overflow leaves det or the bound infinite or NaN: no comparison then holds.
   if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kInSphereRange, largest))
     return -signOf(det);
-  return powerTestExact(p, pe, w, we);
+  return inexact ? powerTestOfImages(p, pe, w, we) : powerTestExact(p, pe, w, we);
+}
+
+int Predicates::powerTestOfImages(
+  const double* const p[4], const double* pe, const double w[4], double we)
+{
+  ++exactInSphereCalls;
+  ++integerExactCalls;
+  const double weights[5] = {w[0], w[1], w[2], w[3], we};
+  const double* residuals[4] = {
+    residualOf(p[0]), residualOf(p[1]), residualOf(p[2]), residualOf(p[3])};
+  IntegerRows<4> q(p, pe, residuals, residualOf(pe), weightScaleLimit(weights, 5));
+  return liftedDeterminantSign(q, weights);
 }
 
 // Over integers: the coordinates count a power of two 2^s low enough that the weights, which are

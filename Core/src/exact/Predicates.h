@@ -123,6 +123,24 @@ inline RecordBounds recordBounds(const double e[3], double eps)
     (kInSphereSemiStatic * inSphereProduct + inSphereGrowth) * 1.01};
 }
 
+/// The power test's error bound (Predicates::powerTest()) for records whose differences are at
+/// most e[k] along axis k and within eps of the exact points' (recordBounds()), of weights whose
+/// differences are at most `spread`: the semi-static bound at e + eps, plus the exact
+/// determinant's growth from e to e + eps, its positive form being 24 (ex^2 + ey^2 + ez^2 +
+/// spread) ex ey ez (4 lowered lifts, each with a 6-term minor). 1% for the rounding of all that.
+inline double powerRecordBound(const double e[3], double spread, double eps)
+{
+  const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
+  const double m = std::max({ex, ey, ez});
+  const double product = ex * ey * ez;
+  const double productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
+    eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
+  const double squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
+  const double squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+  const double growth = 24 * (squaresGrowth * product + (squares + spread) * productGrowth);
+  return (kPowerSemiStatic * product * (3 * m * m + spread) + growth) * 1.01;
+}
+
 constexpr double kOrientRange = 0x1p200;
 constexpr double kInSphereRange = 0x1p120;
 
@@ -222,7 +240,7 @@ public:
   /// every sign is then the exact images', and ties are broken in the images' order. The static
   /// filters widen by the rounding of the records (applyBoxBounds()); every test they leave open on
   /// an image that its record does not hold is decided exactly, with the residuals, in GMP
-  /// integers. No grid, lifts' filter or power test then.
+  /// integers, the power test's too. No grid or lifts' filter then.
   void useImages(const PeriodicImages* images);
   /// For coordinates of any finite magnitude, from the smallest subnormal to DBL_MAX (points that
   /// no scaled frame holds exactly): the float filters check that no operation overflowed or lost
@@ -274,6 +292,8 @@ private:
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
   int powerTestExact(const double* const p[4], const double* pe, const double w[4], double we);
+  /// powerTestExact() where the records are periodic images' (useImages()), with their residuals.
+  int powerTestOfImages(const double* const p[4], const double* pe, const double w[4], double we);
   /// The exact stages of periodic images (useImages()).
   int orient3dOfImages(const double* a, const double* b, const double* c, const double* d);
   int inSphereOfImages(

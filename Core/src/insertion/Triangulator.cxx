@@ -44,6 +44,8 @@ void Triangulator::useImages(std::vector<ImageOf> images)
   images_.assign(std::move(images));
   images_.locate(mesh_.vertices[0].xyz, sizeof(Vertex) / sizeof(double));
   tuning_.useImages(&images_);
+  if (mesh_.weighted()) // the power test's static bound widens with the images' slack
+    adaptToWeights();
   for (auto& inserter : inserters_)
     inserter->retune(tuning_);
 }
