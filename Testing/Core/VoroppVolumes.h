@@ -19,12 +19,12 @@ inline int voroppBlocks(std::size_t n)
 }
 
 /// The volume of each cell of `container`, by the id its point was put with (0 to n - 1); -1
-/// where Voro++ makes no cell.
-template <typename Container>
+/// where Voro++ makes no cell. Periodic containers take their own loop (c_loop_all_periodic).
+template <typename Container, typename Loop = voro::c_loop_all>
 std::vector<double> voroppVolumes(Container& container, std::size_t n)
 {
   std::vector<double> volumes(n, -1);
-  voro::c_loop_all loop(container);
+  Loop loop(container);
   voro::voronoicell cell;
   if (loop.start())
     do

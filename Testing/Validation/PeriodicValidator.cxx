@@ -53,8 +53,10 @@ Rational orientation(const Position& a, const Position& b, const Position& c, co
   return det3(difference(b, a), difference(c, a), difference(d, a));
 }
 
-/// > 0 iff e is strictly inside the circumsphere of the positive tetrahedron abcd.
-int inSphere(const Position* abcd, const Position& e)
+/// > 0 iff e is strictly inside the circumsphere of the positive tetrahedron abcd. Weighted
+/// (`weights` of abcd, then of e), iff e has a negative power distance to its orthogonal sphere:
+/// each lift lowered by its point's weight less e's.
+int inSphere(const Position* abcd, const Position& e, const double* weights = nullptr)
 {
   Rational rows[4][4];
   for (int i = 0; i < 4; ++i)
@@ -62,6 +64,8 @@ int inSphere(const Position* abcd, const Position& e)
     for (int k = 0; k < 3; ++k)
       rows[i][k] = abcd[i][k] - e[k];
     rows[i][3] = rows[i][0] * rows[i][0] + rows[i][1] * rows[i][1] + rows[i][2] * rows[i][2];
+    if (weights)
+      rows[i][3] -= Rational(weights[i]) - Rational(weights[4]);
   }
   Rational det = 0;
   for (int i = 0; i < 4; ++i)
@@ -129,10 +133,18 @@ class PeriodicChecker
 {
 public:
   PeriodicChecker(const double* xyz, std::size_t count, const PeriodicDomain& domain,
-    const std::vector<PeriodicTetrahedron>& tets, bool requireDelaunay, ValidityReport& report)
-    : xyz_(xyz), count_(count), domain_(domain), tets_(tets), requireDelaunay_(requireDelaunay),
+    const std::vector<PeriodicTetrahedron>& tets, const ValidityOptions& options,
+    ValidityReport& report)
+    : xyz_(xyz), count_(count), domain_(domain), tets_(tets),
+      requireDelaunay_(options.requireDelaunay), weights_(options.weights), hidden_(count, false),
       report_(report)
-  {}
+  {
+    for (const std::uint32_t h : options.hidden)
+      if (h < count)
+        hidden_[h] = true;
+      else
+        fail("hidden point " + std::to_string(h) + " is out of range");
+  }
 
   void run()
   {
@@ -146,6 +158,7 @@ public:
     checkFaces();
     checkVolume();
     checkVertices();
+    checkHidden();
   }
 
 private:
@@ -173,7 +186,7 @@ private:
     finite_.resize(count_);
     for (std::size_t i = 0; i < count_; ++i)
       finite_[i] = std::isfinite(xyz_[3 * i]) && std::isfinite(xyz_[3 * i + 1]) &&
-        std::isfinite(xyz_[3 * i + 2]);
+        std::isfinite(xyz_[3 * i + 2]) && (!weights_ || std::isfinite(weights_[i]));
     return periodicAxes_ > 0;
   }
 
@@ -297,9 +310,20 @@ private:
     // Both faces coincide once translated by their own translations.
     const Offset shift = minus(other.translation, use.translation);
     const Position apex = position(o.ids[other.opposite], plus(o.offsets[other.opposite], shift));
-    if (inSphere(p.data(), apex) > 0)
+    const std::array<double, 5> w = weightsOf(tets_[use.tet].ids, o.ids[other.opposite]);
+    if (inSphere(p.data(), apex, weights_ ? w.data() : nullptr) > 0)
       fail("face between tetrahedra " + std::to_string(use.tet) + " and " +
-        std::to_string(other.tet) + " is not locally Delaunay");
+        std::to_string(other.tet) + " is not locally " + (weights_ ? "regular" : "Delaunay"));
+  }
+
+  /// The weights of four vertices, then of a fifth point (zeros where unweighted).
+  std::array<double, 5> weightsOf(const std::array<std::uint32_t, 4>& ids, std::uint32_t e) const
+  {
+    std::array<double, 5> w{};
+    for (int i = 0; i < 4 && weights_; ++i)
+      w[i] = weights_[ids[i]];
+    w[4] = weights_ ? weights_[e] : 0.0;
+    return w;
   }
 
   void checkHullFace(const FaceUse& use)
@@ -375,7 +399,7 @@ private:
   {
     std::vector<Position> out;
     for (std::size_t i = 0; i < count_; ++i)
-      if (finite_[i])
+      if (finite_[i] && !hidden_[i])
         out.push_back(wrapped_[i]);
     return out;
   }
@@ -429,11 +453,111 @@ private:
     {
       const auto n =
         std::count_if(ids.begin(), ids.end(), [&](std::uint32_t i) { return used[i]; });
+      const bool allHidden =
+        std::all_of(ids.begin(), ids.end(), [&](std::uint32_t i) { return hidden_[i]; });
       report_.usedVertices += n;
-      if (n != 1)
+      if (n != (allHidden ? 0 : 1))
         fail("point " + std::to_string(ids[0]) + " is a vertex " + std::to_string(n) +
           " times (by its id or those of its copies)");
+      for (const std::uint32_t i : ids)
+      {
+        if (hidden_[i] && used[i])
+          fail("hidden point " + std::to_string(i) + " is a vertex");
+        const bool repeat = hidden_[i] && weights_ &&
+          std::any_of(ids.begin(), ids.end(),
+            [&](std::uint32_t j) { return used[j] && weights_[j] == weights_[i]; });
+        if (repeat)
+          fail("hidden point " + std::to_string(i) + " repeats a vertex of its weight");
+      }
     }
+  }
+
+  /// Each hidden point, of non-negative power distance to the orthosphere of a translate of a
+  /// tetrahedron that holds it, or lighter than another point at its position.
+  void checkHidden()
+  {
+    if (!weights_)
+      return;
+    std::map<Position, double> heaviest;
+    for (std::size_t i = 0; i < count_; ++i)
+      if (finite_[i])
+      {
+        auto [at, first] = heaviest.try_emplace(wrapped_[i], weights_[i]);
+        at->second = std::max(at->second, weights_[i]);
+      }
+    for (std::uint32_t h = 0; h < count_; ++h)
+      if (hidden_[h] && finite_[h] && !(weights_[h] < heaviest[wrapped_[h]]) && !holdsHidden(h))
+        fail("point " + std::to_string(h) + " is listed hidden, but no tetrahedron hides it");
+  }
+
+  /// Whether some translate of a tetrahedron holds hidden point h without its orthosphere
+  /// conflicting with it. Translates are tried where the tetrahedron's box, in doubles and a
+  /// little wider, holds the point moved by whole periods.
+  bool holdsHidden(std::uint32_t h)
+  {
+    if (boxes_.empty())
+      for (std::size_t t = 0; t < tets_.size(); ++t)
+      {
+        const auto p = positions(t);
+        std::array<double, 6> box;
+        for (int k = 0; k < 3; ++k)
+        {
+          double lo = p[0][k].get_d(), hi = lo;
+          for (int i = 1; i < 4; ++i)
+          {
+            lo = std::min(lo, p[i][k].get_d());
+            hi = std::max(hi, p[i][k].get_d());
+          }
+          const double slack = 1e-9 * (hi - lo + std::fabs(lo) + std::fabs(hi));
+          box[k] = lo - slack;
+          box[3 + k] = hi + slack;
+        }
+        boxes_.push_back(box);
+      }
+    double here[3], period[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      here[k] = wrapped_[h][k].get_d();
+      period[k] = period_[k].get_d();
+    }
+    for (std::size_t t = 0; t < tets_.size(); ++t)
+    {
+      const double* lo = boxes_[t].data();
+      const double* hi = lo + 3;
+      std::int32_t first[3], last[3];
+      bool near = true;
+      for (int k = 0; k < 3; ++k)
+      {
+        first[k] = last[k] = 0;
+        if (domain_.periodic[k])
+        {
+          first[k] = std::int32_t(std::ceil((lo[k] - here[k]) / period[k]));
+          last[k] = std::int32_t(std::floor((hi[k] - here[k]) / period[k]));
+        }
+        near = near && first[k] <= last[k] && here[k] + first[k] * period[k] <= hi[k] &&
+          here[k] + last[k] * period[k] >= lo[k];
+      }
+      if (!near)
+        continue;
+      const auto p = positions(t);
+      const std::array<double, 5> w = weightsOf(tets_[t].ids, h);
+      for (std::int32_t x = first[0]; x <= last[0]; ++x)
+        for (std::int32_t y = first[1]; y <= last[1]; ++y)
+          for (std::int32_t z = first[2]; z <= last[2]; ++z)
+          {
+            const Position e = position(h, {x, y, z});
+            bool inside = true;
+            for (int f = 0; f < 4 && inside; ++f)
+            {
+              std::array<Position, 4> q = p;
+              q[f] = e;
+              inside = sgn(orientation(q[0], q[1], q[2], q[3])) >= 0;
+            }
+            if (inside && inSphere(p.data(), e, w.data()) <= 0)
+              return true;
+          }
+    }
+    return false;
   }
 
   const double* xyz_;
@@ -441,11 +565,14 @@ private:
   const PeriodicDomain& domain_;
   const std::vector<PeriodicTetrahedron>& tets_;
   bool requireDelaunay_;
+  const double* weights_;
+  std::vector<bool> hidden_;
   ValidityReport& report_;
   Rational period_[3];
   int periodicAxes_ = 0;
   std::vector<bool> finite_; // points that are not finite are left out
   std::vector<Position> wrapped_;
+  std::vector<std::array<double, 6>> boxes_; // of the tetrahedra, lo then hi, in doubles
   Rational sixVolume_ = 0;
 };
 } // namespace
@@ -453,8 +580,17 @@ private:
 ValidityReport checkPeriodicTriangulation(const double* xyz, std::size_t count,
   const PeriodicDomain& domain, const std::vector<PeriodicTetrahedron>& tets, bool requireDelaunay)
 {
+  ValidityOptions options;
+  options.requireDelaunay = requireDelaunay;
+  return checkPeriodicTriangulation(xyz, count, domain, tets, options);
+}
+
+ValidityReport checkPeriodicTriangulation(const double* xyz, std::size_t count,
+  const PeriodicDomain& domain, const std::vector<PeriodicTetrahedron>& tets,
+  const ValidityOptions& options)
+{
   ValidityReport report;
-  PeriodicChecker(xyz, count, domain, tets, requireDelaunay, report).run();
+  PeriodicChecker(xyz, count, domain, tets, options, report).run();
   return report;
 }
 

@@ -48,6 +48,15 @@ struct PeriodicTetrahedron
 ValidityReport checkPeriodicTriangulation(const double* xyz, std::size_t count,
   const PeriodicDomain& domain, const std::vector<PeriodicTetrahedron>& tets,
   bool requireDelaunay = true);
+/// The same for weighted points (options.weights, every image with its point's weight): a regular
+/// tetrahedralization of the periodic set. Interior faces must be locally regular, and each point
+/// of options.hidden hidden: no vertex, and of non-negative power distance to the orthogonal
+/// sphere of a tetrahedron (some translate) that contains it, or lighter than another point at
+/// its position. Every other distinct point must be a vertex, except copies of a hidden point,
+/// and the hull and its volume are the vertices'.
+ValidityReport checkPeriodicTriangulation(const double* xyz, std::size_t count,
+  const PeriodicDomain& domain, const std::vector<PeriodicTetrahedron>& tets,
+  const ValidityOptions& options);
 
 } // namespace fd3test
 
