@@ -3,7 +3,7 @@
 // tetrahedralization of copies of points on a binary grid (whose translates are exact doubles)
 // cut to one period, and each kind of damage fails it. Core's periodic tetrahedra are CGAL's on
 // generic input, where the tetrahedralization is unique.
-#include "PeriodicValidator.h"
+#include "PeriodicTestUtilities.h"
 #include "PointSets.h"
 #include "fd3/Delaunay.h"
 #include "fd3/Periodic.h"
@@ -11,6 +11,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Periodic_3_Delaunay_triangulation_3.h>
 #include <CGAL/Periodic_3_Delaunay_triangulation_traits_3.h>
+#include <CGAL/Periodic_3_regular_triangulation_3.h>
+#include <CGAL/Periodic_3_regular_triangulation_traits_3.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,6 +31,8 @@ using fd3test::Points;
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Traits = CGAL::Periodic_3_Delaunay_triangulation_traits_3<Kernel>;
 using Periodic = CGAL::Periodic_3_Delaunay_triangulation_3<Traits>;
+using RegularTraits = CGAL::Periodic_3_regular_triangulation_traits_3<Kernel>;
+using PeriodicRegular = CGAL::Periodic_3_regular_triangulation_3<RegularTraits>;
 using Tetrahedra = std::vector<PeriodicTetrahedron>;
 
 /// CGAL's periodic tetrahedra of points in [0, 1)^3, each once.
@@ -50,6 +54,37 @@ Tetrahedra cgalPeriodic(const Points& p)
     for (int i = 0; i < 4; ++i)
     {
       const Periodic::Point& q = (*it)[i].first;
+      t.ids[i] = ids.at({q.x(), q.y(), q.z()});
+      for (int k = 0; k < 3; ++k)
+        t.offsets[i][k] = (*it)[i].second[k];
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+/// CGAL's periodic regular tetrahedra of weighted points in [0, 1)^3, each once, and its count of
+/// hidden points.
+Tetrahedra cgalPeriodicRegular(const Points& p, const std::vector<double>& w, std::size_t& hidden)
+{
+  std::map<std::array<double, 3>, std::uint32_t> ids;
+  std::vector<PeriodicRegular::Weighted_point> points;
+  for (std::size_t i = 0; i < p.size() / 3; ++i)
+  {
+    ids.emplace(std::array<double, 3>{p[3 * i], p[3 * i + 1], p[3 * i + 2]}, std::uint32_t(i));
+    points.emplace_back(PeriodicRegular::Bare_point(p[3 * i], p[3 * i + 1], p[3 * i + 2]), w[i]);
+  }
+  PeriodicRegular regular(PeriodicRegular::Iso_cuboid(0, 0, 0, 1, 1, 1));
+  regular.insert(points.begin(), points.end());
+  hidden = regular.number_of_hidden_points();
+  Tetrahedra out;
+  for (auto it = regular.periodic_tetrahedra_begin(PeriodicRegular::UNIQUE);
+       it != regular.periodic_tetrahedra_end(PeriodicRegular::UNIQUE); ++it)
+  {
+    PeriodicTetrahedron t;
+    for (int i = 0; i < 4; ++i)
+    {
+      const auto& q = (*it)[i].first.point();
       t.ids[i] = ids.at({q.x(), q.y(), q.z()});
       for (int k = 0; k < 3; ++k)
         t.offsets[i][k] = (*it)[i].second[k];
@@ -307,19 +342,42 @@ TEST(PeriodicAgainstCGAL, SameTetrahedraOnUniformPoints)
     const fd3::PeriodicTriangulation core =
       fd3::triangulatePeriodic(p.data(), n, fd3::PeriodicBox());
     ASSERT_EQ(core.status, fd3::Status::Ok);
-    for (std::size_t c = 0; c < core.numberOfTetrahedra(); ++c)
-    {
-      PeriodicTetrahedron t;
-      for (int i = 0; i < 4; ++i)
-      {
-        t.ids[i] = core.tetrahedra[4 * c + i];
-        for (int k = 0; k < 3; ++k)
-          t.offsets[i][k] = core.offsets[12 * c + 3 * i + k];
-      }
+    for (const PeriodicTetrahedron& t : fd3test::tetrahedraOf(core))
       ours.insert(translated(t));
-    }
     EXPECT_EQ(core.numberOfTetrahedra(), ours.size()) << n;
     EXPECT_EQ(ours, theirs) << n;
+  }
+}
+
+// Weighted: CGAL's Periodic_3_regular_triangulation_3 asks weights below 1/64 of the period
+// squared (radii below 1/8): radii up to 0.1 hide a few points.
+TEST(PeriodicAgainstCGAL, SameRegularTetrahedraOnUniformPointsWithRadii)
+{
+  for (std::size_t n : {50, 2000})
+  {
+    const Points p = fd3test::uniformCube(n, 22);
+    std::mt19937_64 random(23);
+    std::uniform_real_distribution<double> radius(0.0, 0.1);
+    std::vector<double> w(n);
+    for (double& x : w)
+    {
+      const double r = radius(random);
+      x = r * r;
+    }
+    std::size_t hidden = 0;
+    std::set<std::array<std::array<int, 4>, 4>> theirs, ours;
+    for (const PeriodicTetrahedron& t : cgalPeriodicRegular(p, w, hidden))
+      theirs.insert(translated(t));
+    const fd3::PeriodicTriangulation core =
+      fd3::triangulatePeriodic(p.data(), w.data(), n, fd3::PeriodicBox());
+    ASSERT_EQ(core.status, fd3::Status::Ok);
+    for (const PeriodicTetrahedron& t : fd3test::tetrahedraOf(core))
+      ours.insert(translated(t));
+    EXPECT_EQ(core.numberOfTetrahedra(), ours.size()) << n;
+    EXPECT_EQ(ours, theirs) << n;
+    EXPECT_EQ(core.hidden.size(), hidden) << n;
+    if (n == 2000)
+      EXPECT_GT(hidden, 0u);
   }
 }
 

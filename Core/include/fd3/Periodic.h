@@ -46,7 +46,11 @@ struct PeriodicTriangulation
   /// points within about a unit in the last place of the images' coordinates:
   /// stats.closePointsSkipped); kNoPoint for a point that is not finite.
   IdArray representative;
-  /// insertedPoints counts the distinct points, tetrahedra the periodic tetrahedra.
+  /// Weighted points only: the input ids, ascending, of the hidden points, whose power cell in the
+  /// repeated set is empty (every image of one is hidden alike); no tetrahedron has them.
+  std::vector<std::uint32_t> hidden;
+  /// insertedPoints counts the vertices (distinct points less the hidden ones), tetrahedra the
+  /// periodic tetrahedra, hiddenPoints the hidden points.
   Statistics stats;
   /// How the tetrahedralization was found: the images of the points inserted around the box, in
   /// a shell of `margin` (input units) on every periodic side and in regions about the spheres
@@ -79,6 +83,15 @@ struct PeriodicTriangulation
 /// thousands of times longer than wide).
 PeriodicTriangulation triangulatePeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options = Options());
+/// The regular (weighted Delaunay) tetrahedralization of the weighted points repeated along the
+/// periodic axes of `box`, every image of a point with the point's weight: triangulatePeriodic()
+/// with the power test (triangulate() with weights), exact and perturbed alike, the images in the
+/// same order. Hidden points are no vertices (PeriodicTriangulation::hidden); a point of
+/// non-finite weight is left out as one of non-finite coordinates; where every weight is the
+/// same, the Delaunay tetrahedralization, bit for bit. A heavy point's ball may reach beyond a
+/// period: the images inserted widen with the weights' spread.
+PeriodicTriangulation triangulatePeriodic(const double* xyz, const double* weights,
+  std::size_t count, const PeriodicBox& box, const Options& options = Options());
 
 /// The periodic tetrahedra placed as one draws them: each tetrahedron of a PeriodicTriangulation,
 /// in its order, with its vertices where its offsets put them, so that together they tile one
@@ -138,6 +151,12 @@ AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPl
 /// whole star. Statuses as triangulatePeriodic().
 VoronoiCells voronoiCellsPeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const VoronoiOptions& options = {});
+/// The power cells of the weighted points repeated along the periodic axes of `box`, as
+/// voronoiCellsPeriodic() gives the Voronoi cells, from triangulatePeriodic() with weights. A
+/// hidden point's cell is empty (no faces, volume 0), and the cells of a box periodic along every
+/// axis still fill it exactly once; densities are NaN at hidden points.
+VoronoiCells voronoiCellsPeriodic(const double* xyz, const double* weights, std::size_t count,
+  const PeriodicBox& box, const VoronoiOptions& options = {});
 
 /// One piece of a point set spread over several processes by space (the MPI filters' ranks), for
 /// the runs of a piece below. The points given to such a run are the piece's own, `own` of them,

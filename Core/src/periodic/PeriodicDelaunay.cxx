@@ -43,14 +43,15 @@ constexpr std::size_t kPointsPerBucket = 4;
 constexpr double kSnap = 1.0;
 
 /// A tetrahedron's circumsphere in floats, from its vertices' records: the centre is
-/// a + n / (2 det), for a = xyz[0] and the differences u of the others from it.
+/// a + n / (2 det), for a = xyz[0] and the differences u of the others from it. Its orthosphere
+/// where `lowered` holds the weights of the others less a's: each |u|^2 lowered by its own.
 struct SphereTerms
 {
   double u[3][3];
   double det; ///< u0 . (u1 x u2)
   double n[3];
 
-  explicit SphereTerms(const double* const xyz[4])
+  explicit SphereTerms(const double* const xyz[4], const double* lowered = nullptr)
   {
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
@@ -59,6 +60,8 @@ struct SphereTerms
     for (int i = 0; i < 3; ++i)
     {
       lift[i] = u[i][0] * u[i][0] + u[i][1] * u[i][1] + u[i][2] * u[i][2];
+      if (lowered)
+        lift[i] -= lowered[i];
       const double* v = u[(i + 1) % 3];
       const double* w = u[(i + 2) % 3];
       cross[i][0] = v[1] * w[2] - v[2] * w[1];
@@ -75,8 +78,14 @@ struct SphereTerms
   /// det is a cubic in the differences whose terms sum to 6 size^3 at most, each n_k a quartic
   /// whose terms sum to 18 size^4; each difference is off by eta, its rounding and two residuals,
   /// and each bound is twice the differences' part (degree times eta, taken below size / 100) and
-  /// the evaluation's (a few eps a term).
+  /// the evaluation's (a few eps a term). Lifts lowered by weights' differences of at most W
+  /// stay below 3 s^2 for s^2 = size^2 + W / 3, and their rounding within a few eps of it: n's
+  /// bound at that size (weightedSize()) holds them.
   static constexpr double kEps = 0x1p-53;
+  static double weightedSize(double size, double spread)
+  {
+    return spread > 0 ? std::sqrt(size * size + spread / 3) : size;
+  }
   static double eta(double size, double most) { return kEps * (size + 2 * most); }
   static bool usable(double size, double most)
   {
@@ -98,35 +107,44 @@ struct SphereTerms
 /// circumsphere passes through that point, at least `margin` inside the shell along the periodic
 /// axes, so a diameter 2r = |n| / |det| below the margin keeps the sphere inside the shell,
 /// compared without a division or a root. Every difference is then below the margin too, which
-/// bounds the float evaluation's error (SphereTerms).
+/// bounds the float evaluation's error (SphereTerms). Weighted, by weights that differ by W at
+/// most, the ball of an orthosphere (c, r) widened by the heaviest weight has a radius below
+/// sqrt(|c - a|^2 + W) and lies within that of every vertex: 2 |c - a| = |n| / |det| must stay
+/// below sqrt(margin^2 - 4 W).
 class SmallSphere
 {
 public:
-  /// margin: the points' room to the shell's sides; most: the largest magnitude of a record.
-  SmallSphere(double margin, double most)
+  /// margin: the points' room to the shell's sides; most: the largest magnitude of a record;
+  /// spread: W, 0 where unweighted.
+  SmallSphere(double margin, double most, double spread)
     // The margin less the box's and the records' roundings.
-    : margin_(margin - kSlack * (margin + most)), detError_(SphereTerms::detError(margin_, most)),
-      nError_(SphereTerms::nError(margin_, most)), usable_(SphereTerms::usable(margin_, most))
+    : margin_(margin - kSlack * (margin + most)),
+      reach_(spread > 0 ? std::sqrt(std::max(margin_ * margin_ - 4 * spread * (1 + kSlack), 0.0))
+                        : margin_),
+      detError_(SphereTerms::detError(margin_, most)),
+      nError_(SphereTerms::nError(SphereTerms::weightedSize(margin_, spread), most)),
+      usable_(SphereTerms::usable(margin_, most) && reach_ > 0)
   {}
 
-  /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
-  /// below the margin; false where floats cannot tell.
-  bool holds(const double* const xyz[4]) const
+  /// Whether the circumsphere (orthosphere) of a tetrahedron with a vertex in the box, its
+  /// vertices' weights less the first's `lowered`, surely has a diameter below the margin; false
+  /// where floats cannot tell.
+  bool holds(const double* const xyz[4], const double* lowered = nullptr) const
   {
     if (!usable_)
       return false;
-    const SphereTerms t(xyz);
+    const SphereTerms t(xyz, lowered);
     bool within = true;
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
         within &= std::fabs(t.u[i][k]) < margin_;
     const double n2 = t.n[0] * t.n[0] + t.n[1] * t.n[1] + t.n[2] * t.n[2];
-    const double reach = margin_ * (std::fabs(t.det) - detError_) - nError_; // |n| must stay below
+    const double reach = reach_ * (std::fabs(t.det) - detError_) - nError_; // |n| must stay below
     return within && reach > 0 && n2 * (1 + 1e-12) < reach * reach;
   }
 
 private:
-  double margin_, detError_, nError_;
+  double margin_, reach_, detError_, nError_;
   bool usable_;
 };
 
@@ -150,18 +168,27 @@ enum class SphereBox
 /// vertex a, within the extent): r^2 - gap^2 along a free axis k is (a_k - e)(a_k + e - 2 c_k),
 /// e the extent's side nearest the centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past
 /// that side: a cap far from the centre needs both, r and the gap agreeing to many digits.
+///
+/// Weighted, the orthosphere's ball widened by the heaviest weight: `lowered` holds the other
+/// vertices' weights less a's, and `extra` the heaviest weight less a's (r^2 = |c - a|^2 - w_a,
+/// so the ball's squared radius is |c - a|^2 + extra), each term of the reach gaining it.
 SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool periodic[3],
-  double most, double centre[3], double& radius, Bounds& sphere)
+  double most, double centre[3], double& radius, Bounds& sphere, const double* lowered = nullptr,
+  double extra = 0)
 {
   const double* a = xyz[0];
-  const SphereTerms t(xyz);
-  double size = 0;
+  const SphereTerms t(xyz, lowered);
+  double size = 0, spread = 0;
   for (int i = 0; i < 3; ++i)
+  {
     for (int k = 0; k < 3; ++k)
       size = std::max(size, std::fabs(t.u[i][k]));
+    spread = std::max(spread, lowered ? std::fabs(lowered[i]) : 0.0);
+  }
+  extra *= 1 + kSlack; // its rounding
   const double det = 2 * t.det;
   const double relative = 2 * SphereTerms::detError(size, most) / std::fabs(det);
-  const double nError = SphereTerms::nError(size, most);
+  const double nError = SphereTerms::nError(SphereTerms::weightedSize(size, spread), most);
   if (!SphereTerms::usable(size, most) || !(relative < 1e-3))
     return SphereBox::Flat;
   double d[3], r2 = 0; // the centre less a
@@ -171,7 +198,7 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
     centre[k] = a[k] + d[k];
     r2 += d[k] * d[k];
   }
-  const double r = std::sqrt(r2);
+  const double r = std::sqrt(r2 + extra);
   if (!std::isfinite(r))
     return SphereBox::Flat;
   // How far each of the centre's coordinates may lie from the exact one (a flat tetrahedron's
@@ -199,7 +226,7 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
     part[k] = gap[k] > 0 ? (a[k] - e) * (a[k] + e - 2 * centre[k]) : square[k];
     partError[k] = gap[k] > 0 ? 2 * std::fabs(a[k] - e) * error[k] : squareError[k];
   }
-  double reach2 = 0, reachError = 0;
+  double reach2 = extra, reachError = 0;
   for (int k = 0; k < 3; ++k)
   {
     reach2 += part[k];
@@ -223,7 +250,7 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
       continue;
     }
     // r^2 - gap_k^2: the other axes' squares and this one's part.
-    double within2 = part[k] + partError[k];
+    double within2 = part[k] + partError[k] + extra;
     for (int j = 0; j < 3; ++j)
       if (j != k)
         within2 += square[j] + squareError[j];
@@ -238,10 +265,11 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
   return SphereBox::Made;
 }
 
-/// For `points` points whose places span `extent` in `box`: the widest shell (the class
-/// documentation's m*) and the spacing of the points, were they spread evenly.
-void measure(
-  const PeriodicBox& box, std::size_t points, const Bounds& extent, double& widest, double& spacing)
+/// For `points` points whose places span `extent` in `box`, their weights `spread` apart: the
+/// widest shell (the class documentation's m*) and the spacing of the points, were they spread
+/// evenly.
+void measure(const PeriodicBox& box, std::size_t points, const Bounds& extent, double spread,
+  double& widest, double& spacing)
 {
   double halfDiagonal = 0, freeDiagonal = 0, volume = 1;
   int dimensions = 0;
@@ -259,7 +287,7 @@ void measure(
     }
   }
   halfDiagonal = std::sqrt(halfDiagonal);
-  widest = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal);
+  widest = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal + spread);
   spacing = std::pow(volume / double(std::max<std::size_t>(points, 1)), 1.0 / dimensions);
 }
 
@@ -270,9 +298,9 @@ bool below(double rounded, double residual, double y)
 }
 } // namespace
 
-PeriodicDelaunay::PeriodicDelaunay(
-  const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options)
-  : xyz_(xyz), count_(count), own_(count), box_(box), options_(options)
+PeriodicDelaunay::PeriodicDelaunay(const double* xyz, const double* weights, std::size_t count,
+  const PeriodicBox& box, const Options& options)
+  : xyz_(xyz), weights_(weights), count_(count), own_(count), box_(box), options_(options)
 {
   options_.tolerance = 0;
   options_.volumeThreshold = 0;
@@ -298,7 +326,7 @@ PeriodicDelaunay::PeriodicDelaunay(
 
 PeriodicDelaunay::PeriodicDelaunay(const double* xyz, std::size_t count, const PeriodicBox& box,
   const Options& options, const PeriodicPiece& piece)
-  : PeriodicDelaunay(xyz, count, box, options)
+  : PeriodicDelaunay(xyz, nullptr, count, box, options)
 {
   if (piece.own > count || (!piece.ids && count > 0) || !(piece.halo > 0))
     throw std::invalid_argument("fd3::PeriodicPiece: more own points than points, no ids or no "
@@ -317,7 +345,7 @@ double PeriodicDelaunay::firstShell(
   const PeriodicBox& box, std::size_t points, const Bounds& extent)
 {
   double widest, spacing;
-  measure(box, points, extent, widest, spacing);
+  measure(box, points, extent, 0, widest, spacing);
   return std::min(kFirstShell * spacing, widest);
 }
 
@@ -347,7 +375,7 @@ bool PeriodicDelaunay::wrapPoints()
   for (std::size_t i = 0; i < count_; ++i)
   {
     const double* p = xyz_ + 3 * i;
-    if (!isFinite(p))
+    if (!isFinite(p) || (weights_ && !std::isfinite(weights_[i])))
     {
       nonFinite_ += i < own_;
       continue;
@@ -393,6 +421,17 @@ bool PeriodicDelaunay::wrapPoints()
       wraps_[3 * i + k] = static_cast<std::int32_t>(w);
     }
   }
+  if (weights_)
+  {
+    double lightest = HUGE_VAL, heaviest = -HUGE_VAL;
+    forEachPoint([&](std::uint32_t id) {
+      lightest = std::min(lightest, weights_[id]);
+      heaviest = std::max(heaviest, weights_[id]);
+    });
+    weightSpread_ = heaviest > lightest ? heaviest - lightest : 0;
+    if (!(heaviest > lightest))
+      weights_ = nullptr;
+  }
   return true;
 }
 
@@ -404,7 +443,8 @@ void PeriodicDelaunay::chooseFrame()
     for (const std::uint32_t id : points_)
       extent_.include(place_[id].data());
   }
-  measure(box_, piece_ ? pieceSetPoints_ : points_.size(), extent_, widest_, spacing_);
+  measure(
+    box_, piece_ ? pieceSetPoints_ : points_.size(), extent_, weightSpread_, widest_, spacing_);
   coverBounds_ = extent_;
   bool shifts[3] = {true, true, true};
   for (int k = 0; k < 3; ++k)
@@ -446,7 +486,7 @@ void PeriodicDelaunay::chooseFrame()
         fits && (std::fabs(y) >= 0x1p-137 || std::ldexp(y, 190) == std::trunc(std::ldexp(y, 190)));
     }
   });
-  if (!fits)
+  if (!fits || (weights_ && !weightsFitFrame(frame_, weights_, count_)))
     frame_ = identityFrame(frameBox);
 }
 
@@ -461,6 +501,8 @@ void PeriodicDelaunay::reserveCovering()
   coveringXyz_.reserve(3 * count);
   coveringImages_.reserve(count);
   covering_.reserve(count);
+  if (weights_)
+    coveringWeights_.reserve(count);
 }
 
 void PeriodicDelaunay::addPoints()
@@ -498,6 +540,8 @@ bool PeriodicDelaunay::addImage(std::uint32_t id, const std::array<std::int8_t, 
   coveringXyz_.insert(coveringXyz_.end(), at, at + 3);
   coveringImages_.push_back(image);
   covering_.push_back({id, o});
+  if (weights_)
+    coveringWeights_.push_back(weights_[id]);
   return true;
 }
 
@@ -705,7 +749,11 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   for (int k = 0; k < 3; ++k)
     most = std::max({most, std::fabs(toFrame(frame_, coverBounds_.lo[k], k)),
       std::fabs(toFrame(frame_, coverBounds_.hi[k], k))});
-  const SmallSphere small(margin, most);
+  // Weighted: in the frame, whose scale squares in the weights.
+  const double weightScale = scale * scale, spread = weightSpread_ * weightScale;
+  const double heaviest =
+    weights_ ? *std::max_element(coveringWeights_.begin(), coveringWeights_.end()) : 0;
+  const SmallSphere small(margin, most, weights_ ? spread : 0);
   Failures out;
   std::mutex failed; // rare, from every thread of the visit
   auto fail = [&](ImageRegion region, std::vector<ImageRegion>& list) {
@@ -768,11 +816,21 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   mesh.visitTetrahedra([&](const std::uint32_t ids[4], const double* const xyz[4]) {
     if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
       return;
-    if (small.holds(xyz))
+    double lowered[3], extra = 0;
+    if (weights_)
+    {
+      const double w0 = coveringWeights_[ids[0]];
+      for (int i = 0; i < 3; ++i)
+        lowered[i] = (coveringWeights_[ids[i + 1]] - w0) * weightScale;
+      extra = (heaviest - w0) * weightScale;
+    }
+    const double* lowers = weights_ ? lowered : nullptr;
+    if (small.holds(xyz, lowers))
       return;
     double c[3], radius;
     Bounds sphere;
-    const SphereBox made = sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere);
+    const SphereBox made =
+      sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, extra);
     if (made == SphereBox::Misses)
       return;
     if (made == SphereBox::Flat)
@@ -1093,6 +1151,16 @@ void PeriodicDelaunay::extract(const Triangulation& covering, PeriodicTriangulat
   out.offsets.resize(std::size_t(offsets - out.offsets.data()));
 }
 
+std::vector<std::uint32_t> PeriodicDelaunay::hiddenOfBox(const Triangulation& covering) const
+{
+  std::vector<std::uint32_t> out;
+  for (const std::uint32_t c : covering.hidden)
+    if (c < boxPoints_)
+      out.push_back(covering_[c].owner);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 std::vector<double> PeriodicDelaunay::densitiesOfBoxPoints(const Triangulation& covering) const
 {
   if (covering.status != Status::Ok)
@@ -1108,6 +1176,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
 {
   coveringXyz_.clear();
   coveringImages_.clear();
+  coveringWeights_.clear();
   covering_.clear();
   regions_.clear();
   present_.clear();
@@ -1121,7 +1190,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   if (!addShell(-1, margin_))
     return nullptr;
   auto mesh = IncrementalDelaunay::ofImages(Coordinates(coveringXyz_.begin(), coveringXyz_.end()),
-    coveringImages_.data(), options_, frame_);
+    coveringImages_.data(), options_, frame_, weights_ ? coveringWeights_.data() : nullptr);
   if (piece_ && margin_ < widest_) // the other pieces send a wider halo where this one falls short
   {
     const Status status = mesh->status();
@@ -1136,14 +1205,17 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   for (int targeted = 0; mesh->status() == Status::Ok && margin_ < widest_;)
   {
     Failures failed = failures(*mesh);
-    for (const std::array<double, 9>& face : failed.outerFaces)
-      failed.hull.push_back(outerBall(face));
-    if (failed.hull.empty() && failed.spheres.empty())
+    // Weighted, the hull faces' regions would need the orthospheres through them: a wider shell.
+    const bool outerFaces = !failed.outerFaces.empty();
+    if (!weights_)
+      for (const std::array<double, 9>& face : failed.outerFaces)
+        failed.hull.push_back(outerBall(face));
+    if (failed.hull.empty() && failed.spheres.empty() && !outerFaces)
       break;
     // The images inside the failed regions, a few times; then a wider shell all round. A slab's
     // hull first: where the images of its highest and lowest points are missing, the spheres
     // under it are wrong too, and would ask for far more.
-    if (targeted < kTargetedRounds)
+    if (targeted < kTargetedRounds && !(weights_ && outerFaces))
     {
       ++targeted;
       if (!addRegions(failed.hull.empty() ? coarsened(failed.spheres) : failed.hull))
@@ -1158,8 +1230,8 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
     }
     ++out.rounds;
     if (covering_.size() > inserted)
-      mesh->addImages(
-        &coveringXyz_[3 * inserted], &coveringImages_[inserted], covering_.size() - inserted);
+      mesh->addImages(&coveringXyz_[3 * inserted], &coveringImages_[inserted],
+        covering_.size() - inserted, weights_ ? &coveringWeights_[inserted] : nullptr);
     inserted = covering_.size();
   }
   return mesh;
@@ -1215,6 +1287,9 @@ PeriodicTriangulation PeriodicDelaunay::run(std::vector<double>* density)
   out.status = covering.status;
   out.stats = covering.stats;
   countPoints(out.stats);
+  out.hidden = hiddenOfBox(covering);
+  out.stats.hiddenPoints = out.hidden.size();
+  out.stats.insertedPoints -= out.hidden.size();
   out.imagePoints = covering_.size() - boxPoints_;
   out.margin = margin_;
   if (out.status == Status::Ok && !stars_)
@@ -1267,7 +1342,7 @@ VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
   own.box = clipBox_;
   own.generators = points_.size(); // the covering's first points
   Coordinates xyz;
-  out = voronoiCells(*mesh, coverBounds_, own, xyz);
+  out = voronoiCells(*mesh, coverBounds_, own, xyz, weights_ ? coveringWeights_.data() : nullptr);
   // From the covering's points to the input's, through one table: the neighbours come in no
   // order of either.
   std::vector<std::uint32_t> inputOf(covering_.size());
@@ -1280,25 +1355,38 @@ VoronoiCells PeriodicDelaunay::cells(const VoronoiOptions& options)
       n = inputOf[n];
   out.box = clipBox_;
   countPoints(out.stats);
+  out.stats.insertedPoints -= out.stats.hiddenPoints; // voronoiCells() counted the generators'
   return out;
 }
 
 VoronoiCells voronoiCellsPeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const VoronoiOptions& options)
 {
-  return PeriodicDelaunay(xyz, count, box, Options()).cells(options);
+  return voronoiCellsPeriodic(xyz, nullptr, count, box, options);
+}
+
+VoronoiCells voronoiCellsPeriodic(const double* xyz, const double* weights, std::size_t count,
+  const PeriodicBox& box, const VoronoiOptions& options)
+{
+  return PeriodicDelaunay(xyz, weights, count, box, Options()).cells(options);
 }
 
 PeriodicTriangulation triangulatePeriodic(
   const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options)
 {
-  return PeriodicDelaunay(xyz, count, box, options).run();
+  return triangulatePeriodic(xyz, nullptr, count, box, options);
+}
+
+PeriodicTriangulation triangulatePeriodic(const double* xyz, const double* weights,
+  std::size_t count, const PeriodicBox& box, const Options& options)
+{
+  return PeriodicDelaunay(xyz, weights, count, box, options).run();
 }
 
 bool periodicPlaces(
   const double* xyz, std::size_t count, const PeriodicBox& box, std::vector<double>& places)
 {
-  return PeriodicDelaunay(xyz, count, box, Options()).places(places);
+  return PeriodicDelaunay(xyz, nullptr, count, box, Options()).places(places);
 }
 
 bool periodicImageWithin(

@@ -18,6 +18,15 @@
 // axes (p's own images bound it), and its sphere meets the points' extent within
 // sqrt(h^2 + H^2) of c there, or it would hold an image of every point, a whole period, inside.
 //
+// Weighted points (power distance |x - p|^2 - w) make the covering a regular tetrahedralization,
+// and the same certificate holds with each orthosphere's ball widened to the reach of the
+// heaviest point: an image q conflicts with an orthosphere (c, r) only where |q - c|^2 <
+// r^2 + w_q, within sqrt(r^2 + W) of c for the largest weight W. The orthocentre of a tetrahedron
+// at p lies in p's power cell, which p's images (of p's weight) bound as they bound its Voronoi
+// cell, and the widest shell widens by the weights' spread under its root. A point that the
+// covering hides is hidden in the repeated set, whose points include the covering's; the
+// covering keeps every point that the repeated set keeps, whose stars it certifies.
+//
 // A piece (PeriodicPiece, an MPI rank's share) has its own points in place of the box's, and its
 // region and halo in place of the box and the shell: its covering is its points and every image
 // within the halo of its region, the certificate is the same about the region, and where it
@@ -45,9 +54,10 @@ class PeriodicDelaunay
 {
 public:
   /// Throws std::invalid_argument for a box with no periodic axis, or a periodic axis with
-  /// hi <= lo or not finite.
-  PeriodicDelaunay(
-    const double* xyz, std::size_t count, const PeriodicBox& box, const Options& options);
+  /// hi <= lo or not finite. With `weights` (one per point, read during the calls), the regular
+  /// tetrahedralization and power cells.
+  PeriodicDelaunay(const double* xyz, const double* weights, std::size_t count,
+    const PeriodicBox& box, const Options& options);
   /// The same for a piece of the points (PeriodicPiece), whose own points take the place of the
   /// box's, and whose region and halo take the place of the box and the shell.
   PeriodicDelaunay(const double* xyz, std::size_t count, const PeriodicBox& box,
@@ -80,8 +90,9 @@ private:
   Status prepare(Statistics& stats);
   /// The points' figures: input, not finite, repeats, too close, and those of the box.
   void countPoints(Statistics& stats) const;
-  /// Wraps every finite point into the box (wraps, and each one's exact place), each a point of
-  /// the box until its images show it repeats another; false where one lies too far.
+  /// Wraps every finite point (of finite weight) into the box (wraps, and each one's exact place),
+  /// each a point of the box until its images show it repeats another; false where one lies too
+  /// far. Weights that are all the same are dropped: the Delaunay tetrahedralization, bit for bit.
   bool wrapPoints();
   /// The frame of the covering at its widest: the box and the widest shell, or the points'
   /// extent along the axes that are not periodic.
@@ -146,7 +157,8 @@ private:
   /// Appends that image where the covering lacks it (true where it has it); false where it is no
   /// sum of two doubles.
   bool addRegionImage(std::uint32_t id, const int shift[3]);
-  /// Appends the image of point id moved by offset o; false where it is no sum of two doubles.
+  /// Appends the image of point id moved by offset o (and its weight); false where it is no sum
+  /// of two doubles.
   bool addImage(std::uint32_t id, const std::array<std::int8_t, 3>& o);
   /// Whether that image lies within `margin` of the box along every periodic axis.
   bool inShell(std::uint32_t id, const std::array<std::int8_t, 3>& o, double margin) const;
@@ -198,6 +210,8 @@ private:
   /// exactly.
   bool parallelToPeriods(const std::uint32_t face[3]) const;
   void extract(const Triangulation& covering, PeriodicTriangulation& out) const;
+  /// The box's points that the covering hides, ascending (PeriodicTriangulation::hidden).
+  std::vector<std::uint32_t> hiddenOfBox(const Triangulation& covering) const;
   /// A piece's extract() with PeriodicPiece::stars: every periodic tetrahedron at an own point,
   /// as the copy at its least vertex, once, and owned_; false where a copy spans more periods
   /// than the offsets' bytes hold.
@@ -207,6 +221,10 @@ private:
   std::vector<double> densitiesOfBoxPoints(const Triangulation& covering) const;
 
   const double* xyz_;
+  // Null where unweighted, or where every finite point has the same weight; then the largest
+  // finite weight less the smallest.
+  const double* weights_;
+  double weightSpread_ = 0;
   std::size_t count_;
   // The points whose tetrahedra and cells are made, the first ones: all of them, or a piece's
   // own; and a piece's ids.
@@ -243,6 +261,7 @@ private:
   // The covering, batch after batch: its records (input units), images, and what each point is.
   std::vector<double> coveringXyz_;
   std::vector<ImageOf> coveringImages_;
+  std::vector<double> coveringWeights_; // weighted only
   std::vector<CoveringPoint> covering_;
   // The covering's first points, its points of the box (offset 0): each id below it is one.
   std::uint32_t boxPoints_ = 0;
