@@ -409,12 +409,13 @@ std::set<PeriodicSimplex> periodicSimplices(
 
 // The periodic alpha complex is the ordinary one of the points repeated 3 x 3 x 3 times, around
 // the middle copy: the same tetrahedra, triangles, lines and lone vertices, each periodic simplex
-// once.
-TEST(Periodic, AlphaComplexIsTheRepeatedPointsOne)
+// once. Weighted (`weights` not empty), the weighted complexes, every copy with its point's weight.
+void expectAlphaComplexOfRepeatedPoints(const Points& p, const std::vector<double>& weights)
 {
-  const std::size_t n = 400;
-  const Points p = fd3test::uniformCube(n, 24);
-  const auto t = checked(p, fd3::PeriodicBox());
+  const std::size_t n = p.size() / 3;
+  const double* w = weights.empty() ? nullptr : weights.data();
+  const auto t = fd3::triangulatePeriodic(p.data(), w, n, fd3::PeriodicBox());
+  ASSERT_EQ(t.status, fd3::Status::Ok);
   const auto placed = fd3::placePeriodic(p.data(), n, t, fd3::PeriodicBox());
   const auto placedVertex = [&](std::uint32_t id) -> std::array<std::int64_t, 4> {
     if (id < n)
@@ -423,22 +424,31 @@ TEST(Periodic, AlphaComplexIsTheRepeatedPointsOne)
     return {placed.imageSources[id - n], s[0], s[1], s[2]};
   };
   Points repeated;
+  std::vector<double> repeatedWeights;
   for (int copy = 0; copy < 27; ++copy)
     for (std::size_t i = 0; i < n; ++i)
+    {
       for (int a = 0; a < 3; ++a)
         repeated.push_back(p[3 * i + a] + (copy / (a == 0 ? 1 : a == 1 ? 3 : 9) % 3 - 1));
+      if (w)
+        repeatedWeights.push_back(w[i]);
+    }
+  const double* rw = w ? repeatedWeights.data() : nullptr;
   const auto repeatedVertex = [&](std::uint32_t id) -> std::array<std::int64_t, 4> {
     const int copy = int(id / n);
     return {std::int64_t(id % n), copy % 3 - 1, copy / 3 % 3 - 1, copy / 9 - 1};
   };
   fd3::Options options;
   options.computeNeighbors = true;
-  const fd3::Triangulation whole = fd3::triangulate(repeated.data(), 27 * n, options);
+  const fd3::Triangulation whole = w ? fd3::triangulate(repeated.data(), rw, 27 * n, options)
+                                     : fd3::triangulate(repeated.data(), 27 * n, options);
   const std::uint32_t middle = 13; // the copy with no shift
   for (const double alpha : {0.05, 0.08, 0.12})
   {
-    const fd3::AlphaComplex periodic = fd3::alphaComplex(p.data(), n, placed, alpha, 3);
-    const fd3::AlphaComplex reference = fd3::alphaComplex(repeated.data(), 27 * n, whole, alpha, 3);
+    const fd3::AlphaComplex periodic =
+      fd3::alphaComplex(p.data(), w, n, placed, t.hidden, alpha, 3);
+    const fd3::AlphaComplex reference =
+      fd3::alphaComplex(repeated.data(), rw, 27 * n, whole, alpha, 3);
     // The reference's simplices with a vertex in the middle copy, each periodic one once.
     const auto inMiddle = [&](const std::vector<std::uint32_t>& ids, int size) {
       std::vector<std::uint32_t> chosen;
@@ -478,6 +488,24 @@ TEST(Periodic, AlphaComplexIsTheRepeatedPointsOne)
     EXPECT_FALSE(
       periodic.triangles.empty() || periodic.lines.empty() || periodic.tetrahedra.empty());
   }
+}
+
+TEST(Periodic, AlphaComplexIsTheRepeatedPointsOne)
+{
+  expectAlphaComplexOfRepeatedPoints(fd3test::uniformCube(400, 24), {});
+}
+
+// With radii up to 0.06, some points hidden: hidden points are in none of it, and a simplex's
+// radius is its smallest orthogonal sphere's, its images' weights their points'.
+TEST(Periodic, WeightedAlphaComplexIsTheRepeatedPointsOne)
+{
+  const Points p = fd3test::uniformCube(400, 25);
+  std::vector<double> w(400);
+  for (std::size_t i = 0; i < w.size(); ++i)
+    w[i] = std::pow(0.06 * double((i * 7919) % 400) / 400, 2);
+  expectAlphaComplexOfRepeatedPoints(p, w);
+  EXPECT_FALSE(
+    fd3::triangulatePeriodic(p.data(), w.data(), 400, fd3::PeriodicBox()).hidden.empty());
 }
 
 // One point in the box: every tetrahedron holds four images of it, and each edge is met as

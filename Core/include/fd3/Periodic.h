@@ -139,6 +139,13 @@ std::vector<double> densities(const double* xyz, std::size_t count,
 /// or whose tetrahedra around are not all there) are for another piece to give.
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPlacement& placement,
   double alpha, int threads = 1);
+/// The weighted alpha complex of a periodic regular tetrahedralization (triangulatePeriodic()
+/// with `weights`, whose PeriodicTriangulation::hidden is `hidden`), as alphaComplex() of
+/// fd3/Delaunay.h defines it for weighted points: radii of the smallest orthogonal spheres, every
+/// image with its point's weight, hidden points in none of it.
+AlphaComplex alphaComplex(const double* xyz, const double* weights, std::size_t count,
+  const PeriodicPlacement& placement, const std::vector<std::uint32_t>& hidden, double alpha,
+  int threads = 1);
 
 /// The Voronoi cells of the points repeated along the periodic axes of `box`: one per distinct
 /// point (as triangulatePeriodic() merges them), around its place in the box, whole along the

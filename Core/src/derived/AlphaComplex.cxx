@@ -74,8 +74,11 @@ class PeriodicMesh
 public:
   using Shift = std::array<std::int32_t, 3>;
 
-  PeriodicMesh(const double* xyz, std::size_t count, const PeriodicPlacement& placement)
-    : xyz_(xyz), count_(count), p_(placement), neighbors_(placement.tetrahedra.size(), kNoNeighbor)
+  /// `hidden`: the input points that are no vertex (weighted points), ascending.
+  PeriodicMesh(const double* xyz, std::size_t count, const PeriodicPlacement& placement,
+    const std::vector<std::uint32_t>& hidden)
+    : xyz_(xyz), count_(count), p_(placement), hidden_(hidden),
+      neighbors_(placement.tetrahedra.size(), kNoNeighbor)
   {
     pairFaces();
     for (std::size_t t = 0; t < tetrahedra() && !repeats_; ++t)
@@ -115,7 +118,7 @@ public:
       ++k;
     return k;
   }
-  const std::vector<std::uint32_t>& hidden() const { return none_; }
+  const std::vector<std::uint32_t>& hidden() const { return hidden_; }
   static constexpr bool kTranslates = true;
   /// Whether a tetrahedron holds two images of one point, so that a simplex can be listed as two
   /// of its translates.
@@ -200,7 +203,7 @@ private:
   std::size_t count_;
   const PeriodicPlacement& p_;
   std::vector<std::uint32_t> neighbors_;
-  std::vector<std::uint32_t> none_;
+  const std::vector<std::uint32_t>& hidden_;
   bool repeats_ = false;
 };
 
@@ -268,8 +271,8 @@ private:
     const double* q[4] = {p(vertex(t, 0)), p(vertex(t, 1)), p(vertex(t, 2)), p(vertex(t, 3))};
     if (!weights_)
       return tetrahedronCircumradius2(q[0], q[1], q[2], q[3]);
-    const double w[4] = {weights_[vertex(t, 0)], weights_[vertex(t, 1)], weights_[vertex(t, 2)],
-      weights_[vertex(t, 3)]};
+    const double w[4] = {
+      weight(vertex(t, 0)), weight(vertex(t, 1)), weight(vertex(t, 2)), weight(vertex(t, 3))};
     return tetrahedronOrthoradius2(q, w);
   }
   double triangleRadius2(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
@@ -277,14 +280,16 @@ private:
     if (!weights_)
       return triangleCircumradius2(p(a), p(b), p(c));
     const double* q[3] = {p(a), p(b), p(c)};
-    const double w[3] = {weights_[a], weights_[b], weights_[c]};
+    const double w[3] = {weight(a), weight(b), weight(c)};
     return triangleOrthoradius2(q, w);
   }
   double edgeRadius2(std::uint32_t a, std::uint32_t b) const
   {
-    return weights_ ? edgeOrthoradius2(p(a), p(b), weights_[a], weights_[b])
+    return weights_ ? edgeOrthoradius2(p(a), p(b), weight(a), weight(b))
                     : distance2(p(a), p(b)) * 0.25;
   }
+  /// A vertex's weight, its input point's (an image has its point's).
+  double weight(std::uint32_t id) const { return weights_[mesh_.source(id)]; }
   std::uint32_t markUsed(std::uint32_t id)
   {
     used_[mesh_.source(id)].store(1, std::memory_order_relaxed);
@@ -414,12 +419,19 @@ AlphaComplex alphaComplex(const double* xyz, const double* weights, std::size_t 
 AlphaComplex alphaComplex(const double* xyz, std::size_t count, const PeriodicPlacement& placement,
   double alpha, int threads)
 {
+  return alphaComplex(xyz, nullptr, count, placement, {}, alpha, threads);
+}
+
+AlphaComplex alphaComplex(const double* xyz, const double* weights, std::size_t count,
+  const PeriodicPlacement& placement, const std::vector<std::uint32_t>& hidden, double alpha,
+  int threads)
+{
   ThreadTeam team(boundedThreads(threads));
-  const PeriodicMesh mesh(xyz, count, placement);
+  const PeriodicMesh mesh(xyz, count, placement, hidden);
   std::size_t sources = count; // a piece's images are also of its ghosts, after its points
   for (const std::uint32_t source : placement.imageSources)
     sources = std::max<std::size_t>(sources, source + 1);
-  return AlphaBuilder<PeriodicMesh>(mesh, nullptr, count, sources, alpha, team).build();
+  return AlphaBuilder<PeriodicMesh>(mesh, weights, count, sources, alpha, team).build();
 }
 
 } // namespace fd3
