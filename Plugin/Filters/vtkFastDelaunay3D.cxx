@@ -440,7 +440,7 @@ int vtkFastDelaunay3D::RequestData(
     fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, inputVector) : nullptr;
   if (fd3vtk::AnyPeriodic(this->Periodic))
   {
-    return this->TriangulatePeriodic(input, output, weightArray != nullptr);
+    return this->TriangulatePeriodic(input, output, weightArray);
   }
 
   // VTK points in -> Core -> VTK cells out. The kernel triangulates the output's own coordinates,
@@ -459,19 +459,10 @@ int vtkFastDelaunay3D::RequestData(
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   vtkPointData* pointData = this->BoundingTriangulation ? nullptr : input->GetPointData();
   std::vector<double> weights;
-  if (weightArray)
+  if (!this->ReadWeights(weightArray, numberOfPoints, count, weights))
   {
-    std::string problem;
-    weights =
-      fd3vtk::PointWeights(weightArray, numberOfPoints, this->WeightsAreRadii, count, problem);
-    if (weights.empty())
-    {
-      vtkErrorMacro("Cannot triangulate: " << problem
-                                           << "; the output holds the points and no "
-                                              "cells");
-      SetPointsWithoutCells(output, points, pointData);
-      return 0;
-    }
+    SetPointsWithoutCells(output, points, pointData);
+    return 0;
   }
   const double* weightOf = weights.empty() ? nullptr : weights.data();
   fd3::Triangulation result;
@@ -519,21 +510,39 @@ int vtkFastDelaunay3D::RequestData(
   return 1;
 }
 
+bool vtkFastDelaunay3D::ReadWeights(
+  vtkDataArray* array, vtkIdType inputPoints, std::size_t count, std::vector<double>& weights)
+{
+  if (!array)
+  {
+    return true;
+  }
+  std::string problem;
+  weights = fd3vtk::PointWeights(array, inputPoints, this->WeightsAreRadii, count, problem);
+  if (weights.empty())
+  {
+    vtkErrorMacro(
+      "Cannot triangulate: " << problem << "; the output holds the points and no cells");
+    return false;
+  }
+  return true;
+}
+
 int vtkFastDelaunay3D::TriangulatePeriodic(
-  vtkDataSet* input, vtkUnstructuredGrid* output, bool weighted)
+  vtkDataSet* input, vtkUnstructuredGrid* output, vtkDataArray* weightArray)
 {
   vtkSmartPointer<vtkPoints> points = PointsInPrecision(input, this->OutputPointsPrecision);
   vtkPointData* pointData = input->GetPointData();
-  if (weighted)
-  {
-    vtkErrorMacro("Cannot triangulate: weights are not available in a periodic box yet; the output "
-                  "holds the points and no cells");
-    SetPointsWithoutCells(output, points, pointData);
-    return 0;
-  }
   std::vector<double> converted;
   const double* xyz = CoordinatesAsDoubles(points, converted);
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
+  std::vector<double> weights;
+  if (!this->ReadWeights(weightArray, input->GetNumberOfPoints(), count, weights))
+  {
+    SetPointsWithoutCells(output, points, pointData);
+    return 0;
+  }
+  const double* weightOf = weights.empty() ? nullptr : weights.data();
   const fd3::Bounds bounds = fd3::finiteBounds(xyz, count, ThreadCount(this->NumberOfThreads));
   const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(
     fd3vtk::BoxInUse(this, this->UseInputBounds, this->Bounds, bounds), this->Periodic);
@@ -549,7 +558,7 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
   fd3::PeriodicPlacement placement;
   auto run = [&] {
     fd3::PeriodicTriangulation t =
-      fd3::triangulatePeriodic(xyz, count, box, this->KernelOptions(bounds.diagonal()));
+      fd3::triangulatePeriodic(xyz, weightOf, count, box, this->KernelOptions(bounds.diagonal()));
     if (t.status == fd3::Status::Ok)
     {
       placement = fd3::placePeriodic(xyz, count, t, box);
@@ -562,7 +571,8 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
     return done;
   }
   this->RecordFigures(result.stats);
-  if (!this->ReportOnInput(result.status, result.stats, static_cast<vtkIdType>(count)))
+  if (!this->ReportOnInput(
+        result.status, result.stats, static_cast<vtkIdType>(count), weightOf != nullptr))
   {
     SetPointsWithoutCells(output, points, pointData);
     return 1;
@@ -570,7 +580,8 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
 
   const auto conversionStart = std::chrono::steady_clock::now();
   this->SetPeriodicOutput(output, points, pointData, xyz, placement,
-    this->ComputeDensity ? fd3::densities(xyz, count, result, placement) : std::vector<double>());
+    this->ComputeDensity ? fd3::densities(xyz, count, result, placement) : std::vector<double>(),
+    nullptr, nullptr, weightOf, result.hidden);
   this->OutputSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - conversionStart).count();
   this->AddFigures(output->GetFieldData());
@@ -579,7 +590,8 @@ int vtkFastDelaunay3D::TriangulatePeriodic(
 
 void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points,
   vtkPointData* pointData, const double* xyz, fd3::PeriodicPlacement& placement,
-  std::vector<double> density, const std::uint32_t* ids, const std::vector<std::uint8_t>* owned)
+  std::vector<double> density, const std::uint32_t* ids, const std::vector<std::uint8_t>* owned,
+  const double* weights, const std::vector<std::uint32_t>& hidden)
 {
   const std::size_t count = static_cast<std::size_t>(points->GetNumberOfPoints());
   const std::size_t images = placement.numberOfImages();
@@ -600,8 +612,8 @@ void vtkFastDelaunay3D::SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints
   }
   if (this->Alpha > 0)
   {
-    fd3::AlphaComplex shape =
-      fd3::alphaComplex(xyz, count, placement, this->Alpha, ThreadCount(this->NumberOfThreads));
+    fd3::AlphaComplex shape = fd3::alphaComplex(
+      xyz, weights, count, placement, hidden, this->Alpha, ThreadCount(this->NumberOfThreads));
     if (owned)
     {
       KeepOwned(shape, placement, count, ids, *owned);

@@ -319,8 +319,8 @@ public:
    * it, and no warning calls it lost. With Alpha, a simplex is kept when its smallest orthogonal
    * sphere has a squared radius of at most Alpha^2 (the weighted alpha shape: radii r + probe give
    * the molecular surface's). A point of NaN or infinite weight is left out as an invalid one.
-   * Density then estimates the density of the vertices (NaN at hidden points). Across MPI ranks
-   * (vtkPFastDelaunay3D) weights are not available yet.
+   * Density then estimates the density of the vertices (NaN at hidden points). Weights combine
+   * with Periodic, and travel with their points across MPI ranks (vtkPFastDelaunay3D).
    */
   vtkSetMacro(WeightsAreRadii, vtkTypeBool);
   vtkGetMacro(WeightsAreRadii, vtkTypeBool);
@@ -343,10 +343,11 @@ public:
    * close for the doubles to tell their images apart are skipped (NumberOfSkippedPoints).
    * Tolerance, VolumeThreshold, the Locator and BoundingTriangulation do not apply. Alpha gives
    * the periodic alpha shape: each simplex once, placed as a tetrahedron that holds it, faces and
-   * edges followed across the box; its lone vertices are input points. Weights are not
-   * available in a periodic box yet (an error). Across MPI ranks (vtkPFastDelaunay3D) the first
-   * rank gathers every rank's points, in rank order, and outputs the whole result, as one
-   * process would: not distributed yet.
+   * edges followed across the box; its lone vertices are input points. With weights, the
+   * regular tetrahedralization of the repeated weighted points (every image with its point's
+   * weight), its hidden points on no cell, and the weighted alpha shape. Across MPI ranks
+   * (vtkPFastDelaunay3D) each rank outputs its share; with weights the first rank gathers every
+   * rank's points and outputs the whole result, as one process would.
    */
   vtkSetVector3Macro(Periodic, vtkTypeBool);
   vtkGetVector3Macro(Periodic, vtkTypeBool);
@@ -456,9 +457,14 @@ protected:
   fd3::Triangulation Triangulate(const double* xyz, const double* weights, std::size_t count,
     vtkIdType inputPoints, const fd3::Bounds& bounds);
   /// The output of a periodic box (Periodic): the periodic tetrahedra of the input's points, or
-  /// its alpha shape, and their image points; an error where the input is `weighted`. Returns as
+  /// its alpha shape, and their image points; regular where `weightArray` is given. Returns as
   /// RequestData does.
-  int TriangulatePeriodic(vtkDataSet* input, vtkUnstructuredGrid* output, bool weighted);
+  int TriangulatePeriodic(
+    vtkDataSet* input, vtkUnstructuredGrid* output, vtkDataArray* weightArray);
+  /// The weights of the `count` points from `array` (squared where WeightsAreRadii), the input's
+  /// first `inputPoints` of them; false, with an error, where they cannot be read.
+  bool ReadWeights(
+    vtkDataArray* array, vtkIdType inputPoints, std::size_t count, std::vector<double>& weights);
   /// The periodic output: the input's `points` and their `pointData`, the images of `placement`
   /// after them, the tetrahedra or the alpha shape (taking placement.tetrahedra over), Density and
   /// the cell arrays asked for. `xyz`: the kernel's coordinates, of the points and then, in an MPI
@@ -467,9 +473,11 @@ protected:
   /// input point in SourcePointId. `owned`, with Alpha, for a rank's placed stars
   /// (fd3::PeriodicPiece::stars): the tetrahedra it owns; of the alpha shape, the rest are not
   /// output, nor the triangles and lines whose least vertex (least id) is no point of the rank's.
+  /// `weights` and `hidden`: of a regular tetrahedralization, for the weighted alpha shape.
   void SetPeriodicOutput(vtkUnstructuredGrid* output, vtkPoints* points, vtkPointData* pointData,
     const double* xyz, fd3::PeriodicPlacement& placement, std::vector<double> density,
-    const std::uint32_t* ids = nullptr, const std::vector<std::uint8_t>* owned = nullptr);
+    const std::uint32_t* ids = nullptr, const std::vector<std::uint8_t>* owned = nullptr,
+    const double* weights = nullptr, const std::vector<std::uint32_t>& hidden = {});
   void RecordFigures(const fd3::Statistics& stats);
   /// Warns about what the input made the kernel leave out; false when there is nothing to output.
   /// (`weighted`: the points had weights, whose NaN or Inf leaves a point out too.)

@@ -180,16 +180,12 @@ fd3::VoronoiCells vtkFastVoronoi3D::ComputeCells(
     fd3::finiteBounds(xyz, count, fd3vtk::ThreadCount(this->NumberOfThreads));
   const fd3::VoronoiOptions options = this->KernelOptions(inputBounds);
   const fd3::PeriodicBox box = fd3vtk::PeriodicBoxOf(options.box, this->Periodic);
-  std::string problem = fd3vtk::PeriodicBoxProblem(box);
-  if (weights)
-  {
-    problem = "weights are not available in a periodic box yet";
-  }
+  const std::string problem = fd3vtk::PeriodicBoxProblem(box);
   if (!problem.empty())
   {
     throw std::invalid_argument(problem);
   }
-  return fd3::voronoiCellsPeriodic(xyz, count, box, options);
+  return fd3::voronoiCellsPeriodic(xyz, weights, count, box, options);
 }
 
 fd3::VoronoiOptions vtkFastVoronoi3D::KernelOptions()

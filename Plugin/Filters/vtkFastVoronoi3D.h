@@ -93,9 +93,10 @@ public:
    * along the other axes. Where every axis is periodic, the volumes add up to the box's.
    * NumberOfNeighbors counts the neighbours across the box's sides, and a face's neighbour may
    * be the cell's own point (a box of few points). Density is the periodic estimate, from whole
-   * stars. Weights are not available in a periodic box yet (an error). Across MPI ranks
-   * (vtkPFastVoronoi3D) the first rank gathers every rank's points and outputs every cell, in
-   * rank order, as one process would: not distributed yet.
+   * stars. With weights, the periodic power cells (a hidden point's empty), still filling the
+   * box. Across MPI ranks (vtkPFastVoronoi3D) each rank outputs its own points' cells; with
+   * weights the first rank gathers every rank's points and outputs every cell, as one process
+   * would.
    */
   vtkSetVector3Macro(Periodic, vtkTypeBool);
   vtkGetVector3Macro(Periodic, vtkTypeBool);
@@ -130,8 +131,8 @@ public:
    * |x - p|^2 - w is the least, as Voro++'s container_poly computes them. A cell may miss its own
    * point; a hidden point's cell is empty (no faces, volume 0; NumberOfHiddenPoints counts them),
    * and the volumes still fill the box. Density is then that of the regular tetrahedralization's
-   * vertices (NaN at hidden points). Across MPI ranks (vtkPFastVoronoi3D) weights are not
-   * available yet.
+   * vertices (NaN at hidden points). Weights combine with Periodic, and travel with their
+   * points across MPI ranks (vtkPFastVoronoi3D).
    */
   vtkSetMacro(WeightsAreRadii, vtkTypeBool);
   vtkGetMacro(WeightsAreRadii, vtkTypeBool);

@@ -58,16 +58,15 @@ int vtkPFastDelaunay3D::RequestData(
     {
       return this->TriangulatePeriodicPieces(input, output);
     }
-    // Weights are not periodic yet: the first rank reports it as one process does.
+    // Weights in a periodic box are gathered: the first rank runs them as one process does.
     vtkSmartPointer<vtkPointSet> all =
       fd3vtk::GatheredPoints(this->Controller, input, this, "Cannot triangulate; no input points");
     if (!all)
     {
       return 1;
     }
-    const bool weighted =
-      fd3vtk::WeightsChosen(this) && this->GetInputArrayToProcess(0, all) != nullptr;
-    return this->TriangulatePeriodic(all, output, weighted);
+    return this->TriangulatePeriodic(
+      all, output, fd3vtk::WeightsChosen(this) ? this->GetInputArrayToProcess(0, all) : nullptr);
   }
   if (this->BoundingTriangulation)
   {

@@ -49,7 +49,7 @@
  * tetrahedron at them), whose alpha shape holds every simplex at them as the whole set's does,
  * and keeps the simplices whose least vertex is one of its points. Together the pieces are the
  * one-process output's cells, each once. With Weights, the first rank gathers every rank's
- * points and reports, as one process does, that weights are not periodic yet.
+ * points and outputs the periodic regular tetrahedralization, as one process does.
  *
  * @warning
  * Output point ids are not input point ids under MPI: the points move between ranks; GlobalIds

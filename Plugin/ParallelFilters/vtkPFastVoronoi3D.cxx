@@ -117,7 +117,7 @@ int vtkPFastVoronoi3D::RequestData(
     {
       return this->PeriodicPieceCells(input, output, faces);
     }
-    // Weights are not periodic yet: the first rank reports it as one process does.
+    // Weights in a periodic box are gathered: the first rank runs them as one process does.
     vtkSmartPointer<vtkPointSet> all =
       fd3vtk::GatheredPoints(this->Controller, input, this, "No Voronoi cells: no input points");
     if (!all)

@@ -23,8 +23,7 @@
  * In a periodic box (Periodic), each rank gets the other ranks' points with an image within its
  * halo, widened until every tetrahedron at its points is certain, as vtkPFastDelaunay3D does, and
  * outputs its own points' periodic cells (fd3::voronoiCellsPeriodicPiece). With Weights, the
- * first rank gathers every point and reports, as one process does, that weights are not
- * periodic yet.
+ * first rank gathers every point and outputs every periodic power cell, as one process does.
  *
  * @warning
  * Coplanar or collinear input has no tetrahedron to find a halo with: every rank then receives

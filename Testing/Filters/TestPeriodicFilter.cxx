@@ -22,7 +22,9 @@
 #include "vtkUnstructuredGrid.h"
 
 #include "fd3/Measures.h"
+#include "fd3/Periodic.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -273,16 +275,89 @@ TEST(PeriodicFilter, BadInputGivesAMessageAndTheCloud)
     << observer->GetErrorMessage();
   EXPECT_EQ(voronoi->GetOutput()->GetNumberOfCells(), 0);
 
-  // Weights: not in a periodic box yet.
+  // Weights of two components: no weights to read.
   auto cloud = Cloud(200, 1.0, 37);
+  vtkNew<vtkDoubleArray> pairs;
+  pairs->SetName("Pairs");
+  pairs->SetNumberOfComponents(2);
+  pairs->SetNumberOfTuples(200);
+  pairs->Fill(0.01);
+  cloud->GetPointData()->AddArray(pairs);
   auto weighted = PeriodicDelaunay(cloud, 1.0);
-  weighted->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Tag");
+  weighted->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Pairs");
   weighted->AddObserver(vtkCommand::ErrorEvent, observer);
   weighted->Update();
   EXPECT_NE(observer->GetErrorMessage().find("weights"), std::string::npos)
     << observer->GetErrorMessage();
   EXPECT_EQ(weighted->GetOutput()->GetNumberOfPoints(), 200);
   EXPECT_EQ(weighted->GetOutput()->GetNumberOfCells(), 0);
+}
+
+// Radii in a periodic box: the periodic regular tetrahedralization, decided by the exact
+// validator with Core's hidden points, which no cell uses; the power cells fill the box, a hidden
+// point's empty; the weighted alpha shape is Core's.
+TEST(PeriodicFilter, RadiiGiveThePeriodicRegularTetrahedralizationAndPowerCells)
+{
+  const std::size_t n = 1000;
+  auto cloud = Cloud(n, 1.0, 39);
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("Radius");
+  std::vector<double> weights(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double r = 0.07 * double((i * 7919) % n) / double(n);
+    radius->InsertNextValue(r);
+    weights[i] = r * r;
+  }
+  cloud->GetPointData()->AddArray(radius);
+  const Points xyz = fd3test::coordinates(cloud);
+  fd3::PeriodicBox unit;
+  const fd3::PeriodicTriangulation core =
+    fd3::triangulatePeriodic(xyz.data(), weights.data(), n, unit);
+  ASSERT_EQ(core.status, fd3::Status::Ok);
+  ASSERT_FALSE(core.hidden.empty());
+
+  auto delaunay = PeriodicDelaunay(cloud, 1.0);
+  delaunay->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Radius");
+  delaunay->ComputeVolumeOn();
+  delaunay->Update();
+  vtkUnstructuredGrid* out = delaunay->GetOutput();
+  EXPECT_EQ(out->GetNumberOfCells(), vtkIdType(core.numberOfTetrahedra()));
+  EXPECT_EQ(delaunay->GetNumberOfHiddenPoints(), vtkIdType(core.hidden.size()));
+  EXPECT_NEAR(fd3test::sum(out->GetCellData()->GetArray("Volume")), 1.0, 1e-12);
+  fd3test::PeriodicDomain box;
+  fd3test::ValidityOptions check;
+  check.weights = weights.data();
+  check.hidden = core.hidden;
+  const auto report = fd3test::checkPeriodicTriangulation(
+    xyz.data(), n, box, PeriodicTetrahedra(out, cloud, box), check);
+  EXPECT_TRUE(report.valid()) << report.summary();
+
+  delaunay->SetAlpha(0.05);
+  delaunay->Update();
+  const fd3::PeriodicPlacement placed = fd3::placePeriodic(xyz.data(), n, core, unit);
+  const fd3::AlphaComplex shape =
+    fd3::alphaComplex(xyz.data(), weights.data(), n, placed, core.hidden, 0.05);
+  EXPECT_EQ(delaunay->GetOutput()->GetNumberOfCells(),
+    vtkIdType(shape.tetrahedra.size() + shape.triangles.size() / 3 + shape.lines.size() / 2 +
+      shape.vertices.size()));
+
+  vtkNew<vtkFastVoronoi3D> voronoi;
+  voronoi->SetInputData(cloud);
+  voronoi->SetPeriodic(1, 1, 1);
+  voronoi->UseInputBoundsOff();
+  voronoi->SetBounds(0, 1, 0, 1, 0, 1);
+  voronoi->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Radius");
+  voronoi->Update();
+  vtkUnstructuredGrid* cells = voronoi->GetOutput();
+  EXPECT_EQ(voronoi->GetNumberOfHiddenPoints(), vtkIdType(core.hidden.size()));
+  vtkDataArray* volume = cells->GetCellData()->GetArray("Volume");
+  EXPECT_NEAR(fd3test::sum(volume), 1.0, 1e-12);
+  vtkDataArray* generator = cells->GetCellData()->GetArray("GeneratorId");
+  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c)
+    if (std::binary_search(core.hidden.begin(), core.hidden.end(),
+          static_cast<std::uint32_t>(generator->GetTuple1(c))))
+      EXPECT_EQ(volume->GetTuple1(c), 0.0);
 }
 
 // Alpha in a periodic box: the periodic alpha shape, every simplex within Alpha, the tetrahedra

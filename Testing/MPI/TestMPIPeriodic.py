@@ -10,8 +10,9 @@ once, with the same values to 1e-12.
 Cases: uniform particles in a box periodic on every axis; a cluster in a corner of a large box,
 whose tetrahedra across the empty box need a wider halo; a slab periodic along x and y, these
 first and last with an alpha shape too, every kind of simplex in it; a void, which only
-the ranks whose particles border it widen their halo for; and one finite particle
-among NaNs, which leaves a rank with no point, or only NaNs.
+the ranks whose particles border it widen their halo for; one finite particle
+among NaNs, which leaves a rank with no point, or only NaNs; and particles with radii, some
+hidden, which the first rank gathers (with its weighted alpha shape too).
 
 usage: mpiexec -np N pvbatch --mpi TestMPIPeriodic.py <plugin .so>
 (with the build's Python modules on PYTHONPATH, for the one-process classes)
@@ -41,14 +42,18 @@ CASES = {
              [0, 4, 0, 4, 0, 4], [1, 1, 1]),
     # One finite particle among NaNs: a rank has none, or only NaNs.
     "lone": ("p = rng.random((200, 3)) * 4\np[1:] = np.nan", [0, 4, 0, 4, 0, 4], [1, 1, 1]),
+    # Radii (r, a "Radius" array): power cells and the regular tetrahedralization.
+    "radii": ("p = rng.random((1500, 3)) * 4\nr = rng.random(1500) * 0.3", [0, 4, 0, 4, 0, 4],
+              [1, 1, 1]),
 }
 
 
 def particles(make):
+    """The case's particles, and their radii (None without)."""
     rng = np.random.default_rng(11)
-    scope = {"rng": rng, "np": np}
+    scope = {"rng": rng, "np": np, "r": None}
     exec(make, {}, scope)
-    return scope["p"]
+    return scope["p"], scope["r"]
 
 
 SCRIPT = """
@@ -59,25 +64,34 @@ from vtkmodules.vtkCommonCore import vtkPoints
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 rng = np.random.default_rng(11)
+r = None
 %s
 points = vtkPoints()
 points.SetData(dsa.numpyTovtkDataArray(np.ascontiguousarray(p[rank::ranks]), "Points"))
 self.GetOutput().SetPoints(points)
-dsa.WrapDataObject(self.GetOutput()).PointData.append(np.arange(float(len(p)))[rank::ranks], "Id")
+data = dsa.WrapDataObject(self.GetOutput()).PointData
+data.append(np.arange(float(len(p)))[rank::ranks], "Id")
+if r is not None:
+    data.append(np.ascontiguousarray(r[rank::ranks]), "Radius")
 """
 
 
-def one_process(filter_class, p, box, periodic, **properties):
+def one_process(filter_class, p, box, periodic, radii, **properties):
     """The filter in this process on the particles in rank order: the order of their input ids."""
     order = np.concatenate([np.arange(len(p))[r::ranks] for r in range(ranks)])
     whole = vtkPolyData()
     points = vtkPoints()
     points.SetData(numpy_to_vtk(np.ascontiguousarray(p[order]), deep=True))
     whole.SetPoints(points)
-    ids = numpy_to_vtk(order.astype(float), deep=True)
-    ids.SetName("Id")
-    whole.GetPointData().AddArray(ids)
+    for name, values in (("Id", order.astype(float)), ("Radius", radii)):
+        if values is not None:
+            array = numpy_to_vtk(np.ascontiguousarray(values[order] if name == "Radius" else values),
+                                 deep=True)
+            array.SetName(name)
+            whole.GetPointData().AddArray(array)
     f = filter_class()
+    if radii is not None:
+        f.SetInputArrayToProcess(0, 0, 0, 0, "Radius")
     f.SetInputData(whole)
     f.SetPeriodic(*periodic)
     f.UseInputBoundsOff()
@@ -111,13 +125,20 @@ def close(a, b, what):
         sys.exit("TestMPIPeriodic: %s differs from one process" % what)
 
 
-def check_cells(case, cloud, p, box, periodic):
-    """Fast Voronoi 3D: each rank the cells of its own particles, as one process has them."""
-    reference = one_process(vtkFastVoronoi3D, p, box, periodic)
+def weights(radii):
+    """The proxies' Weights property: the radii where there are some."""
+    return ["POINTS", "Radius"] if radii is not None else ["POINTS", "None"]
+
+
+def check_cells(case, cloud, p, radii, box, periodic):
+    """Fast Voronoi 3D: each rank the cells of its own particles, as one process has them; with
+    radii, the first rank every cell."""
+    reference = one_process(vtkFastVoronoi3D, p, box, periodic, radii)
     cells = {}
     finite = int(np.isfinite(p).all(axis=1).sum())
     for part in pieces(FastVoronoi3D(Input=cloud, Periodic=periodic, UseInputBounds=0, Bounds=box,
-                                     ComputeDensity=1), spread=finite > 1):
+                                     ComputeDensity=1, Weights=weights(radii)),
+                       spread=finite > 1 and radii is None):
         for name, values in cell_arrays(part).items():
             cells.setdefault(name, []).append(values)
     cells = {name: np.concatenate(values) for name, values in cells.items()}
@@ -139,7 +160,10 @@ def check_cells(case, cloud, p, box, periodic):
 def cells_by_key(data, p, box):
     """Each cell (a tetrahedron, or a simplex of the alpha shape) keyed by its vertices' input
     points and their periods from the cell's least vertex, the same for every translate, with its
-    cell values; and each point's input point and place with its density."""
+    cell values; and each point's input point and place with its density. A rank that gathered
+    its points to the first one has none."""
+    if data.GetNumberOfPoints() == 0:
+        return {}, {}
     ids = vtk_to_numpy(data.GetPointData().GetArray("SourcePointId")).astype(int)
     xyz = vtk_to_numpy(data.GetPoints().GetData())
     lo, hi = np.reshape(box, (3, 2)).T
@@ -161,16 +185,17 @@ def cells_by_key(data, p, box):
                    if np.isfinite(xyz[i]).all()}
 
 
-def check_tetrahedra(case, cloud, p, box, periodic, alpha=0):
+def check_tetrahedra(case, cloud, p, radii, box, periodic, alpha=0):
     """Fast Delaunay 3D: each periodic tetrahedron (or simplex of the alpha shape) once, on the rank
-    of its least vertex."""
+    of its least vertex; with radii, all on the first rank."""
     reference, reference_density = cells_by_key(
-        one_process(vtkFastDelaunay3D, p, box, periodic, Alpha=alpha), p, box)
+        one_process(vtkFastDelaunay3D, p, box, periodic, radii, Alpha=alpha), p, box)
     tets, density = {}, {}
     for part in pieces(FastDelaunay3D(Input=cloud, Periodic=periodic, UseInputBounds=0,
                                       Bounds=box, ComputeDensity=1, ComputeVolume=1, Alpha=alpha,
-                                      AlphaLines=1, AlphaVerts=1),  # as the VTK class
-                       spread=np.isfinite(p).all(axis=1).sum() > 1):
+                                      AlphaLines=1, AlphaVerts=1,  # as the VTK class
+                                      Weights=weights(radii)),
+                       spread=np.isfinite(p).all(axis=1).sum() > 1 and radii is None):
         keyed, values = cells_by_key(part, p, box)
         if set(keyed) & set(tets):
             sys.exit("TestMPIPeriodic: %s: two ranks output the same cell" % case)
@@ -194,10 +219,11 @@ def check_tetrahedra(case, cloud, p, box, periodic, alpha=0):
 
 for case, (make, box, periodic) in CASES.items():
     cloud = ProgrammableSource(OutputDataSetType="vtkPolyData", Script=SCRIPT % make)
-    check_cells(case, cloud, particles(make), box, periodic)
-    check_tetrahedra(case, cloud, particles(make), box, periodic)
-    if case in ("uniform", "slab"):
-        check_tetrahedra(case, cloud, particles(make), box, periodic, alpha=0.25)
+    p, radii = particles(make)
+    check_cells(case, cloud, p, radii, box, periodic)
+    check_tetrahedra(case, cloud, p, radii, box, periodic)
+    if case in ("uniform", "slab", "radii"):
+        check_tetrahedra(case, cloud, p, radii, box, periodic, alpha=0.25)
 
 # No rank has a point: a warning on the first rank and empty outputs, on every rank alike.
 nothing = ProgrammableSource(OutputDataSetType="vtkPolyData",

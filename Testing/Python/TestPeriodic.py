@@ -2,7 +2,9 @@
 user has one: particles in a box of side 10, some of them outside it (unwrapped coordinates).
 Fast Voronoi 3D's periodic cells fill the box exactly, with their densities; Fast Delaunay 3D's
 periodic tetrahedra tile it, with image points that copy their input point's data and the same
-periodic densities; and an image regression of the cells, shrunk and coloured by density.
+periodic densities; with the particles' radii, the power cells fill the box too, the hidden
+particles' empty, and the regular tetrahedra tile it without them; and an image regression of the
+cells, shrunk and coloured by density.
 
 usage: pvpython TestPeriodic.py <plugin .so> -V <absolute baseline> -T <output dir>
 """
@@ -35,6 +37,9 @@ output.SetPoints(points)
 ids = numpy_to_vtk(np.arange(len(xyz), dtype=float), deep=True)
 ids.SetName("ParticleId")
 output.GetPointData().AddArray(ids)
+radius = numpy_to_vtk(0.1 + 0.5 * rng.random(len(xyz)), deep=True)
+radius.SetName("Radius")
+output.GetPointData().AddArray(radius)
 """
 count = 1500
 box = [0, 10, 0, 10, 0, 10]
@@ -65,6 +70,25 @@ assert np.allclose(shift, np.round(shift), atol=1e-12)  # images are whole perio
 point_density = vtk_to_numpy(tets.GetPointData().GetArray("Density"))
 assert np.allclose(point_density[:count], cell_density, rtol=1e-9, atol=0)
 assert (point_density[count:] == point_density[source[count:]]).all()
+
+power = FastVoronoi3D(Input=particles, Periodic=[1, 1, 1], UseInputBounds=0, Bounds=box,
+                      Weights=["POINTS", "Radius"])
+power_cells = servermanager.Fetch(power)
+hidden = int(power_cells.GetFieldData().GetArray("NumberOfHiddenPoints").GetValue(0))
+assert hidden > 0, "radii this large in the clusters hide some particles"
+power_volume = vtk_to_numpy(power_cells.GetCellData().GetArray("Volume"))
+assert abs(power_volume.sum() - 1000) <= 1e-12 * 1000, power_volume.sum()
+assert (power_volume == 0).sum() == hidden
+regular = FastDelaunay3D(Input=particles, Periodic=[1, 1, 1], UseInputBounds=0, Bounds=box,
+                         Weights=["POINTS", "Radius"], ComputeVolume=1)
+regular_tets = servermanager.Fetch(regular)
+assert int(regular_tets.GetFieldData().GetArray("NumberOfHiddenPoints").GetValue(0)) == hidden
+regular_volume = vtk_to_numpy(regular_tets.GetCellData().GetArray("Volume"))
+assert (regular_volume > 0).all()
+assert abs(regular_volume.sum() - 1000) <= 1e-12 * 1000, regular_volume.sum()
+used = np.unique(vtk_to_numpy(regular_tets.GetPointData().GetArray("SourcePointId"))[
+    vtk_to_numpy(regular_tets.GetCells().GetConnectivityArray())])
+assert len(used) == count - hidden, (len(used), count, hidden)
 
 shrink = Shrink(Input=voronoi, ShrinkFactor=0.75)
 outline = Outline(Input=Box(XLength=10, YLength=10, ZLength=10, Center=[5, 5, 5]))
