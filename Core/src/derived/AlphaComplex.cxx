@@ -202,8 +202,8 @@ private:
   const double* xyz_;
   std::size_t count_;
   const PeriodicPlacement& p_;
-  std::vector<std::uint32_t> neighbors_;
   const std::vector<std::uint32_t>& hidden_;
+  std::vector<std::uint32_t> neighbors_;
   bool repeats_ = false;
 };
 
