@@ -180,9 +180,12 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
 
 /// The weights of points at one position (plan.duplicates' groups): only the heaviest can be a
 /// vertex, so it takes the group's place in the order (the smallest id among equals). The others
-/// of its weight stay its duplicates; the lighter ones are hidden, appended to `hidden`.
-void keepHeaviestAtEachPosition(
-  const double* weights, InsertionPlan& plan, std::vector<std::uint32_t>& hidden)
+/// of its weight stay its duplicates; the lighter ones are hidden, appended to `hidden`. Periodic
+/// images (`images`, by id) with one record may lie at different exact places: those stay
+/// duplicates whatever their weights, for the caller to tell apart (IncrementalDelaunay::
+/// ofImages()).
+void keepHeaviestAtEachPosition(const double* weights, const ImageOf* images, InsertionPlan& plan,
+  std::vector<std::uint32_t>& hidden)
 {
   std::unordered_map<std::uint32_t, std::uint32_t> heaviest; // by original
   for (const auto& [copy, original] : plan.duplicates)
@@ -198,10 +201,13 @@ void keepHeaviestAtEachPosition(
     if (const auto found = heaviest.find(id); found != heaviest.end())
       id = found->second;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> duplicates;
+  auto samePlace = [images](std::uint32_t a, std::uint32_t b) {
+    return !images || std::equal(images[a].residual, images[a].residual + 3, images[b].residual);
+  };
   auto place = [&](std::uint32_t member, std::uint32_t kept) {
     if (member == kept)
       return;
-    if (weights[member] == weights[kept])
+    if (weights[member] == weights[kept] || !samePlace(member, kept))
       duplicates.emplace_back(member, kept);
     else
       hidden.push_back(member);
@@ -429,7 +435,7 @@ void IncrementalDelaunay::Impl::insertFirst(const double* xyz, std::size_t count
   hiddenCopies.clear();
   if (weighted)
   {
-    keepHeaviestAtEachPosition(weights, plan, hiddenCopies);
+    keepHeaviestAtEachPosition(weights, images, plan, hiddenCopies);
     stats.hiddenPoints = hiddenCopies.size();
   }
   stats.duplicatesMerged = plan.duplicates.size();
@@ -503,7 +509,7 @@ void IncrementalDelaunay::Impl::insertMore(
     if (weighted)
     {
       std::vector<std::uint32_t> hidden;
-      keepHeaviestAtEachPosition(weights, plan, hidden);
+      keepHeaviestAtEachPosition(weights, images, plan, hidden);
       for (const std::uint32_t id : hidden)
         hiddenCopies.push_back(static_cast<std::uint32_t>(id + points));
       stats.hiddenPoints += hidden.size();

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -223,6 +224,61 @@ TEST(PeriodicWeighted, HeavyPointsAndAHandfulOfPoints)
   const Points few = {1, 2, 3, 7, 1, 5, 4, 8, 2, 9, 9, 9, 5, 5, 0.5};
   checked(few, {1.0, 4.0, 0.0, 2.0, 9.0}, large, "five points in a large box");
   checked({3, 3, 3}, {2.0}, large, "one point");
+}
+
+// Repeats once wrapped: of equal weights one is kept, the others merged; of unequal ones the
+// heaviest is kept and the others hidden; an equal copy of a hidden point is merged into it.
+TEST(PeriodicWeighted, RepeatsKeepTheHeaviest)
+{
+  Points p = fd3test::uniformCube(300, 59);
+  std::vector<double> w = randomWeights(300, 0.0, 0.03, 60);
+  std::copy_n(std::array<double, 3>{0.75, 0.5, 0.25}.begin(), 3, p.begin());
+  p.insert(p.end(), {1.75, 0.5, -0.75}); // 300: point 0 a period away, of its weight
+  w.push_back(w[0]);
+  p.insert(p.end(), {p[3], p[4], p[5]}); // 301: point 1, lighter
+  w.push_back(w[1] - 0.001);
+  p.insert(p.end(), {p[6], p[7], p[8]}); // 302: point 2, heavier
+  w.push_back(w[2] + 0.001);
+  p.insert(p.end(), {p[9] + 0.001, p[10], p[11]}); // 303: a heavy point beside point 3
+  w.push_back(0.05);
+  p.insert(p.end(), {p[9], p[10], p[11]}); // 304: point 3 again, of its weight
+  w.push_back(w[3]);
+  const auto t = checked(p, w, fd3::PeriodicBox(), "repeats");
+  EXPECT_EQ(t.stats.duplicatesMerged, 2u);
+  EXPECT_EQ(t.representative[300], 0u);
+  EXPECT_EQ(t.representative[304], 3u);
+  for (const std::uint32_t hidden : {2u, 3u, 301u})
+    EXPECT_TRUE(std::binary_search(t.hidden.begin(), t.hidden.end(), hidden)) << hidden;
+  EXPECT_FALSE(std::binary_search(t.hidden.begin(), t.hidden.end(), 304u));
+}
+
+// Two points whose images across the box round to one record, of different weights: no weight
+// decides between them, whose exact places differ; the later one is skipped, and said to be.
+TEST(PeriodicWeighted, PointsTooCloseForTheBoxAreSkipped)
+{
+  Points p = fd3test::uniformCube(300, 61);
+  std::vector<double> w = randomWeights(300, 0.0, 0.03, 62);
+  std::copy_n(std::array<double, 3>{0x1p-60, 0.5, 0.25}.begin(), 3, p.begin());
+  p.insert(p.end(), {0x1p-61, 0.5, 0.25}); // its image at 1 + 2^-61 rounds as 1 + 2^-60 does
+  w.push_back(w[0] + 0.0001);
+  const auto t = fd3::triangulatePeriodic(p.data(), w.data(), 301, fd3::PeriodicBox());
+  ASSERT_EQ(t.status, fd3::Status::Ok);
+  EXPECT_EQ(t.stats.closePointsSkipped, 1u);
+  EXPECT_EQ(t.representative[300], 0u);
+  EXPECT_FALSE(std::binary_search(t.hidden.begin(), t.hidden.end(), 300u));
+  p.resize(900);
+  w.resize(300);
+  checked(p, w, fd3::PeriodicBox(), "without the close one");
+}
+
+// Negative weights (balls of imaginary radius) shift nothing but the power distances.
+TEST(PeriodicWeighted, NegativeWeights)
+{
+  const Points p = fd3test::uniformCube(2000, 63);
+  std::vector<double> w = randomWeights(2000, 0.0, 0.04, 64);
+  for (double& x : w)
+    x -= 0.0008;
+  checked(p, w, fd3::PeriodicBox(), "negative weights");
 }
 
 TEST(PeriodicWeighted, SlabPeriodicInTwoAxes)

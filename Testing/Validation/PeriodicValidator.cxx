@@ -453,8 +453,13 @@ private:
     {
       const auto n =
         std::count_if(ids.begin(), ids.end(), [&](std::uint32_t i) { return used[i]; });
-      const bool allHidden =
-        std::all_of(ids.begin(), ids.end(), [&](std::uint32_t i) { return hidden_[i]; });
+      // A position of hidden points: each one there hidden, or a copy no heavier than one.
+      double hiddenWeight = -HUGE_VAL;
+      for (const std::uint32_t i : ids)
+        if (hidden_[i])
+          hiddenWeight = std::max(hiddenWeight, weights_ ? weights_[i] : HUGE_VAL);
+      const bool allHidden = std::all_of(ids.begin(), ids.end(),
+        [&](std::uint32_t i) { return hidden_[i] || (weights_ && weights_[i] <= hiddenWeight); });
       report_.usedVertices += n;
       if (n != (allHidden ? 0 : 1))
         fail("point " + std::to_string(ids[0]) + " is a vertex " + std::to_string(n) +

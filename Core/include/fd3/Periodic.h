@@ -44,7 +44,8 @@ struct PeriodicTriangulation
   /// exact copy, counted in stats.duplicatesMerged) or lies too close to for the doubles to tell
   /// their images apart (an image of each rounds to the same double on every axis, which takes
   /// points within about a unit in the last place of the images' coordinates:
-  /// stats.closePointsSkipped); kNoPoint for a point that is not finite.
+  /// stats.closePointsSkipped); kNoPoint for a point that is not finite (or of a weight that is
+  /// not). A hidden point is its own representative, though no vertex.
   IdArray representative;
   /// Weighted points only: the input ids, ascending, of the hidden points, whose power cell in the
   /// repeated set is empty (every image of one is hidden alike); no tetrahedron has them.
