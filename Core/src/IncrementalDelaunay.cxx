@@ -780,13 +780,14 @@ void IncrementalDelaunay::addImages(
   impl_->images = nullptr;
 }
 
-void IncrementalDelaunay::visitTetrahedra(
-  const std::function<void(const std::uint32_t ids[4], const double* const xyz[4])>& visit) const
+void IncrementalDelaunay::visitTetrahedra(const std::function<void(
+    const std::uint32_t ids[4], const double* const xyz[4], const double* weights)>& visit) const
 {
   if (impl_->released || !impl_->triangulator)
     return;
   const TetMesh& mesh = impl_->triangulator->tetrahedra();
   const VertexArray& vertices = impl_->triangulator->vertices();
+  const std::vector<double>& weightOf = impl_->triangulator->weights();
   impl_->team->forRanges(
     mesh.slots(), "visit", [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t t = begin; t < end; ++t)
@@ -802,7 +803,11 @@ void IncrementalDelaunay::visitTetrahedra(
         std::uint32_t ids[4];
         const double* xyz[4];
         vertexRecords(mesh, vertices, TetId(t), kAll, 4, ids, xyz);
-        visit(ids, xyz);
+        double weights[4];
+        if (!weightOf.empty())
+          for (int i = 0; i < 4; ++i)
+            weights[i] = weightOf[mesh.vertex(TetId(t), i)];
+        visit(ids, xyz, weightOf.empty() ? nullptr : weights);
       }
     });
 }

@@ -164,11 +164,12 @@ private:
     const double* xyz, const ImageOf* images, std::size_t count, const double* weights = nullptr);
   /// How many points so far were merged into another.
   std::size_t mergedPoints() const;
-  /// Calls visit(ids, xyz) for every live finite tetrahedron: its point ids, positively
-  /// oriented, and its vertices' coordinates in the frame. On the mesh's threads at once: `visit`
-  /// must be safe to call concurrently.
-  void visitTetrahedra(
-    const std::function<void(const std::uint32_t ids[4], const double* const xyz[4])>& visit) const;
+  /// Calls visit(ids, xyz, weights) for every live finite tetrahedron: its point ids, positively
+  /// oriented, its vertices' coordinates in the frame, and for a weighted mesh their weights in
+  /// the frame's units (squared lengths; null where unweighted), read where the records are,
+  /// not by point id. On the mesh's threads at once: `visit` must be safe to call concurrently.
+  void visitTetrahedra(const std::function<void(
+      const std::uint32_t ids[4], const double* const xyz[4], const double* weights)>& visit) const;
   /// Calls visit(ids, xyz) for every hull face: its point ids and its vertices' coordinates in
   /// the frame, ordered so that (b - a) x (c - a) points out of the hull. On the mesh's threads
   /// at once, as visitTetrahedra().

@@ -207,7 +207,8 @@ public:
   double inSphereStaticBound() const { return tuning_.inSphereStatic; }
   /// The power test's static bound (PowerProbe), for weights within [lowest, highest], in the
   /// points' box of adaptTo(): filter::kPowerSemiStatic at the box's extents and the weights'
-  /// spread. Infinite (no static decision) for any magnitude or a spread beyond the normal range.
+  /// spread (with images, filter::powerRecordBound(), the records' slack added). Infinite (no
+  /// static decision) for any magnitude or a spread beyond the normal range.
   void adaptToWeights(double lowest, double highest);
   double powerStaticBound() const { return tuning_.powerStatic; }
   /// The lifts' filter (filter::kInSphereLift) on a determinant and its lifts.

@@ -26,7 +26,10 @@ constexpr double kWidening = 1.5;
 constexpr int kTargetedRounds = 6;
 // The first shell, in spacings of evenly spread points: wide enough that the certificate holds
 // at once for uniform points; a narrower one saves fewer images than a round of regions costs
-// (two more passes over the tetrahedra).
+// (two more passes over the tetrahedra). Weighted, the balls that the certificate checks widen
+// by up to sqrt(W) (the weights' spread W) in radius: the shell widens by that much too, up to
+// as much again, which keeps uniform points with radii to one round; heavier points hide the
+// light ones, whose balls then need no room.
 constexpr double kFirstShell = 3.0;
 // The covering's room beyond the points and the first shell's images, were they spread evenly:
 // reserved, untouched memory costs nothing, where every doubling of the lists would copy the
@@ -107,44 +110,45 @@ struct SphereTerms
 /// circumsphere passes through that point, at least `margin` inside the shell along the periodic
 /// axes, so a diameter 2r = |n| / |det| below the margin keeps the sphere inside the shell,
 /// compared without a division or a root. Every difference is then below the margin too, which
-/// bounds the float evaluation's error (SphereTerms). Weighted, by weights that differ by W at
-/// most, the ball of an orthosphere (c, r) widened by the heaviest weight has a radius below
-/// sqrt(|c - a|^2 + W) and lies within that of every vertex: 2 |c - a| = |n| / |det| must stay
-/// below sqrt(margin^2 - 4 W).
+/// bounds the float evaluation's error (SphereTerms). Weighted, the ball of an orthosphere (c, r)
+/// widened to the heaviest weight W has the radius sqrt(r^2 + W) = sqrt(|c - a|^2 + e), e being W
+/// less a's weight, and every vertex v lies within that of c (|c - v|^2 = r^2 + w_v): the ball
+/// stays within 2 sqrt(|c - a|^2 + e) of the point of the box, so 2 |c - a| = |n| / |det| must
+/// stay below sqrt(margin^2 - 4 e).
 class SmallSphere
 {
 public:
   /// margin: the points' room to the shell's sides; most: the largest magnitude of a record;
-  /// spread: W, 0 where unweighted.
+  /// spread: the weights' largest difference, 0 where unweighted.
   SmallSphere(double margin, double most, double spread)
     // The margin less the box's and the records' roundings.
-    : margin_(margin - kSlack * (margin + most)),
-      reach_(spread > 0 ? std::sqrt(std::max(margin_ * margin_ - 4 * spread * (1 + kSlack), 0.0))
-                        : margin_),
-      detError_(SphereTerms::detError(margin_, most)),
+    : margin_(margin - kSlack * (margin + most)), detError_(SphereTerms::detError(margin_, most)),
       nError_(SphereTerms::nError(SphereTerms::weightedSize(margin_, spread), most)),
-      usable_(SphereTerms::usable(margin_, most) && reach_ > 0)
+      usable_(SphereTerms::usable(margin_, most))
   {}
 
-  /// Whether the circumsphere (orthosphere) of a tetrahedron with a vertex in the box, its
-  /// vertices' weights less the first's `lowered`, surely has a diameter below the margin; false
-  /// where floats cannot tell.
-  bool holds(const double* const xyz[4], const double* lowered = nullptr) const
+  /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
+  /// below the margin; weighted, whether its orthosphere's widened ball surely stays within the
+  /// margin, for `lowered` its vertices' weights less the first's and `extra` the heaviest weight
+  /// less the first's. False where floats cannot tell.
+  bool holds(const double* const xyz[4], const double* lowered = nullptr, double extra = 0) const
   {
-    if (!usable_)
+    const double reach2 = margin_ * margin_ - 4 * extra * (1 + kSlack);
+    if (!usable_ || !(reach2 > 0))
       return false;
+    const double reachAll = extra > 0 ? std::sqrt(reach2) : margin_;
     const SphereTerms t(xyz, lowered);
     bool within = true;
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k)
         within &= std::fabs(t.u[i][k]) < margin_;
     const double n2 = t.n[0] * t.n[0] + t.n[1] * t.n[1] + t.n[2] * t.n[2];
-    const double reach = reach_ * (std::fabs(t.det) - detError_) - nError_; // |n| must stay below
+    const double reach = reachAll * (std::fabs(t.det) - detError_) - nError_; // |n| stays below
     return within && reach > 0 && n2 * (1 + 1e-12) < reach * reach;
   }
 
 private:
-  double margin_, reach_, detError_, nError_;
+  double margin_, detError_, nError_;
   bool usable_;
 };
 
@@ -749,11 +753,12 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
   for (int k = 0; k < 3; ++k)
     most = std::max({most, std::fabs(toFrame(frame_, coverBounds_.lo[k], k)),
       std::fabs(toFrame(frame_, coverBounds_.hi[k], k))});
-  // Weighted: in the frame, whose scale squares in the weights.
-  const double weightScale = scale * scale, spread = weightSpread_ * weightScale;
-  const double heaviest =
-    weights_ ? *std::max_element(coveringWeights_.begin(), coveringWeights_.end()) : 0;
-  const SmallSphere small(margin, most, weights_ ? spread : 0);
+  // Weighted: in the frame, whose scale squares in the weights (the mesh's are in it).
+  const double weightScale = scale * scale;
+  const double heaviest = weights_
+    ? *std::max_element(coveringWeights_.begin(), coveringWeights_.end()) * weightScale
+    : 0;
+  const SmallSphere small(margin, most, weightSpread_ * weightScale);
   Failures out;
   std::mutex failed; // rare, from every thread of the visit
   auto fail = [&](ImageRegion region, std::vector<ImageRegion>& list) {
@@ -813,71 +818,71 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     }
     fail({region}, out.hull);
   });
-  mesh.visitTetrahedra([&](const std::uint32_t ids[4], const double* const xyz[4]) {
-    if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
-      return;
-    double lowered[3], extra = 0;
-    if (weights_)
-    {
-      const double w0 = coveringWeights_[ids[0]];
-      for (int i = 0; i < 3; ++i)
-        lowered[i] = (coveringWeights_[ids[i + 1]] - w0) * weightScale;
-      extra = (heaviest - w0) * weightScale;
-    }
-    const double* lowers = weights_ ? lowered : nullptr;
-    if (small.holds(xyz, lowers))
-      return;
-    double c[3], radius;
-    Bounds sphere;
-    const SphereBox made =
-      sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, extra);
-    if (made == SphereBox::Misses)
-      return;
-    if (made == SphereBox::Flat)
-    {
-      // Flat in floats: the images within half a period of it.
-      Bounds around;
-      for (int i = 0; i < 4; ++i)
-        around.include(xyz[i]);
-      for (int k = 0; k < 3; ++k)
+  mesh.visitTetrahedra(
+    [&](const std::uint32_t ids[4], const double* const xyz[4], const double* weights) {
+      if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
+        return;
+      double lowered[3], extra = 0;
+      if (weights)
       {
-        const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
-        around.lo[k] -= grow;
-        around.hi[k] += grow;
+        for (int i = 0; i < 3; ++i)
+          lowered[i] = weights[i + 1] - weights[0];
+        extra = heaviest - weights[0];
       }
-      fail({around}, out.spheres);
-      return;
-    }
-    bool inShell = true;
-    for (int k = 0; k < 3; ++k)
-      inShell =
-        inShell && sphere.lo[k] > around.lo[k] - margin && sphere.hi[k] < around.hi[k] + margin;
-    if (inShell)
-      return;
-    // A region that holds the sphere holds its centre, and is filed where the centre is.
-    bool inRegion = false;
-    Bounds centre;
-    centre.include(c);
-    regionBuckets.visit(centre, [&](std::uint32_t r) {
+      const double* lowers = weights ? lowered : nullptr;
+      if (small.holds(xyz, lowers, extra))
+        return;
+      double c[3], radius;
+      Bounds sphere;
+      const SphereBox made =
+        sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, extra);
+      if (made == SphereBox::Misses)
+        return;
+      if (made == SphereBox::Flat)
+      {
+        // Flat in floats: the images within half a period of it.
+        Bounds around;
+        for (int i = 0; i < 4; ++i)
+          around.include(xyz[i]);
+        for (int k = 0; k < 3; ++k)
+        {
+          const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
+          around.lo[k] -= grow;
+          around.hi[k] += grow;
+        }
+        fail({around}, out.spheres);
+        return;
+      }
+      bool inShell = true;
+      for (int k = 0; k < 3; ++k)
+        inShell =
+          inShell && sphere.lo[k] > around.lo[k] - margin && sphere.hi[k] < around.hi[k] + margin;
+      if (inShell)
+        return;
+      // A region that holds the sphere holds its centre, and is filed where the centre is.
+      bool inRegion = false;
+      Bounds centre;
+      centre.include(c);
+      regionBuckets.visit(centre, [&](std::uint32_t r) {
+        if (inRegion)
+          return;
+        inRegion = regions[r].holds(sphere, c, radius, most);
+      });
       if (inRegion)
         return;
-      inRegion = regions[r].holds(sphere, c, radius, most);
+      // A region a spacing wider, so that the tetrahedra that replace this one fit it too; its
+      // ball where every axis is periodic.
+      ImageRegion failure{sphere};
+      for (int k = 0; k < 3; ++k)
+      {
+        failure.box.lo[k] -= spacing;
+        failure.box.hi[k] += spacing;
+        failure.centre[k] = c[k];
+      }
+      if (periodicAxes_ == 3)
+        failure.radius = radius + spacing;
+      fail(failure, out.spheres);
     });
-    if (inRegion)
-      return;
-    // A region a spacing wider, so that the tetrahedra that replace this one fit it too; its
-    // ball where every axis is periodic.
-    ImageRegion failure{sphere};
-    for (int k = 0; k < 3; ++k)
-    {
-      failure.box.lo[k] -= spacing;
-      failure.box.hi[k] += spacing;
-      failure.centre[k] = c[k];
-    }
-    if (periodicAxes_ == 3)
-      failure.radius = radius + spacing;
-    fail(failure, out.spheres);
-  });
   return out;
 }
 
@@ -1182,7 +1187,9 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   present_.clear();
   out.rounds = 0;
   widerHalo_ = 0;
-  margin_ = std::min(piece_ ? pieceHalo_ : kFirstShell * spacing_, widest_);
+  const double first = kFirstShell * spacing_;
+  margin_ =
+    std::min(piece_ ? pieceHalo_ : first + std::min(std::sqrt(weightSpread_), first), widest_);
   pointBuckets_.reset(); // the points may have changed: filed again when a region asks
   reserveCovering();
   addPoints(); // first, the cells' generators
