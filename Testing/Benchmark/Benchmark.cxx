@@ -22,9 +22,10 @@
 //                                            weighted points: CGAL's regular triangulation,
 //                                            Voro++'s radical cells (WeightedBench.cxx)
 //   Benchmark --periodic [--kinds cube,vacuum,planes,clusters] [--sizes N] [--repeat K]
-//             [--methods Core,plain,CGAL,cells,Voro++] [--csv FILE] [--markdown FILE]
-//                                            the periodic unit box: CGAL's periodic triangulation,
-//                                            Voro++'s periodic container (PeriodicBench.cxx)
+//             [--radii LO,HI] [--methods Core,plain,CGAL,cells,Voro++] [--csv FILE]
+//             [--markdown FILE]              the periodic unit box: CGAL's periodic triangulation,
+//                                            Voro++'s periodic container, weighted with radii
+//                                            (PeriodicBench.cxx)
 //
 // Each measurement runs in a forked child, so its peak memory is its own (VmHWM after the
 // child resets it) and a crash or a time-out costs one row, not the run.

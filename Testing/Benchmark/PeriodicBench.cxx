@@ -11,6 +11,9 @@
 //           beforehand
 //   cells   fd3::voronoiCellsPeriodic without polyhedra: each cell's volume, area and neighbours
 //   Voro++  its periodic container: each cell's volume, area and neighbours
+// With radii (--radii lo,hi: uniform in [lo, hi], weight r^2), the weighted runs of each: the
+// periodic regular tetrahedralization, CGAL's Periodic_3_regular_triangulation_3, power cells and
+// Voro++'s periodic radical container (container_poly).
 #include "PeriodicBench.h"
 
 #include "Measure.h"
@@ -21,6 +24,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Periodic_3_Delaunay_triangulation_3.h>
 #include <CGAL/Periodic_3_Delaunay_triangulation_traits_3.h>
+#include <CGAL/Periodic_3_regular_triangulation_3.h>
+#include <CGAL/Periodic_3_regular_triangulation_traits_3.h>
 #endif
 #ifdef FD3_BENCHMARK_WITH_VOROPP
 #include "VoroppRun.h"
@@ -30,6 +35,7 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -37,27 +43,36 @@ namespace fd3bench
 {
 namespace
 {
-using Points = fd3test::Points;
+/// The points, and where weighted their radii and weights (empty where not).
+struct Particles
+{
+  fd3test::Points xyz;
+  std::vector<double> radii, weights;
+  std::size_t size() const { return xyz.size() / 3; }
+  const double* weightsOrNull() const { return weights.empty() ? nullptr : weights.data(); }
+};
 
 // figures: the periodic tetrahedra (or tetrahedra), or the volumes' sum and the cells.
-Measurement runCore(const Points& p)
+Measurement runCore(const Particles& p)
 {
   const auto t0 = Clock::now();
   const fd3::PeriodicTriangulation t =
-    fd3::triangulatePeriodic(p.data(), p.size() / 3, fd3::PeriodicBox());
+    fd3::triangulatePeriodic(p.xyz.data(), p.weightsOrNull(), p.size(), fd3::PeriodicBox());
   Measurement m;
   m.seconds = since(t0);
   m.ran = t.status == fd3::Status::Ok;
   m.tetrahedra = double(t.numberOfTetrahedra());
   m.peakMiB = peakSoFarMiB();
-  m.figures = {double(t.imagePoints) / double(p.size() / 3)};
+  m.figures = {double(t.imagePoints) / double(p.size())};
   return m;
 }
 
-Measurement runPlain(const Points& p)
+Measurement runPlain(const Particles& p)
 {
   const auto t0 = Clock::now();
-  const fd3::Triangulation t = fd3::triangulate(p.data(), p.size() / 3, fd3::Options());
+  const fd3::Triangulation t = p.weights.empty()
+    ? fd3::triangulate(p.xyz.data(), p.size(), fd3::Options())
+    : fd3::triangulate(p.xyz.data(), p.weights.data(), p.size(), fd3::Options());
   Measurement m;
   m.seconds = since(t0);
   m.ran = t.status == fd3::Status::Ok;
@@ -66,13 +81,13 @@ Measurement runPlain(const Points& p)
   return m;
 }
 
-Measurement runCells(const Points& p)
+Measurement runCells(const Particles& p)
 {
   fd3::VoronoiOptions options;
   options.polyhedra = false;
   const auto t0 = Clock::now();
-  const fd3::VoronoiCells cells =
-    fd3::voronoiCellsPeriodic(p.data(), p.size() / 3, fd3::PeriodicBox(), options);
+  const fd3::VoronoiCells cells = fd3::voronoiCellsPeriodic(
+    p.xyz.data(), p.weightsOrNull(), p.size(), fd3::PeriodicBox(), options);
   Measurement m;
   m.seconds = since(t0);
   m.ran = cells.status == fd3::Status::Ok;
@@ -87,12 +102,35 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using PeriodicCgal = CGAL::Periodic_3_Delaunay_triangulation_3<
   CGAL::Periodic_3_Delaunay_triangulation_traits_3<Kernel>>;
 
-Measurement runCgal(const Points& p)
+using RegularCgal =
+  CGAL::Periodic_3_regular_triangulation_3<CGAL::Periodic_3_regular_triangulation_traits_3<Kernel>>;
+
+Measurement runCgalRegular(const Particles& p)
 {
+  std::vector<RegularCgal::Weighted_point> points;
+  points.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    points.emplace_back(
+      RegularCgal::Bare_point(p.xyz[3 * i], p.xyz[3 * i + 1], p.xyz[3 * i + 2]), p.weights[i]);
+  const auto t0 = Clock::now();
+  RegularCgal regular(RegularCgal::Iso_cuboid(0, 0, 0, 1, 1, 1));
+  regular.insert(points.begin(), points.end());
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = true;
+  m.tetrahedra = double(regular.number_of_cells());
+  m.peakMiB = peakSoFarMiB();
+  return m;
+}
+
+Measurement runCgal(const Particles& p)
+{
+  if (!p.weights.empty())
+    return runCgalRegular(p);
   std::vector<PeriodicCgal::Point> points;
-  points.reserve(p.size() / 3);
-  for (std::size_t i = 0; i < p.size(); i += 3)
-    points.emplace_back(p[i], p[i + 1], p[i + 2]);
+  points.reserve(p.size());
+  for (std::size_t i = 0; i < p.xyz.size(); i += 3)
+    points.emplace_back(p.xyz[i], p.xyz[i + 1], p.xyz[i + 2]);
   const auto t0 = Clock::now();
   PeriodicCgal periodic(points.begin(), points.end(), PeriodicCgal::Iso_cuboid(0, 0, 0, 1, 1, 1));
   Measurement m;
@@ -105,38 +143,63 @@ Measurement runCgal(const Points& p)
 #endif
 
 #ifdef FD3_BENCHMARK_WITH_VOROPP
-Measurement runVoropp(const Points& p)
+Measurement runVoropp(const Particles& p)
 {
   fd3::Bounds unit;
   std::fill(unit.lo, unit.lo + 3, 0.0);
   std::fill(unit.hi, unit.hi + 3, 1.0);
-  return runVoroppContainer(p, unit, {true, true, true}, false);
+  if (p.radii.empty())
+    return runVoroppContainer(p.xyz, unit, {true, true, true}, false);
+  const std::array<int, 3> blocks = voroppBlocks(unit, p.size());
+  const auto t0 = Clock::now();
+  voro::container_poly box(0, 1, 0, 1, 0, 1, blocks[0], blocks[1], blocks[2], true, true, true, 8);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    box.put(int(i), p.xyz[3 * i], p.xyz[3 * i + 1], p.xyz[3 * i + 2], p.radii[i]);
+  const VoroppSweep sweep = sweepCells(box, false);
+  Measurement m;
+  m.seconds = since(t0);
+  m.ran = true;
+  m.figures = {sweep.volume, double(sweep.cells)};
+  return m;
 }
 #endif
 
 /// The sets periodicSet() makes.
 const std::vector<std::string> kPeriodicSets = {"cube", "vacuum", "planes", "clusters"};
 
-/// The set `kind` of n points in the unit box, wrapped into it as every peer takes them.
-Points periodicSet(const std::string& kind, std::size_t n)
+/// The set `kind` of n points in the unit box, wrapped into it as every peer takes them; with
+/// radii uniform in [lo, hi] where hi > 0.
+Particles periodicSet(const std::string& kind, std::size_t n, double lo, double hi)
 {
-  Points p =
-    kind == "cube" || kind == "vacuum" ? fd3test::uniformCube(n, 1) : fd3test::generate(kind, n, 1);
-  for (std::size_t i = 0; i < p.size(); ++i)
+  Particles p{
+    kind == "cube" || kind == "vacuum" ? fd3test::uniformCube(n, 1) : fd3test::generate(kind, n, 1),
+    {}, {}};
+  for (std::size_t i = 0; i < p.xyz.size(); ++i)
   {
+    double& x = p.xyz[i];
     if (kind == "vacuum" && i % 3 == 2)
-      p[i] *= 0.3;
-    p[i] -= std::floor(p[i]);
-    if (p[i] >= 1) // a tiny negative value's rounding
-      p[i] = 0;
+      x *= 0.3;
+    x -= std::floor(x);
+    if (x >= 1) // a tiny negative value's rounding
+      x = 0;
+  }
+  if (hi > 0)
+  {
+    std::mt19937_64 random(2);
+    std::uniform_real_distribution<double> radius(lo, hi);
+    for (std::size_t i = 0; i < p.size(); ++i)
+    {
+      p.radii.push_back(radius(random));
+      p.weights.push_back(p.radii.back() * p.radii.back());
+    }
   }
   return p;
 }
 
-std::vector<ModeMethod<Points>> methods(const std::vector<std::string>& wanted)
+std::vector<ModeMethod<Particles>> methods(const std::vector<std::string>& wanted)
 {
-  std::vector<ModeMethod<Points>> all = {{"Core", runCore}, {"plain", runPlain}, {"CGAL", nullptr},
-    {"cells", runCells}, {"Voro++", nullptr}};
+  std::vector<ModeMethod<Particles>> all = {{"Core", runCore}, {"plain", runPlain},
+    {"CGAL", nullptr}, {"cells", runCells}, {"Voro++", nullptr}};
 #ifdef FD3_BENCHMARK_WITH_CGAL
   all[2].run = runCgal;
 #endif
@@ -153,7 +216,18 @@ int periodicMain(int argc, char* argv[])
   RunSettings settings;
   settings.sizes = {100000, 1000000};
   settings.kinds = {"cube"};
-  if (!parseRunSettings(argc, argv, "--periodic", settings))
+  double lo = 0, hi = 0;
+  std::vector<char*> rest = {argv[0]};
+  for (int i = 1; i < argc; ++i) // --radii is this mode's own
+    if (std::string(argv[i]) == "--radii" && i + 1 < argc)
+    {
+      const std::vector<std::string> r = split(argv[++i]);
+      lo = std::stod(r.at(0));
+      hi = std::stod(r.at(1));
+    }
+    else
+      rest.push_back(argv[i]);
+  if (!parseRunSettings(int(rest.size()), rest.data(), "--periodic", settings))
     return 2;
   for (const std::string& kind : settings.kinds)
     if (std::find(kPeriodicSets.begin(), kPeriodicSets.end(), kind) == kPeriodicSets.end())
@@ -164,10 +238,13 @@ int periodicMain(int argc, char* argv[])
       std::fprintf(stderr, "Benchmark --periodic: no set %s (%s)\n", kind.c_str(), known.c_str());
       return 2;
     }
-  const std::vector<ModeMethod<Points>> chosen = methods(settings.methods);
+  const std::vector<ModeMethod<Particles>> chosen = methods(settings.methods);
   std::ostringstream md, csv;
-  md << "Machine: " << machineName() << ". Points in the periodic unit box; one thread; "
-     << "best of " << settings.repeat
+  md << "Machine: " << machineName() << ". Points in the periodic unit box";
+  if (hi > 0)
+    md << ", radii uniform in [" << lo << ", " << hi << "] (weight r^2; the regular "
+       << "tetrahedralization and power cells throughout)";
+  md << "; one thread; best of " << settings.repeat
      << " interleaved runs; peak memory each run's own. Core "
         "and CGAL: the periodic Delaunay tetrahedralization (images: Core's shell, per point); "
         "plain: Core on the same points, not periodic. cells and Voro++: each periodic cell's "
@@ -179,7 +256,7 @@ int periodicMain(int argc, char* argv[])
   for (const std::string& kind : settings.kinds)
     for (const std::size_t n : settings.sizes)
     {
-      const Points p = periodicSet(kind, n);
+      const Particles p = periodicSet(kind, n, lo, hi);
       const std::vector<Measurement> best = bestOfInterleaved(chosen, p, n, settings);
       auto byName = [&](const char* name) { return measurementOf(chosen, best, name); };
       const Measurement cgal = byName("CGAL"), plain = byName("plain"), voropp = byName("Voro++");

@@ -9,7 +9,7 @@
 namespace fd3bench
 {
 /// The command line of the periodic benchmark, as `Benchmark --periodic` takes it:
-///   [--kinds cube,vacuum,planes,clusters] [--sizes N1,N2] [--repeat K]
+///   [--kinds cube,vacuum,planes,clusters] [--sizes N1,N2] [--repeat K] [--radii LO,HI]
 ///   [--methods Core,plain,CGAL,cells,Voro++] [--csv FILE] [--markdown FILE]
 /// 2 on an unknown option.
 int periodicMain(int argc, char* argv[]);
