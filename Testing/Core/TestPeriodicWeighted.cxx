@@ -226,6 +226,25 @@ TEST(PeriodicWeighted, HeavyPointsAndAHandfulOfPoints)
   checked({3, 3, 3}, {2.0}, large, "one point");
 }
 
+// One point whose ball spans periods among light ones: its images come from afar, the light
+// points' from the usual shell (not every point's images as far as the heavy one reaches). A
+// reach beyond four periods is refused.
+TEST(PeriodicWeighted, OneHeavyPointAmongLightOnes)
+{
+  Points p = fd3test::uniformCube(1000, 65);
+  std::vector<double> w(1000, 0.0);
+  w[0] = 3.0; // a reach of sqrt(3) periods
+  w[1] = 0.01;
+  const auto t = checked(p, w, fd3::PeriodicBox(), "one heavy point");
+  EXPECT_EQ(t.hidden.size(), 999u); // the heavy point's images hide everything else
+  EXPECT_LT(t.imagePoints, 20000u);
+
+  w[0] = 17.0;
+  const auto refused = fd3::triangulatePeriodic(p.data(), w.data(), 1000, fd3::PeriodicBox());
+  EXPECT_EQ(refused.status, fd3::Status::OutOfRange);
+  EXPECT_EQ(refused.numberOfTetrahedra(), 0u);
+}
+
 // Repeats once wrapped: of equal weights one is kept, the others merged; of unequal ones the
 // heaviest is kept and the others hidden; an equal copy of a hidden point is merged into it.
 TEST(PeriodicWeighted, RepeatsKeepTheHeaviest)

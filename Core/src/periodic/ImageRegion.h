@@ -38,6 +38,21 @@ struct ImageRegion
     return out;
   }
 
+  /// The region grown by `by` all round: its box, its ball and its side.
+  ImageRegion grown(double by) const
+  {
+    ImageRegion out = *this;
+    for (int k = 0; k < 3; ++k)
+    {
+      out.box.lo[k] -= by;
+      out.box.hi[k] += by;
+      out.onPlane[k] -= by * normal[k];
+    }
+    if (radius >= 0)
+      out.radius += by;
+    return out;
+  }
+
   /// Whether p lies in the ball and on the plane's side, as floats evaluate it (the box is the
   /// caller's: PeriodicDelaunay tests it in whole periods).
   bool ballAndSideHold(const double p[3]) const

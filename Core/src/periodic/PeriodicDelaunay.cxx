@@ -26,11 +26,11 @@ constexpr double kWidening = 1.5;
 constexpr int kTargetedRounds = 6;
 // The first shell, in spacings of evenly spread points: wide enough that the certificate holds
 // at once for uniform points; a narrower one saves fewer images than a round of regions costs
-// (two more passes over the tetrahedra). Weighted, the balls that the certificate checks widen
-// by up to sqrt(W) (the weights' spread W) in radius: the shell widens by that much too, up to
-// as much again, which keeps uniform points with radii to one round; heavier points hide the
-// light ones, whose balls then need no room.
+// (two more passes over the tetrahedra).
 constexpr double kFirstShell = 3.0;
+// Weighted points reach sqrt(w - w_0) beyond the shell (w_0 the lightest weight): at most this
+// many periods, beyond which each such point would bring thousands of images.
+constexpr double kMostReach = 4.0;
 // The covering's room beyond the points and the first shell's images, were they spread evenly:
 // reserved, untouched memory costs nothing, where every doubling of the lists would copy the
 // images' records and fault their pages in again.
@@ -110,11 +110,11 @@ struct SphereTerms
 /// circumsphere passes through that point, at least `margin` inside the shell along the periodic
 /// axes, so a diameter 2r = |n| / |det| below the margin keeps the sphere inside the shell,
 /// compared without a division or a root. Every difference is then below the margin too, which
-/// bounds the float evaluation's error (SphereTerms). Weighted, the ball of an orthosphere (c, r)
-/// widened to the heaviest weight W has the radius sqrt(r^2 + W) = sqrt(|c - a|^2 + e), e being W
-/// less a's weight, and every vertex v lies within that of c (|c - v|^2 = r^2 + w_v): the ball
-/// stays within 2 sqrt(|c - a|^2 + e) of the point of the box, so 2 |c - a| = |n| / |det| must
-/// stay below sqrt(margin^2 - 4 e).
+/// bounds the float evaluation's error (SphereTerms). Weighted, the ball that the certificate
+/// checks, about the orthocentre c with the squared radius r^2 + w_0 (w_0 the lightest weight),
+/// has a radius below |c - a| (r^2 = |c - a|^2 - w_a), and the point p of the box lies within
+/// |c - a| + sqrt(w_p - w_0) of c: 2 |c - a| = |n| / |det| must stay below the margin less the
+/// largest sqrt(w_v - w_0) of the vertices.
 class SmallSphere
 {
 public:
@@ -128,15 +128,15 @@ public:
   {}
 
   /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
-  /// below the margin; weighted, whether its orthosphere's widened ball surely stays within the
-  /// margin, for `lowered` its vertices' weights less the first's and `extra` the heaviest weight
-  /// less the first's. False where floats cannot tell.
-  bool holds(const double* const xyz[4], const double* lowered = nullptr, double extra = 0) const
+  /// below the margin; weighted, whether its ball surely stays within the margin, for `lowered`
+  /// its vertices' weights less the first's and `vertexReach` the largest sqrt(w_v - w_0) of its
+  /// vertices. False where floats cannot tell.
+  bool holds(
+    const double* const xyz[4], const double* lowered = nullptr, double vertexReach = 0) const
   {
-    const double reach2 = margin_ * margin_ - 4 * extra * (1 + kSlack);
-    if (!usable_ || !(reach2 > 0))
+    const double reachAll = margin_ - vertexReach * (1 + kSlack);
+    if (!usable_ || !(reachAll > 0))
       return false;
-    const double reachAll = extra > 0 ? std::sqrt(reach2) : margin_;
     const SphereTerms t(xyz, lowered);
     bool within = true;
     for (int i = 0; i < 3; ++i)
@@ -173,12 +173,13 @@ enum class SphereBox
 /// e the extent's side nearest the centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past
 /// that side: a cap far from the centre needs both, r and the gap agreeing to many digits.
 ///
-/// Weighted, the orthosphere's ball widened by the heaviest weight: `lowered` holds the other
-/// vertices' weights less a's, and `extra` the heaviest weight less a's (r^2 = |c - a|^2 - w_a,
-/// so the ball's squared radius is |c - a|^2 + extra), each term of the reach gaining it.
+/// Weighted, the ball about the orthocentre c of squared radius r^2 + w_0, w_0 the lightest
+/// weight: `lowered` holds the other vertices' weights less a's, and `drop` a's weight less w_0
+/// (r^2 = |c - a|^2 - w_a, so the squared radius is |c - a|^2 - drop). It is bounded from above
+/// as a whole ball, clipped to the extent along the axes that are not periodic (no cap there).
 SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool periodic[3],
   double most, double centre[3], double& radius, Bounds& sphere, const double* lowered = nullptr,
-  double extra = 0)
+  double drop = 0)
 {
   const double* a = xyz[0];
   const SphereTerms t(xyz, lowered);
@@ -189,7 +190,6 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
       size = std::max(size, std::fabs(t.u[i][k]));
     spread = std::max(spread, lowered ? std::fabs(lowered[i]) : 0.0);
   }
-  extra *= 1 + kSlack; // its rounding
   const double det = 2 * t.det;
   const double relative = 2 * SphereTerms::detError(size, most) / std::fabs(det);
   const double nError = SphereTerms::nError(SphereTerms::weightedSize(size, spread), most);
@@ -202,7 +202,7 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
     centre[k] = a[k] + d[k];
     r2 += d[k] * d[k];
   }
-  const double r = std::sqrt(r2 + extra);
+  const double r = std::sqrt(r2);
   if (!std::isfinite(r))
     return SphereBox::Flat;
   // How far each of the centre's coordinates may lie from the exact one (a flat tetrahedron's
@@ -218,6 +218,26 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
   }
   // The exact centre and radius each lie within radiusError of these.
   radius = r + 2 * radiusError + 1e-12 * (most + r);
+  if (lowered)
+  {
+    // Weighted: the ball's squared radius |c - a|^2 - drop is below (r + radiusError)^2 less drop
+    // as floats round it down.
+    const double above = r + radiusError;
+    const double ball = std::sqrt(std::max(above * above - drop * (1 - kSlack), 0.0));
+    radius = ball + radiusError + 1e-12 * (most + r);
+    for (int k = 0; k < 3; ++k)
+    {
+      sphere.lo[k] = centre[k] - radius;
+      sphere.hi[k] = centre[k] + radius;
+      if (periodic[k])
+        continue;
+      if (sphere.hi[k] < extent.lo[k] || sphere.lo[k] > extent.hi[k])
+        return SphereBox::Misses;
+      sphere.lo[k] = std::max(sphere.lo[k], extent.lo[k]);
+      sphere.hi[k] = std::min(sphere.hi[k], extent.hi[k]);
+    }
+    return SphereBox::Made;
+  }
   double square[3], squareError[3], gap[3], part[3], partError[3];
   for (int k = 0; k < 3; ++k)
   {
@@ -230,7 +250,7 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
     part[k] = gap[k] > 0 ? (a[k] - e) * (a[k] + e - 2 * centre[k]) : square[k];
     partError[k] = gap[k] > 0 ? 2 * std::fabs(a[k] - e) * error[k] : squareError[k];
   }
-  double reach2 = extra, reachError = 0;
+  double reach2 = 0, reachError = 0;
   for (int k = 0; k < 3; ++k)
   {
     reach2 += part[k];
@@ -254,7 +274,7 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
       continue;
     }
     // r^2 - gap_k^2: the other axes' squares and this one's part.
-    double within2 = part[k] + partError[k] + extra;
+    double within2 = part[k] + partError[k];
     for (int j = 0; j < 3; ++j)
       if (j != k)
         within2 += square[j] + squareError[j];
@@ -269,11 +289,10 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
   return SphereBox::Made;
 }
 
-/// For `points` points whose places span `extent` in `box`, their weights `spread` apart: the
-/// widest shell (the class documentation's m*) and the spacing of the points, were they spread
-/// evenly.
-void measure(const PeriodicBox& box, std::size_t points, const Bounds& extent, double spread,
-  double& widest, double& spacing)
+/// For `points` points whose places span `extent` in `box`: the widest shell (the class
+/// documentation's m*) and the spacing of the points, were they spread evenly.
+void measure(
+  const PeriodicBox& box, std::size_t points, const Bounds& extent, double& widest, double& spacing)
 {
   double halfDiagonal = 0, freeDiagonal = 0, volume = 1;
   int dimensions = 0;
@@ -291,7 +310,7 @@ void measure(const PeriodicBox& box, std::size_t points, const Bounds& extent, d
     }
   }
   halfDiagonal = std::sqrt(halfDiagonal);
-  widest = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal + spread);
+  widest = halfDiagonal + std::sqrt(halfDiagonal * halfDiagonal + freeDiagonal);
   spacing = std::pow(volume / double(std::max<std::size_t>(points, 1)), 1.0 / dimensions);
 }
 
@@ -349,7 +368,7 @@ double PeriodicDelaunay::firstShell(
   const PeriodicBox& box, std::size_t points, const Bounds& extent)
 {
   double widest, spacing;
-  measure(box, points, extent, 0, widest, spacing);
+  measure(box, points, extent, widest, spacing);
   return std::min(kFirstShell * spacing, widest);
 }
 
@@ -433,6 +452,7 @@ bool PeriodicDelaunay::wrapPoints()
       heaviest = std::max(heaviest, weights_[id]);
     });
     weightSpread_ = heaviest > lightest ? heaviest - lightest : 0;
+    lightest_ = lightest;
     if (!(heaviest > lightest))
       weights_ = nullptr;
   }
@@ -447,15 +467,14 @@ void PeriodicDelaunay::chooseFrame()
     for (const std::uint32_t id : points_)
       extent_.include(place_[id].data());
   }
-  measure(
-    box_, piece_ ? pieceSetPoints_ : points_.size(), extent_, weightSpread_, widest_, spacing_);
+  measure(box_, piece_ ? pieceSetPoints_ : points_.size(), extent_, widest_, spacing_);
   coverBounds_ = extent_;
   bool shifts[3] = {true, true, true};
   for (int k = 0; k < 3; ++k)
     if (box_.periodic[k])
     {
       // The widest shell's images, a little beyond it for the rounding of their records.
-      const double reach = widest_ * (1 + kSlack) + period_[k];
+      const double reach = (widest_ + std::sqrt(weightSpread_)) * (1 + kSlack) + period_[k];
       coverBounds_.lo[k] = box_.lo[k] - reach;
       coverBounds_.hi[k] = box_.lo[k] + period_[k] + reach;
       shifts[k] = false; // images are not among the points checked
@@ -515,11 +534,20 @@ void PeriodicDelaunay::addPoints()
     addImage(id, {0, 0, 0}); // its place, which wrapPoints() found a sum of two doubles
 }
 
+bool PeriodicDelaunay::reachesTooFar() const
+{
+  for (int k = 0; k < 3; ++k)
+    if (box_.periodic[k] && std::sqrt(weightSpread_) > kMostReach * period_[k])
+      return true;
+  return false;
+}
+
 bool PeriodicDelaunay::inShell(
   std::uint32_t id, const std::array<std::int8_t, 3>& o, double margin) const
 {
   if (margin < 0)
     return false;
+  margin += reachOf(id);
   for (int k = 0; k < 3; ++k)
   {
     const double x = shifted(id, k, o[k]);
@@ -567,8 +595,11 @@ bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
   // bucket whose points all lie inside a region has its images added at once, and the other
   // regions that hold it pass it over instead of testing each point again.
   std::unordered_set<std::uint64_t> whole;
-  for (const ImageRegion& region : regions)
+  const double farthest = std::sqrt(weightSpread_); // the farthest reach of a weighted point
+  for (const ImageRegion& base : regions)
   {
+    // Weighted points within their reach of the region: those within the farthest one looked at.
+    const ImageRegion region = base.grown(farthest);
     // The periods that bring part of the points' extent into the region, along each axis.
     int first[3], last[3];
     for (int k = 0; k < 3; ++k)
@@ -591,20 +622,24 @@ bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
           double back[3]; // the region moved back by the periods
           for (int k = 0; k < 3; ++k)
             back[k] = -shift[k] * period_[k];
-          const ImageRegion moved = region.moved(back);
+          const ImageRegion moved = region.moved(back), movedBase = base.moved(back);
           const std::uint64_t shiftKey = std::uint64_t(std::uint8_t(x)) << 16 |
             std::uint64_t(std::uint8_t(y)) << 8 | std::uint64_t(std::uint8_t(z));
           bool added = true;
           auto take = [&](std::size_t cell, const Bounds& filed,
                         const std::vector<std::uint32_t>& ids) {
-            const ImageRegion::Overlap overlap =
+            ImageRegion::Overlap overlap =
               ids.empty() ? ImageRegion::Overlap::None : moved.overlap(filed);
+            // Within the farthest reach is not within every point's.
+            if (farthest > 0 && overlap == ImageRegion::Overlap::All &&
+              movedBase.overlap(filed) != ImageRegion::Overlap::All)
+              overlap = ImageRegion::Overlap::Some;
             if (overlap == ImageRegion::Overlap::None ||
               (overlap == ImageRegion::Overlap::All &&
                 !whole.insert(std::uint64_t(cell) << 24 | shiftKey).second))
               return;
             for (const std::uint32_t id : ids)
-              if (added && (overlap == ImageRegion::Overlap::All || inRegion(id, shift, region)))
+              if (added && (overlap == ImageRegion::Overlap::All || inRegion(id, shift, base)))
                 added = addRegionImage(id, shift);
           };
           if (moved.radius >= 0)
@@ -619,9 +654,9 @@ bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
   return true;
 }
 
-bool PeriodicDelaunay::inRegion(
-  std::uint32_t id, const int shift[3], const ImageRegion& region) const
+bool PeriodicDelaunay::inRegion(std::uint32_t id, const int shift[3], const ImageRegion& base) const
 {
+  const ImageRegion region = weights_ ? base.grown(reachOf(id)) : base;
   double at[3]; // the image
   for (int k = 0; k < 3; ++k)
   {
@@ -657,17 +692,18 @@ bool PeriodicDelaunay::addShell(double inner, double outer)
   bool added = true;
   forEachPoint([&](std::uint32_t id) {
     // The offsets along each axis that bring the point into [lo - outer, hi + outer] of the
-    // region (the box, or a piece's).
+    // region (the box, or a piece's), the point's reach beyond it added.
+    const double reach = outer + reachOf(id);
     for (int k = 0; k < 3; ++k)
     {
       along[k].clear();
-      const int most = box_.periodic[k] ? static_cast<int>(std::ceil(outer / period_[k])) + 1 : 0;
+      const int most = box_.periodic[k] ? static_cast<int>(std::ceil(reach / period_[k])) + 1 : 0;
       if (most > kMostOffset)
         added = false;
       for (int j = -most; j <= std::min(most, kMostOffset); ++j)
       {
         const double x = shifted(id, k, j);
-        if (x >= region_.lo[k] - outer && x <= region_.hi[k] + outer)
+        if (x >= region_.lo[k] - reach && x <= region_.hi[k] + reach)
           along[k].push_back(static_cast<std::int8_t>(j));
       }
     }
@@ -754,10 +790,7 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     most = std::max({most, std::fabs(toFrame(frame_, coverBounds_.lo[k], k)),
       std::fabs(toFrame(frame_, coverBounds_.hi[k], k))});
   // Weighted: in the frame, whose scale squares in the weights (the mesh's are in it).
-  const double weightScale = scale * scale;
-  const double heaviest = weights_
-    ? *std::max_element(coveringWeights_.begin(), coveringWeights_.end()) * weightScale
-    : 0;
+  const double weightScale = scale * scale, lightest = lightest_ * weightScale;
   const SmallSphere small(margin, most, weightSpread_ * weightScale);
   Failures out;
   std::mutex failed; // rare, from every thread of the visit
@@ -822,20 +855,25 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     [&](const std::uint32_t ids[4], const double* const xyz[4], const double* weights) {
       if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
         return;
-      double lowered[3], extra = 0;
+      double lowered[3], drop = 0, reach = 0;
       if (weights)
       {
+        double heaviest = weights[0];
         for (int i = 0; i < 3; ++i)
+        {
           lowered[i] = weights[i + 1] - weights[0];
-        extra = heaviest - weights[0];
+          heaviest = std::max(heaviest, weights[i + 1]);
+        }
+        drop = weights[0] - lightest;
+        reach = std::sqrt(std::max(heaviest - lightest, 0.0));
       }
       const double* lowers = weights ? lowered : nullptr;
-      if (small.holds(xyz, lowers, extra))
+      if (small.holds(xyz, lowers, reach))
         return;
       double c[3], radius;
       Bounds sphere;
       const SphereBox made =
-        sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, extra);
+        sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, drop);
       if (made == SphereBox::Misses)
         return;
       if (made == SphereBox::Flat)
@@ -1187,9 +1225,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
   present_.clear();
   out.rounds = 0;
   widerHalo_ = 0;
-  const double first = kFirstShell * spacing_;
-  margin_ =
-    std::min(piece_ ? pieceHalo_ : first + std::min(std::sqrt(weightSpread_), first), widest_);
+  margin_ = std::min(piece_ ? pieceHalo_ : kFirstShell * spacing_, widest_);
   pointBuckets_.reset(); // the points may have changed: filed again when a region asks
   reserveCovering();
   addPoints(); // first, the cells' generators
@@ -1247,7 +1283,7 @@ std::unique_ptr<IncrementalDelaunay> PeriodicDelaunay::cover(PeriodicTriangulati
 Status PeriodicDelaunay::prepare(Statistics& stats)
 {
   stats.inputPoints = own_;
-  if (!wrapPoints())
+  if (!wrapPoints() || reachesTooFar())
     return Status::OutOfRange;
   stats.nonFinitePoints = nonFinite_;
   if (points_.empty())

@@ -18,14 +18,16 @@
 // axes (p's own images bound it), and its sphere meets the points' extent within
 // sqrt(h^2 + H^2) of c there, or it would hold an image of every point, a whole period, inside.
 //
-// Weighted points (power distance |x - p|^2 - w) make the covering a regular tetrahedralization,
-// and the same certificate holds with each orthosphere's ball widened to the reach of the
-// heaviest point: an image q conflicts with an orthosphere (c, r) only where |q - c|^2 <
-// r^2 + w_q, within sqrt(r^2 + W) of c for the largest weight W. The orthocentre of a tetrahedron
-// at p lies in p's power cell, which p's images (of p's weight) bound as they bound its Voronoi
-// cell, and the widest shell widens by the weights' spread under its root. A point that the
-// covering hides is hidden in the repeated set, whose points include the covering's; the
-// covering keeps every point that the repeated set keeps, whose stars it certifies.
+// Weighted points (power distance |x - p|^2 - w) make the covering a regular tetrahedralization.
+// An image q conflicts with an orthosphere (c, r) only where |q - c|^2 < r^2 + w_q, so within
+// R + sqrt(w_q - w_0) of c, R^2 = r^2 + w_0 for the lightest weight w_0 (roots add up no less).
+// So each point's images are held a reach sqrt(w - w_0) beyond the shell and the regions, and the
+// certificate checks the balls (c, R) where it checked circumspheres: a heavy point brings its
+// images from afar, not every point's. The orthocentre of a tetrahedron at p lies in p's power
+// cell, which p's images (of p's weight) bound as they bound its Voronoi cell, and R is at most
+// the distance to the nearest image, so the widest shell is the same. A point that the covering
+// hides is hidden in the repeated set, whose points include the covering's; the covering keeps
+// every point that the repeated set keeps, whose stars it certifies.
 //
 // A piece (PeriodicPiece, an MPI rank's share) has its own points in place of the box's, and its
 // region and halo in place of the box and the shell: its covering is its points and every image
@@ -152,7 +154,8 @@ private:
   bool addRegions(const std::vector<ImageRegion>& regions);
   /// Files the box's points by place (pointBuckets_, places_).
   void filePoints();
-  /// Whether point id, moved by `shift` periods, lies in `region`.
+  /// Whether point id, moved by `shift` periods, lies in `region` (weighted, within its reach
+  /// of it: reachOf()).
   bool inRegion(std::uint32_t id, const int shift[3], const ImageRegion& region) const;
   /// Appends that image where the covering lacks it (true where it has it); false where it is no
   /// sum of two doubles.
@@ -160,13 +163,22 @@ private:
   /// Appends the image of point id moved by offset o (and its weight); false where it is no sum
   /// of two doubles.
   bool addImage(std::uint32_t id, const std::array<std::int8_t, 3>& o);
-  /// Whether that image lies within `margin` of the box along every periodic axis.
+  /// Whether that image lies within `margin` of the box along every periodic axis (weighted,
+  /// `margin` and its reach).
   bool inShell(std::uint32_t id, const std::array<std::int8_t, 3>& o, double margin) const;
   static std::uint64_t keyOf(std::uint32_t id, const std::array<std::int8_t, 3>& o)
   {
     return std::uint64_t(id) << 24 | std::uint64_t(std::uint8_t(o[0])) << 16 |
       std::uint64_t(std::uint8_t(o[1])) << 8 | std::uint64_t(std::uint8_t(o[2]));
   }
+  /// How far beyond the shell and the regions the images of weighted point id are held:
+  /// sqrt(w - w_0), w_0 the lightest weight (the class documentation).
+  double reachOf(std::uint32_t id) const
+  {
+    return weights_ ? std::sqrt(weights_[id] - lightest_) : 0.0;
+  }
+  /// Whether a weighted point reaches more than kMostReach periods.
+  bool reachesTooFar() const;
   /// A point's id in the whole set: a piece's ids, else its index.
   std::uint32_t idOf(std::uint32_t point) const { return ids_ ? ids_[point] : point; }
   /// The covering points in the order that picks each periodic tetrahedron's copy: by the id of
@@ -224,7 +236,7 @@ private:
   // Null where unweighted, or where every finite point has the same weight; then the largest
   // finite weight less the smallest.
   const double* weights_;
-  double weightSpread_ = 0;
+  double weightSpread_ = 0, lightest_ = 0;
   std::size_t count_;
   // The points whose tetrahedra and cells are made, the first ones: all of them, or a piece's
   // own; and a piece's ids.
