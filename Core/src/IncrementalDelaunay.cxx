@@ -1018,7 +1018,7 @@ const char* toString(Status status)
       return "the kernel's mesh check failed (a bug; please report it)";
     case Status::OutOfRange:
       return "the points and box span more than doubles hold (Voronoi vertices, or images of "
-             "points far from a periodic box), or weights differ by more than (4 periods)^2";
+             "points far from a periodic box), or a weight exceeds most by more than (4 periods)^2";
   }
   return "unknown";
 }

@@ -290,14 +290,37 @@ TEST(PeriodicWeighted, PointsTooCloseForTheBoxAreSkipped)
   checked(p, w, fd3::PeriodicBox(), "without the close one");
 }
 
-// Negative weights (balls of imaginary radius) shift nothing but the power distances.
+// Negative weights (balls of imaginary radius): every weight shifted below 0, and a few points
+// far lighter than the rest, which hide nothing and make no other point reach far.
 TEST(PeriodicWeighted, NegativeWeights)
 {
   const Points p = fd3test::uniformCube(2000, 63);
   std::vector<double> w = randomWeights(2000, 0.0, 0.04, 64);
   for (double& x : w)
     x -= 0.0008;
-  checked(p, w, fd3::PeriodicBox(), "negative weights");
+  const auto shifted = checked(p, w, fd3::PeriodicBox(), "negative weights");
+  for (std::size_t i = 0; i < 2000; i += 400)
+    w[i] = -20.0;
+  const auto t = checked(p, w, fd3::PeriodicBox(), "a few far lighter");
+  EXPECT_LT(t.imagePoints, shifted.imagePoints * 11 / 10);
+  for (std::size_t i = 0; i < 2000; i += 400)
+    EXPECT_TRUE(std::binary_search(t.hidden.begin(), t.hidden.end(), std::uint32_t(i))) << i;
+}
+
+// A slab periodic in x and y, and a few heavy points in it whose balls reach past the first
+// shell: tetrahedra at the slab's surfaces have their balls outside it, which heavy points in it
+// may still reach.
+TEST(PeriodicWeighted, HeavyPointsInASlab)
+{
+  Points p = fd3test::uniformCube(2000, 66);
+  for (std::size_t i = 2; i < p.size(); i += 3)
+    p[i] *= 0.2;
+  std::vector<double> w(2000, 0.0);
+  for (std::size_t i = 0; i < 2000; i += 250)
+    w[i] = 0.1;
+  fd3::PeriodicBox box;
+  box.periodic[2] = false;
+  checked(p, w, box, "heavy points in a slab");
 }
 
 TEST(PeriodicWeighted, SlabPeriodicInTwoAxes)

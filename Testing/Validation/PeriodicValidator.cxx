@@ -453,13 +453,14 @@ private:
     {
       const auto n =
         std::count_if(ids.begin(), ids.end(), [&](std::uint32_t i) { return used[i]; });
-      // A position of hidden points: each one there hidden, or a copy no heavier than one.
-      double hiddenWeight = -HUGE_VAL;
+      // A position of hidden points: each one there hidden, or a copy of one of its weight.
+      std::set<double> hiddenWeights;
       for (const std::uint32_t i : ids)
-        if (hidden_[i])
-          hiddenWeight = std::max(hiddenWeight, weights_ ? weights_[i] : HUGE_VAL);
-      const bool allHidden = std::all_of(ids.begin(), ids.end(),
-        [&](std::uint32_t i) { return hidden_[i] || (weights_ && weights_[i] <= hiddenWeight); });
+        if (hidden_[i] && weights_)
+          hiddenWeights.insert(weights_[i]);
+      const bool allHidden = std::all_of(ids.begin(), ids.end(), [&](std::uint32_t i) {
+        return hidden_[i] || (weights_ && hiddenWeights.count(weights_[i]));
+      });
       report_.usedVertices += n;
       if (n != (allHidden ? 0 : 1))
         fail("point " + std::to_string(ids[0]) + " is a vertex " + std::to_string(n) +

@@ -40,8 +40,8 @@ enum class Status
   Aborted,      ///< the progress callback asked to stop
   CheckFailed,  ///< Options::checkMesh found a broken invariant (a bug): see checkReport
   OutOfRange    ///< the points and box span more than doubles hold: voronoiCells()' vertices,
-                ///< triangulatePeriodic()'s images (fd3/Periodic.h); or weights in a periodic
-                ///< box differ by more than (4 periods)^2
+                ///< triangulatePeriodic()'s images (fd3/Periodic.h); or a weight in a periodic
+                ///< box exceeds most by more than (4 periods)^2
 };
 
 /// The most threads per hardware thread that Options::threads starts, where that is more than

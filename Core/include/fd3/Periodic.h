@@ -90,10 +90,10 @@ PeriodicTriangulation triangulatePeriodic(
 /// same order. Hidden points are no vertices (PeriodicTriangulation::hidden); a point of
 /// non-finite weight is left out as one of non-finite coordinates; where every weight is the
 /// same, the Delaunay tetrahedralization, bit for bit. A point of weight w reaches sqrt(w - w_0)
-/// farther than the lightest one (w_0): its images are inserted that much farther out, and
-/// Status::OutOfRange where that is more than 4 periods along a periodic axis (each such point
-/// would bring thousands of images; CGAL's periodic regular triangulation asks weights below
-/// 1/64 of a period squared).
+/// farther than one of the reference weight w_0 (the 5% quantile of the weights): its images are
+/// inserted that much farther out, and Status::OutOfRange where that is more than 4 periods along
+/// a periodic axis (each such point would bring thousands of images; CGAL's periodic regular
+/// triangulation asks weights below 1/64 of a period squared).
 PeriodicTriangulation triangulatePeriodic(const double* xyz, const double* weights,
   std::size_t count, const PeriodicBox& box, const Options& options = Options());
 

@@ -28,9 +28,14 @@ constexpr int kTargetedRounds = 6;
 // at once for uniform points; a narrower one saves fewer images than a round of regions costs
 // (two more passes over the tetrahedra).
 constexpr double kFirstShell = 3.0;
-// Weighted points reach sqrt(w - w_0) beyond the shell (w_0 the lightest weight): at most this
+// Weighted points reach sqrt(w - w_0) beyond the shell (w_0 the reference weight): at most this
 // many periods, beyond which each such point would bring thousands of images.
 constexpr double kMostReach = 4.0;
+// The reference weight w_0: this quantile of the weights. Lighter points reach no farther than
+// the balls, heavier ones their own root beyond; a low one spares the balls of most tetrahedra
+// the growth that a heavier reference gives them, and a few outliers, as light as they may be,
+// do not make every other point reach far.
+constexpr double kReferenceQuantile = 0.05;
 // The covering's room beyond the points and the first shell's images, were they spread evenly:
 // reserved, untouched memory costs nothing, where every doubling of the lists would copy the
 // images' records and fault their pages in again.
@@ -111,10 +116,10 @@ struct SphereTerms
 /// axes, so a diameter 2r = |n| / |det| below the margin keeps the sphere inside the shell,
 /// compared without a division or a root. Every difference is then below the margin too, which
 /// bounds the float evaluation's error (SphereTerms). Weighted, the ball that the certificate
-/// checks, about the orthocentre c with the squared radius r^2 + w_0 (w_0 the lightest weight),
-/// has a radius below |c - a| (r^2 = |c - a|^2 - w_a), and the point p of the box lies within
-/// |c - a| + sqrt(w_p - w_0) of c: 2 |c - a| = |n| / |det| must stay below the margin less the
-/// largest sqrt(w_v - w_0) of the vertices.
+/// checks, about the orthocentre c with the squared radius R^2 = r^2 + w_0 (w_0 the reference
+/// weight), has R <= |c - a| + sqrt(max(w_0 - w_a, 0)) (r^2 = |c - a|^2 - w_a), and the point p
+/// of the box lies within R + sqrt(max(w_p - w_0, 0)) of c: 2 |c - a| = |n| / |det| must stay
+/// below the margin less the largest such root of the vertices and twice a's.
 class SmallSphere
 {
 public:
@@ -173,10 +178,12 @@ enum class SphereBox
 /// e the extent's side nearest the centre, and the sphere reaches (r^2 - gap^2) / (r + gap) past
 /// that side: a cap far from the centre needs both, r and the gap agreeing to many digits.
 ///
-/// Weighted, the ball about the orthocentre c of squared radius r^2 + w_0, w_0 the lightest
+/// Weighted, the ball about the orthocentre c of squared radius r^2 + w_0, w_0 the reference
 /// weight: `lowered` holds the other vertices' weights less a's, and `drop` a's weight less w_0
 /// (r^2 = |c - a|^2 - w_a, so the squared radius is |c - a|^2 - drop). It is bounded from above
-/// as a whole ball, clipped to the extent along the axes that are not periodic (no cap there).
+/// as a whole ball, clipped to the extent along the axes that are not periodic, or where it
+/// misses the extent there, the extent's nearest side: a heavy point in the extent may still
+/// reach it.
 SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool periodic[3],
   double most, double centre[3], double& radius, Bounds& sphere, const double* lowered = nullptr,
   double drop = 0)
@@ -223,7 +230,8 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
     // Weighted: the ball's squared radius |c - a|^2 - drop is below (r + radiusError)^2 less drop
     // as floats round it down.
     const double above = r + radiusError;
-    const double ball = std::sqrt(std::max(above * above - drop * (1 - kSlack), 0.0));
+    const double lowest = drop * (drop > 0 ? 1 - kSlack : 1 + kSlack);
+    const double ball = std::sqrt(std::max(above * above - lowest, 0.0));
     radius = ball + radiusError + 1e-12 * (most + r);
     for (int k = 0; k < 3; ++k)
     {
@@ -231,10 +239,8 @@ SphereBox sphereBox(const double* const xyz[4], const Bounds& extent, const bool
       sphere.hi[k] = centre[k] + radius;
       if (periodic[k])
         continue;
-      if (sphere.hi[k] < extent.lo[k] || sphere.lo[k] > extent.hi[k])
-        return SphereBox::Misses;
-      sphere.lo[k] = std::max(sphere.lo[k], extent.lo[k]);
-      sphere.hi[k] = std::min(sphere.hi[k], extent.hi[k]);
+      sphere.lo[k] = std::min(std::max(sphere.lo[k], extent.lo[k]), extent.hi[k]);
+      sphere.hi[k] = std::max(std::min(sphere.hi[k], extent.hi[k]), extent.lo[k]);
     }
     return SphereBox::Made;
   }
@@ -446,13 +452,19 @@ bool PeriodicDelaunay::wrapPoints()
   }
   if (weights_)
   {
+    std::vector<double> all;
+    all.reserve(points_.size() + ghosts_.size());
+    forEachPoint([&](std::uint32_t id) { all.push_back(weights_[id]); });
+    const auto reference = all.begin() + std::ptrdiff_t(kReferenceQuantile * double(all.size()));
+    std::nth_element(all.begin(), reference, all.end());
+    referenceWeight_ = all.empty() ? 0.0 : *reference;
     double lightest = HUGE_VAL, heaviest = -HUGE_VAL;
     forEachPoint([&](std::uint32_t id) {
       lightest = std::min(lightest, weights_[id]);
       heaviest = std::max(heaviest, weights_[id]);
     });
     weightSpread_ = heaviest > lightest ? heaviest - lightest : 0;
-    lightest_ = lightest;
+    farthestReach_ = std::sqrt(std::max(heaviest - referenceWeight_, 0.0));
     if (!(heaviest > lightest))
       weights_ = nullptr;
   }
@@ -473,8 +485,9 @@ void PeriodicDelaunay::chooseFrame()
   for (int k = 0; k < 3; ++k)
     if (box_.periodic[k])
     {
-      // The widest shell's images, a little beyond it for the rounding of their records.
-      const double reach = (widest_ + std::sqrt(weightSpread_)) * (1 + kSlack) + period_[k];
+      // The widest shell's images and the farthest reach of a weighted point beyond it, a little
+      // more for the rounding of their records.
+      const double reach = (widest_ + farthestReach_) * (1 + kSlack) + period_[k];
       coverBounds_.lo[k] = box_.lo[k] - reach;
       coverBounds_.hi[k] = box_.lo[k] + period_[k] + reach;
       shifts[k] = false; // images are not among the points checked
@@ -537,7 +550,7 @@ void PeriodicDelaunay::addPoints()
 bool PeriodicDelaunay::reachesTooFar() const
 {
   for (int k = 0; k < 3; ++k)
-    if (box_.periodic[k] && std::sqrt(weightSpread_) > kMostReach * period_[k])
+    if (box_.periodic[k] && farthestReach_ > kMostReach * period_[k])
       return true;
   return false;
 }
@@ -595,7 +608,7 @@ bool PeriodicDelaunay::addRegions(const std::vector<ImageRegion>& regions)
   // bucket whose points all lie inside a region has its images added at once, and the other
   // regions that hold it pass it over instead of testing each point again.
   std::unordered_set<std::uint64_t> whole;
-  const double farthest = std::sqrt(weightSpread_); // the farthest reach of a weighted point
+  const double farthest = farthestReach_;
   for (const ImageRegion& base : regions)
   {
     // Weighted points within their reach of the region: those within the farthest one looked at.
@@ -790,7 +803,7 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     most = std::max({most, std::fabs(toFrame(frame_, coverBounds_.lo[k], k)),
       std::fabs(toFrame(frame_, coverBounds_.hi[k], k))});
   // Weighted: in the frame, whose scale squares in the weights (the mesh's are in it).
-  const double weightScale = scale * scale, lightest = lightest_ * weightScale;
+  const double weightScale = scale * scale, reference = referenceWeight_ * weightScale;
   const SmallSphere small(margin, most, weightSpread_ * weightScale);
   Failures out;
   std::mutex failed; // rare, from every thread of the visit
@@ -851,76 +864,77 @@ PeriodicDelaunay::Failures PeriodicDelaunay::failures(const IncrementalDelaunay&
     }
     fail({region}, out.hull);
   });
-  mesh.visitTetrahedra(
-    [&](const std::uint32_t ids[4], const double* const xyz[4], const double* weights) {
-      if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
-        return;
-      double lowered[3], drop = 0, reach = 0;
-      if (weights)
+  mesh.visitTetrahedra([&](const std::uint32_t ids[4], const double* const xyz[4],
+                         const double* weights) {
+    if (std::min({ids[0], ids[1], ids[2], ids[3]}) >= boxPoints_)
+      return;
+    double lowered[3], drop = 0, reach = 0;
+    if (weights)
+    {
+      double heaviest = weights[0];
+      for (int i = 0; i < 3; ++i)
       {
-        double heaviest = weights[0];
-        for (int i = 0; i < 3; ++i)
-        {
-          lowered[i] = weights[i + 1] - weights[0];
-          heaviest = std::max(heaviest, weights[i + 1]);
-        }
-        drop = weights[0] - lightest;
-        reach = std::sqrt(std::max(heaviest - lightest, 0.0));
+        lowered[i] = weights[i + 1] - weights[0];
+        heaviest = std::max(heaviest, weights[i + 1]);
       }
-      const double* lowers = weights ? lowered : nullptr;
-      if (small.holds(xyz, lowers, reach))
-        return;
-      double c[3], radius;
-      Bounds sphere;
-      const SphereBox made =
-        sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, drop);
-      if (made == SphereBox::Misses)
-        return;
-      if (made == SphereBox::Flat)
-      {
-        // Flat in floats: the images within half a period of it.
-        Bounds around;
-        for (int i = 0; i < 4; ++i)
-          around.include(xyz[i]);
-        for (int k = 0; k < 3; ++k)
-        {
-          const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
-          around.lo[k] -= grow;
-          around.hi[k] += grow;
-        }
-        fail({around}, out.spheres);
-        return;
-      }
-      bool inShell = true;
+      drop = weights[0] - reference;
+      // The box's point's reach, and twice what a's lightness adds to the ball (SmallSphere).
+      reach = std::sqrt(std::max(heaviest - reference, 0.0)) + 2 * std::sqrt(std::max(-drop, 0.0));
+    }
+    const double* lowers = weights ? lowered : nullptr;
+    if (small.holds(xyz, lowers, reach))
+      return;
+    double c[3], radius;
+    Bounds sphere;
+    const SphereBox made =
+      sphereBox(xyz, extent, box_.periodic, most, c, radius, sphere, lowers, drop);
+    if (made == SphereBox::Misses)
+      return;
+    if (made == SphereBox::Flat)
+    {
+      // Flat in floats: the images within half a period of it.
+      Bounds around;
+      for (int i = 0; i < 4; ++i)
+        around.include(xyz[i]);
       for (int k = 0; k < 3; ++k)
-        inShell =
-          inShell && sphere.lo[k] > around.lo[k] - margin && sphere.hi[k] < around.hi[k] + margin;
-      if (inShell)
-        return;
-      // A region that holds the sphere holds its centre, and is filed where the centre is.
-      bool inRegion = false;
-      Bounds centre;
-      centre.include(c);
-      regionBuckets.visit(centre, [&](std::uint32_t r) {
-        if (inRegion)
-          return;
-        inRegion = regions[r].holds(sphere, c, radius, most);
-      });
+      {
+        const double grow = box_.periodic[k] ? 0.5 * (box.hi[k] - box.lo[k]) : spacing;
+        around.lo[k] -= grow;
+        around.hi[k] += grow;
+      }
+      fail({around}, out.spheres);
+      return;
+    }
+    bool inShell = true;
+    for (int k = 0; k < 3; ++k)
+      inShell =
+        inShell && sphere.lo[k] > around.lo[k] - margin && sphere.hi[k] < around.hi[k] + margin;
+    if (inShell)
+      return;
+    // A region that holds the sphere holds its centre, and is filed where the centre is.
+    bool inRegion = false;
+    Bounds centre;
+    centre.include(c);
+    regionBuckets.visit(centre, [&](std::uint32_t r) {
       if (inRegion)
         return;
-      // A region a spacing wider, so that the tetrahedra that replace this one fit it too; its
-      // ball where every axis is periodic.
-      ImageRegion failure{sphere};
-      for (int k = 0; k < 3; ++k)
-      {
-        failure.box.lo[k] -= spacing;
-        failure.box.hi[k] += spacing;
-        failure.centre[k] = c[k];
-      }
-      if (periodicAxes_ == 3)
-        failure.radius = radius + spacing;
-      fail(failure, out.spheres);
+      inRegion = regions[r].holds(sphere, c, radius, most);
     });
+    if (inRegion)
+      return;
+    // A region a spacing wider, so that the tetrahedra that replace this one fit it too; its
+    // ball where every axis is periodic.
+    ImageRegion failure{sphere};
+    for (int k = 0; k < 3; ++k)
+    {
+      failure.box.lo[k] -= spacing;
+      failure.box.hi[k] += spacing;
+      failure.centre[k] = c[k];
+    }
+    if (periodicAxes_ == 3)
+      failure.radius = radius + spacing;
+    fail(failure, out.spheres);
+  });
   return out;
 }
 

@@ -20,12 +20,13 @@
 //
 // Weighted points (power distance |x - p|^2 - w) make the covering a regular tetrahedralization.
 // An image q conflicts with an orthosphere (c, r) only where |q - c|^2 < r^2 + w_q, so within
-// R + sqrt(w_q - w_0) of c, R^2 = r^2 + w_0 for the lightest weight w_0 (roots add up no less).
-// So each point's images are held a reach sqrt(w - w_0) beyond the shell and the regions, and the
-// certificate checks the balls (c, R) where it checked circumspheres: a heavy point brings its
-// images from afar, not every point's. The orthocentre of a tetrahedron at p lies in p's power
+// R + sqrt(max(w_q - w_0, 0)) of c, R^2 = r^2 + w_0 for a reference weight w_0 (roots add up no
+// less). So each point's images are held a reach sqrt(max(w - w_0, 0)) beyond the shell and the
+// regions, and the certificate checks the balls (c, R) where it checked circumspheres: a heavy
+// point brings its images from afar, not every point's. w_0 is a low quantile of the weights. The orthocentre of a tetrahedron at p lies in p's power
 // cell, which p's images (of p's weight) bound as they bound its Voronoi cell, and R is at most
-// the distance to the nearest image, so the widest shell is the same. A point that the covering
+// the distance to the nearest image of a point of weight w_0 or more, so the widest shell is the
+// same. A point that the covering
 // hides is hidden in the repeated set, whose points include the covering's; the covering keeps
 // every point that the repeated set keeps, whose stars it certifies.
 //
@@ -172,10 +173,10 @@ private:
       std::uint64_t(std::uint8_t(o[1])) << 8 | std::uint64_t(std::uint8_t(o[2]));
   }
   /// How far beyond the shell and the regions the images of weighted point id are held:
-  /// sqrt(w - w_0), w_0 the lightest weight (the class documentation).
+  /// sqrt(max(w - w_0, 0)), w_0 the reference weight (the class documentation).
   double reachOf(std::uint32_t id) const
   {
-    return weights_ ? std::sqrt(weights_[id] - lightest_) : 0.0;
+    return weights_ ? std::sqrt(std::max(weights_[id] - referenceWeight_, 0.0)) : 0.0;
   }
   /// Whether a weighted point reaches more than kMostReach periods.
   bool reachesTooFar() const;
@@ -234,9 +235,9 @@ private:
 
   const double* xyz_;
   // Null where unweighted, or where every finite point has the same weight; then the largest
-  // finite weight less the smallest.
+  // finite weight less the smallest, the reference weight and the largest reachOf().
   const double* weights_;
-  double weightSpread_ = 0, lightest_ = 0;
+  double weightSpread_ = 0, referenceWeight_ = 0, farthestReach_ = 0;
   std::size_t count_;
   // The points whose tetrahedra and cells are made, the first ones: all of them, or a piece's
   // own; and a piece's ids.
