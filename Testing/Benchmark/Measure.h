@@ -213,12 +213,13 @@ struct RunSettings
   std::vector<std::string> methods; ///< the ones to run; empty for all
   double limit = 1e9;               ///< seconds for one run
   int repeat = 1;                   ///< interleaved runs of every method, where a mode takes it
+  std::vector<double> radii;        ///< lo, hi: points with radii uniform in [lo, hi]; empty: none
   std::string csvFile, markdownFile;
 };
 
 /// Reads [--kinds K,..] [--sizes N,..] [--threads T,..] [--methods M,..] [--limit S] [--repeat K]
-/// [--csv F] [--markdown F] into `settings`, skipping the mode's own `flag`; false (with a message)
-/// on any other option.
+/// [--radii LO,HI] [--csv F] [--markdown F] into `settings`, skipping the mode's own `flag`; false
+/// (with a message) on any other option.
 inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettings& settings)
 {
   for (int i = 1; i < argc; i += 2)
@@ -242,6 +243,13 @@ inline bool parseRunSettings(int argc, char* argv[], const char* flag, RunSettin
     }
     else if (key == "--limit")
       settings.limit = std::stod(value);
+    else if (key == "--radii")
+    {
+      settings.radii.clear();
+      for (const std::string& s : split(value))
+        settings.radii.push_back(std::stod(s));
+      settings.radii.resize(2, settings.radii.empty() ? 0.0 : settings.radii[0]);
+    }
     else if (key == "--repeat")
       settings.repeat = std::max(1, std::stoi(value));
     else if (key == "--csv")

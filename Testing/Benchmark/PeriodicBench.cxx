@@ -35,7 +35,6 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -148,19 +147,7 @@ Measurement runVoropp(const Particles& p)
   fd3::Bounds unit;
   std::fill(unit.lo, unit.lo + 3, 0.0);
   std::fill(unit.hi, unit.hi + 3, 1.0);
-  if (p.radii.empty())
-    return runVoroppContainer(p.xyz, unit, {true, true, true}, false);
-  const std::array<int, 3> blocks = voroppBlocks(unit, p.size());
-  const auto t0 = Clock::now();
-  voro::container_poly box(0, 1, 0, 1, 0, 1, blocks[0], blocks[1], blocks[2], true, true, true, 8);
-  for (std::size_t i = 0; i < p.size(); ++i)
-    box.put(int(i), p.xyz[3 * i], p.xyz[3 * i + 1], p.xyz[3 * i + 2], p.radii[i]);
-  const VoroppSweep sweep = sweepCells(box, false);
-  Measurement m;
-  m.seconds = since(t0);
-  m.ran = true;
-  m.figures = {sweep.volume, double(sweep.cells)};
-  return m;
+  return runVoroppContainer(p.xyz, unit, {true, true, true}, false, p.radii);
 }
 #endif
 
@@ -185,13 +172,8 @@ Particles periodicSet(const std::string& kind, std::size_t n, double lo, double 
   }
   if (hi > 0)
   {
-    std::mt19937_64 random(2);
-    std::uniform_real_distribution<double> radius(lo, hi);
-    for (std::size_t i = 0; i < p.size(); ++i)
-    {
-      p.radii.push_back(radius(random));
-      p.weights.push_back(p.radii.back() * p.radii.back());
-    }
+    p.radii = fd3test::uniformRadii(p.size(), lo, hi, 2);
+    p.weights = fd3test::randomWeights(p.size(), lo, hi, 2);
   }
   return p;
 }
@@ -216,19 +198,10 @@ int periodicMain(int argc, char* argv[])
   RunSettings settings;
   settings.sizes = {100000, 1000000};
   settings.kinds = {"cube"};
-  double lo = 0, hi = 0;
-  std::vector<char*> rest = {argv[0]};
-  for (int i = 1; i < argc; ++i) // --radii is this mode's own
-    if (std::string(argv[i]) == "--radii" && i + 1 < argc)
-    {
-      const std::vector<std::string> r = split(argv[++i]);
-      lo = std::stod(r.at(0));
-      hi = std::stod(r.at(1));
-    }
-    else
-      rest.push_back(argv[i]);
-  if (!parseRunSettings(int(rest.size()), rest.data(), "--periodic", settings))
+  if (!parseRunSettings(argc, argv, "--periodic", settings))
     return 2;
+  const double lo = settings.radii.empty() ? 0.0 : settings.radii[0];
+  const double hi = settings.radii.empty() ? 0.0 : settings.radii[1];
   for (const std::string& kind : settings.kinds)
     if (std::find(kPeriodicSets.begin(), kPeriodicSets.end(), kind) == kPeriodicSets.end())
     {

@@ -79,22 +79,40 @@ VoroppSweep sweepCells(Container& container, bool polyhedra)
 
 /// Voro++'s cells of the points of p (x, y, z each) in box b, periodic along the axes where
 /// `periodic` is set: a container (voroppBlocks()) made and filled, then sweepCells(), timed from
-/// the container's making. Figures: the volumes' sum and the cells made.
+/// the container's making; with `radii` (one per point), the radical container's. Figures: the
+/// volumes' sum, the cells made and those with a volume.
 inline Measurement runVoroppContainer(const std::vector<double>& p, const fd3::Bounds& b,
-  const std::array<bool, 3>& periodic, bool polyhedra)
+  const std::array<bool, 3>& periodic, bool polyhedra, const std::vector<double>& radii = {})
 {
   const std::size_t n = p.size() / 3;
   const std::array<int, 3> blocks = voroppBlocks(b, n);
+  auto fillAndSweep = [&](auto& box, auto put) {
+    for (std::size_t i = 0; i < n; ++i)
+      put(box, i);
+    return sweepCells(box, polyhedra);
+  };
   const auto t0 = Clock::now();
-  voro::container box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0], blocks[1],
-    blocks[2], periodic[0], periodic[1], periodic[2], 8);
-  for (std::size_t i = 0; i < n; ++i)
-    box.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
-  const VoroppSweep sweep = sweepCells(box, polyhedra);
+  VoroppSweep sweep;
+  if (radii.empty())
+  {
+    voro::container box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0], blocks[1],
+      blocks[2], periodic[0], periodic[1], periodic[2], 8);
+    sweep = fillAndSweep(box, [&](voro::container& c, std::size_t i) {
+      c.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+    });
+  }
+  else
+  {
+    voro::container_poly box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0],
+      blocks[1], blocks[2], periodic[0], periodic[1], periodic[2], 8);
+    sweep = fillAndSweep(box, [&](voro::container_poly& c, std::size_t i) {
+      c.put(int(i), p[3 * i], p[3 * i + 1], p[3 * i + 2], radii[i]);
+    });
+  }
   Measurement m;
   m.seconds = since(t0);
   m.ran = true;
-  m.figures = {sweep.volume, double(sweep.cells)};
+  m.figures = {sweep.volume, double(sweep.cells), double(sweep.withVolume)};
   return m;
 }
 } // namespace fd3bench

@@ -25,7 +25,6 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
-#include <random>
 
 namespace fd3bench
 {
@@ -39,15 +38,8 @@ struct WeightedPoints
 
 WeightedPoints uniformWithRadii(std::size_t n, double lo, double hi)
 {
-  WeightedPoints p{fd3test::uniformCube(n, 1), std::vector<double>(n), std::vector<double>(n)};
-  std::mt19937_64 random(2);
-  std::uniform_real_distribution<double> radius(lo, hi);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    p.radii[i] = radius(random);
-    p.weights[i] = p.radii[i] * p.radii[i];
-  }
-  return p;
+  return {fd3test::uniformCube(n, 1), fd3test::uniformRadii(n, lo, hi, 2),
+    fd3test::randomWeights(n, lo, hi, 2)};
 }
 
 // figures: hidden points (Core and CGAL), or the volumes' sum and the cells with a volume.
@@ -116,21 +108,8 @@ Measurement runCgal(const WeightedPoints& p)
 #ifdef FD3_BENCHMARK_WITH_VOROPP
 Measurement runVoropp(const WeightedPoints& p)
 {
-  const std::size_t n = p.radii.size();
-  const fd3::Bounds b = fd3::finiteBounds(p.xyz.data(), n);
-  const std::array<int, 3> blocks = voroppBlocks(b, n);
-  const auto t0 = Clock::now();
-  voro::container_poly box(b.lo[0], b.hi[0], b.lo[1], b.hi[1], b.lo[2], b.hi[2], blocks[0],
-    blocks[1], blocks[2], false, false, false, 8);
-  for (std::size_t i = 0; i < n; ++i)
-    box.put(int(i), p.xyz[3 * i], p.xyz[3 * i + 1], p.xyz[3 * i + 2], p.radii[i]);
-  const VoroppSweep sweep = sweepCells(box, false);
-  Measurement m;
-  m.seconds = since(t0);
-  m.ran = true;
-  m.peakMiB = peakSoFarMiB();
-  m.figures = {sweep.volume, double(sweep.withVolume)};
-  return m;
+  const fd3::Bounds b = fd3::finiteBounds(p.xyz.data(), p.radii.size());
+  return runVoroppContainer(p.xyz, b, {false, false, false}, false, p.radii);
 }
 #endif
 
@@ -153,19 +132,10 @@ int weightedMain(int argc, char* argv[])
 {
   RunSettings settings;
   settings.sizes = {100000, 1000000};
-  double lo = 0.001, hi = 0.01;
-  std::vector<char*> rest = {argv[0]};
-  for (int i = 1; i < argc; ++i) // --radii is this mode's own
-    if (std::string(argv[i]) == "--radii" && i + 1 < argc)
-    {
-      const std::vector<std::string> r = split(argv[++i]);
-      lo = std::stod(r.at(0));
-      hi = std::stod(r.at(1));
-    }
-    else
-      rest.push_back(argv[i]);
-  if (!parseRunSettings(int(rest.size()), rest.data(), "--weighted", settings))
+  settings.radii = {0.001, 0.01};
+  if (!parseRunSettings(argc, argv, "--weighted", settings))
     return 2;
+  const double lo = settings.radii[0], hi = settings.radii[1];
   const std::vector<ModeMethod<WeightedPoints>> chosen = methods(settings.methods);
   std::ostringstream md, csv;
   md << "Machine: " << machineName() << ". Uniform points in the unit cube, radii uniform in ["

@@ -26,6 +26,7 @@ namespace
 using fd3test::canonical;
 using fd3test::domainOf;
 using fd3test::Points;
+using fd3test::randomWeights;
 using fd3test::sum;
 using fd3test::tetrahedraOf;
 
@@ -52,20 +53,6 @@ fd3::PeriodicTriangulation checked(const Points& p, const std::vector<double>& w
   for (const std::uint32_t h : t.hidden)
     EXPECT_EQ(t.representative[h], h) << what;
   return t;
-}
-
-/// Weights r^2 for radii uniform in [lo, hi].
-std::vector<double> randomWeights(std::size_t n, double lo, double hi, std::uint64_t seed)
-{
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> radius(lo, hi);
-  std::vector<double> w(n);
-  for (double& x : w)
-  {
-    const double r = radius(random);
-    x = r * r;
-  }
-  return w;
 }
 
 /// A k^3 lattice of the given spacing from the origin, and alternating weights on it (0 and

@@ -17,6 +17,7 @@
 namespace
 {
 using fd3test::Points;
+using fd3test::randomWeights;
 
 /// The regular tetrahedralization of p with weights w, checked by the validator and by its own
 /// figures: every finite point a vertex, hidden, or an equal-weight copy.
@@ -39,19 +40,6 @@ fd3::Triangulation triangulateWeighted(const Points& p, const std::vector<double
   for (const std::uint32_t h : result.hidden)
     EXPECT_EQ(result.representative[h], h) << what;
   return result;
-}
-
-std::vector<double> randomWeights(std::size_t n, double lo, double hi, std::uint64_t seed)
-{
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> radius(lo, hi);
-  std::vector<double> w(n);
-  for (double& x : w)
-  {
-    const double r = radius(random);
-    x = r * r;
-  }
-  return w;
 }
 
 TEST(Weighted, PowerTestMatchesRationals)

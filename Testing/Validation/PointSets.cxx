@@ -21,6 +21,24 @@ Points uniformCube(std::size_t n, std::uint64_t seed)
   return p;
 }
 
+std::vector<double> uniformRadii(std::size_t n, double lo, double hi, std::uint64_t seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> radius(lo, hi);
+  std::vector<double> r(n);
+  for (double& x : r)
+    x = radius(rng);
+  return r;
+}
+
+std::vector<double> randomWeights(std::size_t n, double lo, double hi, std::uint64_t seed)
+{
+  std::vector<double> w = uniformRadii(n, lo, hi, seed);
+  for (double& x : w)
+    x *= x;
+  return w;
+}
+
 Points uniformBall(std::size_t n, std::uint64_t seed)
 {
   std::mt19937_64 rng(seed);

@@ -14,6 +14,10 @@ namespace fd3test
 using Points = std::vector<double>; // x,y,z triples
 
 Points uniformCube(std::size_t n, std::uint64_t seed);
+/// n radii uniform in [lo, hi].
+std::vector<double> uniformRadii(std::size_t n, double lo, double hi, std::uint64_t seed);
+/// The weights r^2 of uniformRadii() (balls' weights).
+std::vector<double> randomWeights(std::size_t n, double lo, double hi, std::uint64_t seed);
 Points uniformBall(std::size_t n, std::uint64_t seed);
 /// n points exactly on a sphere (integer coordinates, all cospherical: every insphere test among
 /// them is a tie), about 1M at most. Built from integer quaternions of one norm N: q -> q i q* has
