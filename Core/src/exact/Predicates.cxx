@@ -805,19 +805,7 @@ int Predicates::powerTest(const double* const p[4], const double* pe, const doub
   // An overflow leaves det or the bound infinite or NaN: no comparison then holds.
   if ((det > bound || -det > bound) && semiStaticHolds(scale, filter::kInSphereRange, largest))
     return -signOf(det);
-  return inexact ? powerTestOfImages(p, pe, w, we) : powerTestExact(p, pe, w, we);
-}
-
-int Predicates::powerTestOfImages(
-  const double* const p[4], const double* pe, const double w[4], double we)
-{
-  ++exactInSphereCalls;
-  ++integerExactCalls;
-  const double weights[5] = {w[0], w[1], w[2], w[3], we};
-  const double* residuals[4] = {
-    residualOf(p[0]), residualOf(p[1]), residualOf(p[2]), residualOf(p[3])};
-  IntegerRows<4> q(p, pe, residuals, residualOf(pe), weightScaleLimit(weights, 5));
-  return liftedDeterminantSign(q, weights);
+  return powerTestExact(p, pe, w, we);
 }
 
 // Over integers: the coordinates count a power of two 2^s low enough that the weights, which are
@@ -828,7 +816,15 @@ int Predicates::powerTestExact(
   ++exactInSphereCalls;
   ++integerExactCalls;
   const double weights[5] = {w[0], w[1], w[2], w[3], we};
-  IntegerRows<4> q(p, pe, weightScaleLimit(weights, 5));
+  const double* residuals[4] = {nullptr, nullptr, nullptr, nullptr};
+  const double* residualE = nullptr;
+  if (tuning_.images)
+  {
+    for (int r = 0; r < 4; ++r)
+      residuals[r] = residualOf(p[r]);
+    residualE = residualOf(pe);
+  }
+  IntegerRows<4> q(p, pe, residuals, residualE, weightScaleLimit(weights, 5));
   return liftedDeterminantSign(q, weights);
 }
 

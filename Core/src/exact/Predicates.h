@@ -106,21 +106,30 @@ struct RecordBounds
 {
   double orient, inSphere;
 };
+/// The terms those bounds are made of: the extents' product at e + eps and their largest, the
+/// sum of their squares at e, and the growths from e to e + eps, P(e + eps) - P(e), of the product
+/// and of the sum of squares, summed from positive terms (no cancellation).
+struct RecordGrowth
+{
+  double product, largest, squares, productGrowth, squaresGrowth;
+  RecordGrowth(const double e[3], double eps)
+  {
+    const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
+    largest = std::max({ex, ey, ez});
+    product = ex * ey * ez;
+    squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+    productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
+      eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
+    squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
+  }
+};
 inline RecordBounds recordBounds(const double e[3], double eps)
 {
-  const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
-  const double m = std::max({ex, ey, ez});
-  const double orientProduct = ex * ey * ez, inSphereProduct = m * m * orientProduct;
-  // The growths, summed from positive terms (no cancellation): P(e + eps) - P(e) for the product
-  // of the extents, and the sum of their squares.
-  const double productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
-    eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
-  const double squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
-  const double squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
-  const double orientGrowth = 6 * productGrowth;
-  const double inSphereGrowth = 24 * (squaresGrowth * orientProduct + squares * productGrowth);
-  return {(kOrientSemiStatic * orientProduct + orientGrowth) * 1.01,
-    (kInSphereSemiStatic * inSphereProduct + inSphereGrowth) * 1.01};
+  const RecordGrowth g(e, eps);
+  const double orientGrowth = 6 * g.productGrowth;
+  const double inSphereGrowth = 24 * (g.squaresGrowth * g.product + g.squares * g.productGrowth);
+  return {(kOrientSemiStatic * g.product + orientGrowth) * 1.01,
+    (kInSphereSemiStatic * (g.largest * g.largest * g.product) + inSphereGrowth) * 1.01};
 }
 
 /// The power test's error bound (Predicates::powerTest()) for records whose differences are at
@@ -130,15 +139,9 @@ inline RecordBounds recordBounds(const double e[3], double eps)
 /// spread) ex ey ez (4 lowered lifts, each with a 6-term minor). 1% for the rounding of all that.
 inline double powerRecordBound(const double e[3], double spread, double eps)
 {
-  const double ex = e[0] + eps, ey = e[1] + eps, ez = e[2] + eps;
-  const double m = std::max({ex, ey, ez});
-  const double product = ex * ey * ez;
-  const double productGrowth = eps * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]) +
-    eps * eps * (e[0] + e[1] + e[2]) + eps * eps * eps;
-  const double squaresGrowth = 2 * eps * (e[0] + e[1] + e[2]) + 3 * eps * eps;
-  const double squares = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
-  const double growth = 24 * (squaresGrowth * product + (squares + spread) * productGrowth);
-  return (kPowerSemiStatic * product * (3 * m * m + spread) + growth) * 1.01;
+  const RecordGrowth g(e, eps);
+  const double growth = 24 * (g.squaresGrowth * g.product + (g.squares + spread) * g.productGrowth);
+  return (kPowerSemiStatic * g.product * (3 * g.largest * g.largest + spread) + growth) * 1.01;
 }
 
 constexpr double kOrientRange = 0x1p200;
@@ -292,9 +295,8 @@ private:
   int symbolicInSphere(const double* const p[4], const double* pe);
   int inSphereExact(
     const double* a, const double* b, const double* c, const double* d, const double* e);
+  /// The power test over integers; periodic images' records (useImages()) with their residuals.
   int powerTestExact(const double* const p[4], const double* pe, const double w[4], double we);
-  /// powerTestExact() where the records are periodic images' (useImages()), with their residuals.
-  int powerTestOfImages(const double* const p[4], const double* pe, const double w[4], double we);
   /// The exact stages of periodic images (useImages()).
   int orient3dOfImages(const double* a, const double* b, const double* c, const double* d);
   int inSphereOfImages(

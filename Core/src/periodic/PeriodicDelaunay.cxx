@@ -134,8 +134,8 @@ public:
 
   /// Whether the circumsphere of a tetrahedron with a vertex in the box surely has a diameter
   /// below the margin; weighted, whether its ball surely stays within the margin, for `lowered`
-  /// its vertices' weights less the first's and `vertexReach` the largest sqrt(w_v - w_0) of its
-  /// vertices. False where floats cannot tell.
+  /// its vertices' weights less the first's and `vertexReach` the largest sqrt(max(w_v - w_0, 0))
+  /// of its vertices plus twice sqrt(max(w_0 - w_a, 0)). False where floats cannot tell.
   bool holds(
     const double* const xyz[4], const double* lowered = nullptr, double vertexReach = 0) const
   {
@@ -455,14 +455,12 @@ bool PeriodicDelaunay::wrapPoints()
     std::vector<double> all;
     all.reserve(points_.size() + ghosts_.size());
     forEachPoint([&](std::uint32_t id) { all.push_back(weights_[id]); });
+    const auto [lightestAt, heaviestAt] = std::minmax_element(all.begin(), all.end());
+    const double lightest = all.empty() ? 0.0 : *lightestAt;
+    const double heaviest = all.empty() ? 0.0 : *heaviestAt;
     const auto reference = all.begin() + std::ptrdiff_t(kReferenceQuantile * double(all.size()));
     std::nth_element(all.begin(), reference, all.end());
     referenceWeight_ = all.empty() ? 0.0 : *reference;
-    double lightest = HUGE_VAL, heaviest = -HUGE_VAL;
-    forEachPoint([&](std::uint32_t id) {
-      lightest = std::min(lightest, weights_[id]);
-      heaviest = std::max(heaviest, weights_[id]);
-    });
     weightSpread_ = heaviest > lightest ? heaviest - lightest : 0;
     farthestReach_ = std::sqrt(std::max(heaviest - referenceWeight_, 0.0));
     if (!(heaviest > lightest))
