@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A/B of the kernel against an earlier commit's, on this machine, in interleaved runs.
 #   Testing/Benchmark/ab.sh <commit> [kinds=cube,ball,torus,ellipsoid] [points=1000000]
-#                           [runs=5] [threads=1] [voronoi | periodic | periodic-voronoi]
+#                           [runs=5] [threads=1] [voronoi | periodic | periodic-voronoi | weighted]
 # Builds <commit>'s Core and the working tree's in build-ab/ (Release, as setup.sh builds), both
 # timed by the same driver (ab/ABDriver.cxx) on the same generated points, then runs them in
 # turn, A then B on even runs and B then A on odd ones, and prints for each point set the best

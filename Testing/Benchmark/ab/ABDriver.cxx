@@ -2,8 +2,10 @@
 // this program against two versions of Core and runs them in turn. It uses only what every
 // version since the public API settled offers: fd3::triangulate() and, where the version has
 // them, fd3::voronoiCells() (FD3_AB_VORONOI) and the periodic unit box's fd3::triangulatePeriodic()
-// and fd3::voronoiCellsPeriodic() (FD3_AB_PERIODIC; the points wrapped into it).
-//   ABDriver <kind> <points> <threads> [voronoi | periodic | periodic-voronoi]
+// and fd3::voronoiCellsPeriodic() (FD3_AB_PERIODIC; the points wrapped into it), and the regular
+// tetrahedralization of weighted points (FD3_AB_WEIGHTED; radii uniform in [0.001, 0.01], as
+// Benchmark --weighted draws them).
+//   ABDriver <kind> <points> <threads> [voronoi | periodic | periodic-voronoi | weighted]
 // prints: <seconds> <output hash> <tetrahedra or cells>, and the kernel's phase times to stderr.
 // The seconds are the kernel's call alone, not the hashing of its output.
 #include "PointSets.h"
@@ -22,6 +24,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -107,7 +110,8 @@ int main(int argc, char* argv[])
   if (argc < 4)
   {
     std::fprintf(stderr,
-      "usage: ABDriver <kind> <points> <threads> [voronoi | periodic | periodic-voronoi]\n");
+      "usage: ABDriver <kind> <points> <threads> [voronoi | periodic | periodic-voronoi | "
+      "weighted]\n");
     return 2;
   }
   const fd3test::Points p = fd3test::generate(argv[1], std::strtoull(argv[2], nullptr, 10), 1);
@@ -168,7 +172,24 @@ int main(int argc, char* argv[])
     fd3::Options options;
     options.computeNeighbors = false; // as the VTK filter runs it
     options.threads = threads;
-    const fd3::Triangulation t = fd3::triangulate(p.data(), p.size() / 3, options);
+    const std::size_t n = p.size() / 3;
+    std::vector<double> weights;
+    if (mode == "weighted")
+#ifdef FD3_AB_WEIGHTED
+      weights = fd3test::randomWeights(n, 0.001, 0.01, 2);
+#else
+    {
+      std::fprintf(stderr, "ABDriver: this version of Core has no weighted points\n");
+      return 2;
+    }
+#endif
+    const fd3::Triangulation t = weights.empty()
+      ? fd3::triangulate(p.data(), n, options)
+#ifdef FD3_AB_WEIGHTED
+      : fd3::triangulate(p.data(), weights.data(), n, options);
+#else
+      : fd3::Triangulation();
+#endif
     stop();
     hash = hashOfTetrahedra(t);
     count = t.numberOfTetrahedra();
