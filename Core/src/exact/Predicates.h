@@ -381,7 +381,8 @@ inline int Predicates::orient3d(const double* a, const double* b, const double* 
   // det[a-d; b-d; c-d] is the negative of VTK's orientation.
   const double det =
     adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-  if (det > tuning_.orientStatic || -det > tuning_.orientStatic)
+  // One comparison of |det|: det > bound || -det > bound compiled to a first branch on det's sign.
+  if (std::fabs(det) > tuning_.orientStatic)
     return -filter::signOf(det);
   return orient3dBeyondStatic(det, a, b, c, d);
 }

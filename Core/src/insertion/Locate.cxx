@@ -37,10 +37,13 @@ void orderByDistance(const double* const q[4], const double* p, int order[4])
   double d[4];
   for (int k = 0; k < 4; ++k)
     d[k] = distance2(q[k], p);
+  // The selections as max, min and masks: written as conditionals, the compiler made branches
+  // of them.
   const auto exchange = [&](int i, int j) {
-    const bool swap = d[i] < d[j];
-    const double di = swap ? d[j] : d[i], dj = swap ? d[i] : d[j];
-    const int oi = swap ? order[j] : order[i], oj = swap ? order[i] : order[j];
+    const int swap = -static_cast<int>(d[i] < d[j]);
+    const double di = std::max(d[i], d[j]), dj = std::min(d[i], d[j]);
+    const int oi = (order[j] & swap) | (order[i] & ~swap),
+              oj = (order[i] & swap) | (order[j] & ~swap);
     d[i] = di;
     d[j] = dj;
     order[i] = oi;
