@@ -173,22 +173,19 @@ int main(int argc, char* argv[])
     options.computeNeighbors = false; // as the VTK filter runs it
     options.threads = threads;
     const std::size_t n = p.size() / 3;
-    std::vector<double> weights;
-    if (mode == "weighted")
 #ifdef FD3_AB_WEIGHTED
-      weights = fd3test::randomWeights(n, 0.001, 0.01, 2);
+    const std::vector<double> weights =
+      mode == "weighted" ? fd3test::randomWeights(n, 0.001, 0.01, 2) : std::vector<double>();
+    const fd3::Triangulation t = weights.empty()
+      ? fd3::triangulate(p.data(), n, options)
+      : fd3::triangulate(p.data(), weights.data(), n, options);
 #else
+    if (mode == "weighted")
     {
       std::fprintf(stderr, "ABDriver: this version of Core has no weighted points\n");
       return 2;
     }
-#endif
-    const fd3::Triangulation t = weights.empty()
-      ? fd3::triangulate(p.data(), n, options)
-#ifdef FD3_AB_WEIGHTED
-      : fd3::triangulate(p.data(), weights.data(), n, options);
-#else
-      : fd3::Triangulation();
+    const fd3::Triangulation t = fd3::triangulate(p.data(), n, options);
 #endif
     stop();
     hash = hashOfTetrahedra(t);
