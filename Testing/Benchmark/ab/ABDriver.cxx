@@ -118,6 +118,17 @@ int main(int argc, char* argv[])
   const int threads = std::atoi(argv[3]);
   const std::string mode = argc > 4 ? argv[4] : "";
   const bool voronoi = mode == "voronoi";
+#ifndef FD3_AB_WEIGHTED
+  if (mode == "weighted")
+  {
+    std::fprintf(stderr, "ABDriver: this version of Core has no weighted points\n");
+    return 2;
+  }
+#endif
+  // Drawn before the clock starts, as the points are.
+  const std::vector<double> weights = mode == "weighted"
+    ? fd3test::randomWeights(p.size() / 3, 0.001, 0.01, 2)
+    : std::vector<double>();
   const auto start = std::chrono::steady_clock::now();
   double seconds = 0;
   const auto stop = [&] {
@@ -174,17 +185,10 @@ int main(int argc, char* argv[])
     options.threads = threads;
     const std::size_t n = p.size() / 3;
 #ifdef FD3_AB_WEIGHTED
-    const std::vector<double> weights =
-      mode == "weighted" ? fd3test::randomWeights(n, 0.001, 0.01, 2) : std::vector<double>();
-    const fd3::Triangulation t = weights.empty()
-      ? fd3::triangulate(p.data(), n, options)
-      : fd3::triangulate(p.data(), weights.data(), n, options);
+    const fd3::Triangulation t = mode == "weighted"
+      ? fd3::triangulate(p.data(), weights.data(), n, options)
+      : fd3::triangulate(p.data(), n, options);
 #else
-    if (mode == "weighted")
-    {
-      std::fprintf(stderr, "ABDriver: this version of Core has no weighted points\n");
-      return 2;
-    }
     const fd3::Triangulation t = fd3::triangulate(p.data(), n, options);
 #endif
     stop();
