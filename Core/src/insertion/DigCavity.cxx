@@ -24,16 +24,21 @@ bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
   return predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v)) > 0;
 }
 
-// A ghost's circumsphere is the open half-space beyond its hull face. A point on the face's plane
-// takes the verdict of the finite tetrahedron behind the face, so that the two never disagree and
-// no flat tetrahedron is created.
+// A ghost's circumsphere is the open half-space beyond its hull face. The rare point on the face's
+// plane is decided out of line, which spares the common test the register saves of its calls.
 bool Inserter::ghostInConflict(TetId ghost, VertId v)
 {
   VertId tv[4];
   tets_.vertices(ghost, tv);
   const int side = predicates_.orient3d(point(tv[0]), point(tv[1]), point(tv[2]), point(v));
-  if (side != 0)
-    return side > 0;
+  return side != 0 ? side > 0 : onHullPlaneInConflict(ghost, v);
+}
+
+// A point on a hull face's plane takes the verdict of the finite tetrahedron behind the face, so
+// that the two never disagree and no flat tetrahedron is created.
+bool Inserter::onHullPlaneInConflict(TetId ghost, VertId v)
+{
+  VertId tv[4];
   const TetId behind = tetOf(tets_.neighbor(ghost, 3));
   if (owners_ && !acquire(behind))
   {

@@ -207,6 +207,21 @@ private:
   TetId regionStart(VertId v) const;
   template <bool Weighted>
   TetId walk(TetId from, VertId v);
+  /// A walk's way over the hull, from ghost to ghost.
+  struct HullWalk
+  {
+    int steps = 0;
+    bool over = false;  ///< the last step went from ghost to ghost
+    FaceCode entry = 0; ///< the way inside from the ghost where the walk came onto the hull
+  };
+  enum class AtGhost
+  {
+    Ends,  ///< the walk ends at the ghost
+    Lost,  ///< the walk ends without a tetrahedron (lockLost_)
+    Steps, ///< the walk goes on
+  };
+  AtGhost walkAtGhost(
+    TetId ghost, VertId v, bool toFirstConflict, int entryFace, HullWalk& hull, FaceCode& next);
   /// Whether the probe's first filter proves v in conflict with the finite tetrahedron tv (of
   /// points q).
   bool provenInConflict(const InSphereProbe& probe, const double* const q[4], const VertId*)
@@ -270,6 +285,7 @@ private:
     return predicates_.insideSoS(q, p[v].xyz);
   }
   bool ghostInConflict(TetId ghost, VertId v);
+  bool onHullPlaneInConflict(TetId ghost, VertId v);
   void undoCavity();
   /// Room for `count` entries or more in each of the cavity's lists; returns the room.
   std::size_t makeRoomInCavityLists(std::size_t count);
@@ -332,6 +348,9 @@ private:
   VertId lastInserted_ = 0;
   TetId regionStart_ = 0;
   TetId ghostTet_ = kNoTet; // the ghost vertex's stand-in for Vertex::tet, during fills only
+  // How many steps the next walk may take over the hull (Locate.cxx): one more after each walk
+  // that found its way there, half after each that ran out of them.
+  int hullStepCap_ = 1;
   std::uint64_t rng_;
   std::vector<std::uint32_t> vertexStamp_; // only with a volume threshold
   std::uint32_t stamp_ = 0;
