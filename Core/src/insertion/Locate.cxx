@@ -179,10 +179,10 @@ TetId Inserter::regionStart(VertId v) const
 // The walk at a ghost: whether it ends there, where the point lies beyond the hull face (with
 // toFirstConflict, where the ghost is in conflict: on the face's plane, the tetrahedron behind it
 // decides), else its next face: over the hull to the next ghost, or inside, from where the walk
-// came onto the hull. Where the hull's faces are needles (a cylinder's samples), a walk over them
-// ends far from the point; a walk that ran out of hull steps halves the next ones' allowance, and
-// one that found its way there raises it. Out of line: inline, the walk over volume data, which
-// meets few ghosts, ran slower.
+// came onto the hull (in a locking pass, always inside). Where the hull's faces are needles (a
+// cylinder's samples), a walk over them ends far from the point; a walk that ran out of hull steps
+// halves the next ones' allowance, and one that found its way there raises it. Out of line:
+// inline, the walk over volume data, which meets few ghosts, ran slower.
 Inserter::AtGhost Inserter::walkAtGhost(
   TetId ghost, VertId v, bool toFirstConflict, int entryFace, HullWalk& hull, FaceCode& next)
 {
@@ -201,7 +201,10 @@ Inserter::AtGhost Inserter::walkAtGhost(
     return AtGhost::Lost;
   if (!hull.over)
     hull.entry = tets_.neighbor(ghost, 3);
-  const int way = hull.steps < hullStepCap_ ? hullFaceToward(q, p, entryFace) : -1;
+  // In a locking pass the walk holds only the tetrahedron it is in: the one behind the ghost where
+  // it came onto the hull may be another inserter's by the time it would go back, or gone, and
+  // going in from the last ghost made walks on a cylinder many times longer.
+  const int way = !owners_ && hull.steps < hullStepCap_ ? hullFaceToward(q, p, entryFace) : -1;
   hull.over = way >= 0;
   if (hull.over)
   {
