@@ -25,7 +25,7 @@ bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
 }
 
 // A ghost's circumsphere is the open half-space beyond its hull face. The rare point on the face's
-// plane is decided out of line, which spares the common test the register saves of its calls.
+// plane is a function of its own: written here, its calls' register saves burdened every test.
 bool Inserter::ghostInConflict(TetId ghost, VertId v)
 {
   VertId tv[4];

@@ -72,10 +72,10 @@ void orderByDistance(const double* const q[4], const double* p, int order[4])
 
 // The face of a ghost, of hull face q, to cross on the way over the hull to p, or -1 where p lies
 // over the hull face: of the three faces it shares with other ghosts, each on an edge of the hull
-// face, the one across which p's projection on the face's plane lies farthest, never the face the
-// walk came in by. Each projected barycentric coordinate of p, scaled by the face's area, is a
-// triple product with the face's normal. Floating point: the walk only needs a way, the
-// predicates decide.
+// face, the one across whose edge p's projection on the face's plane has its most negative
+// barycentric coordinate, never the face the walk came in by. Each coordinate, scaled by the
+// face's area, is a triple product with the face's normal. Floating point: the walk only needs a
+// way, the predicates decide.
 int hullFaceToward(const double* const q[3], const double* p, int entryFace)
 {
   double e[3][3], r[3][3]; // e[k]: the edge opposite vertex k; r[k]: p from the edge's start
@@ -181,8 +181,8 @@ TetId Inserter::regionStart(VertId v) const
 // decides), else its next face: over the hull to the next ghost, or inside, from where the walk
 // came onto the hull (in a locking pass, always inside). Where the hull's faces are needles (a
 // cylinder's samples), a walk over them ends far from the point; a walk that ran out of hull steps
-// halves the next ones' allowance, and one that found its way there raises it. Out of line:
-// inline, the walk over volume data, which meets few ghosts, ran slower.
+// halves the next ones' allowance, and one that found its way there raises it. A function of its
+// own: inline in the walk's loop, it slowed the walk over volume data, which meets few ghosts.
 Inserter::AtGhost Inserter::walkAtGhost(
   TetId ghost, VertId v, bool toFirstConflict, int entryFace, HullWalk& hull, FaceCode& next)
 {
@@ -204,8 +204,8 @@ Inserter::AtGhost Inserter::walkAtGhost(
   // In a locking pass the walk holds only the tetrahedron it is in: the one behind the ghost where
   // it came onto the hull may be another inserter's by the time it would go back, or gone, and
   // going in from the last ghost made walks on a cylinder many times longer.
-  const int way = !owners_ && hull.steps < hullStepCap_ ? hullFaceToward(q, p, entryFace) : -1;
-  hull.over = way >= 0;
+  const int way = owners_ ? -1 : hullFaceToward(q, p, entryFace);
+  hull.over = way >= 0 && hull.steps < hullStepCap_;
   if (hull.over)
   {
     ++hull.steps;
@@ -213,7 +213,7 @@ Inserter::AtGhost Inserter::walkAtGhost(
   }
   else
   {
-    if (hull.steps >= hullStepCap_)
+    if (way >= 0) // out of hull steps
       hullStepCap_ = std::max(1, hullStepCap_ / 2);
     next = hull.entry;
   }
