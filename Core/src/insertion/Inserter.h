@@ -211,7 +211,6 @@ private:
   struct HullWalk
   {
     int steps = 0;
-    bool over = false;  ///< the last step went from ghost to ghost
     FaceCode entry = 0; ///< the way inside from the ghost where the walk came onto the hull
   };
   enum class AtGhost

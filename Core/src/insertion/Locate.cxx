@@ -190,23 +190,24 @@ Inserter::AtGhost Inserter::walkAtGhost(
   tets_.vertices(ghost, tv);
   const double* q[3] = {point(tv[0]), point(tv[1]), point(tv[2])};
   const double* p = point(v);
+  // Faces 0 to 2 of a ghost are shared with other ghosts, face 3 is the hull face.
+  const bool cameOverHull = entryFace >= 0 && entryFace < 3;
   const int side = predicates_.orient3d(q[0], q[1], q[2], p);
   if (side > 0 || (side == 0 && toFirstConflict && onHullPlaneInConflict(ghost, v)))
   {
-    if (hull.over)
+    if (cameOverHull)
       hullStepCap_ = std::min(kHullSteps, hullStepCap_ + 1);
     return AtGhost::Ends;
   }
   if (lockLost_)
     return AtGhost::Lost;
-  if (!hull.over)
+  if (!cameOverHull)
     hull.entry = tets_.neighbor(ghost, 3);
   // In a locking pass the walk holds only the tetrahedron it is in: the one behind the ghost where
   // it came onto the hull may be another inserter's by the time it would go back, or gone, and
   // going in from the last ghost made walks on a cylinder many times longer.
   const int way = owners_ ? -1 : hullFaceToward(q, p, entryFace);
-  hull.over = way >= 0 && hull.steps < hullStepCap_;
-  if (hull.over)
+  if (way >= 0 && hull.steps < hullStepCap_)
   {
     ++hull.steps;
     next = tets_.neighbor(ghost, way);
