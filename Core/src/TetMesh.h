@@ -276,16 +276,12 @@ public:
       next_ = first;
       end_ = first + static_cast<TetId>(block);
     }
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      if (!free_.empty())
-      {
-        out[i] = free_.back();
-        free_.pop_back();
-      }
-      else
-        out[i] = next_++;
-    }
+    // The free slots last given first, then the block's.
+    const std::size_t reused = std::min(count, free_.size());
+    std::reverse_copy(free_.end() - reused, free_.end(), out);
+    free_.resize(free_.size() - reused);
+    for (std::size_t i = reused; i < count; ++i)
+      out[i] = next_++;
     return true;
   }
 

@@ -5,7 +5,7 @@
 #define fd3_Cavity_h
 
 #include "TetMesh.h"
-#include "fd3/BulkAllocator.h"
+#include "system/ScratchList.h"
 
 #include <cstdint>
 #include <utility>
@@ -20,11 +20,6 @@ struct BoundaryFacet
   TetId inner;
   int face;
 };
-
-/// A vector whose resize() leaves new elements uninitialized: digCavity grows its lists ahead and
-/// writes them through raw pointers.
-template <typename T>
-using ScratchVector = std::vector<T, BulkAllocator<T>>;
 
 /// The fill's local numbers of the boundary's vertices where their Vertex::tet may not hold them:
 /// in a locking pass, a vertex can be on the boundaries of two threads' cavities at once. Open
@@ -68,10 +63,10 @@ struct Cavity
 {
   /// In conflict with the new point: flagged kInCavity, to delete. Each as the face by which the
   /// search entered it (the base by face 0): tetOf() names the tetrahedron.
-  ScratchVector<FaceCode> deleted;
-  ScratchVector<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
-  ScratchVector<BoundaryFacet> boundary;
-  std::vector<TetId> created; ///< created[i] is the new tetrahedron on boundary[i]
+  ScratchList<FaceCode> deleted;
+  ScratchList<TetId> rejected; ///< tested and kept: flagged kNotInCavity until the insertion ends
+  ScratchList<BoundaryFacet> boundary;
+  ScratchList<TetId> created; ///< created[i] is the new tetrahedron on boundary[i]
 
   // The edge table of FillCavity.cxx. The new tetrahedra's vertices get local numbers
   // 0..count-1 (kept in their Vertex::tet during the fill); edgeFace[a * width + b] is the new
@@ -89,9 +84,9 @@ struct Cavity
     FaceCode face;
     std::uint32_t reversedEdge; ///< the entry of edgeFace that holds its neighbour
   };
-  std::vector<LocalVertex> localVertices;  ///< by local number
-  std::vector<FaceCode> edgeFace;          ///< grown on demand, up to kMaxLocalVertices^2
-  std::vector<InteriorFace> interiorFaces; ///< three per new tetrahedron
+  ScratchList<LocalVertex> localVertices;  ///< by local number
+  ScratchList<FaceCode> edgeFace;          ///< grown on demand, up to kMaxLocalVertices^2
+  ScratchList<InteriorFace> interiorFaces; ///< three per new tetrahedron
   LocalNumbers localNumbers;               ///< in a locking pass, in place of Vertex::tet
 
   void clear()

@@ -68,10 +68,10 @@ void Inserter::giveBack(TetId t)
 
 void Inserter::collectBoundary()
 {
-  ScratchVector<FaceCode>& deleted = cavity_.deleted;
-  deleted.erase(std::remove_if(deleted.begin(), deleted.end(),
-                  [&](FaceCode c) { return tets_.flags(tetOf(c)) != kInCavity; }),
-    deleted.end());
+  ScratchList<FaceCode>& deleted = cavity_.deleted;
+  deleted.resize(std::remove_if(deleted.begin(), deleted.end(),
+                   [&](FaceCode c) { return tets_.flags(tetOf(c)) != kInCavity; }) -
+    deleted.begin());
   cavity_.boundary.clear();
   for (FaceCode c : deleted)
   {

@@ -60,8 +60,7 @@ void Inserter::undoCavity()
 std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
 {
   // The lists keep their memory from one insertion to the next, and grow by half at least.
-  std::size_t room = cavity_.deleted.size();
-  room = std::max({count, room + room / 2, cavity_.deleted.capacity()});
+  const std::size_t room = std::max(count, cavity_.deleted.capacity());
   cavity_.deleted.resize(room);
   cavity_.rejected.resize(room);
   cavity_.boundary.resize(room);

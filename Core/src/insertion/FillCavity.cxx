@@ -31,7 +31,7 @@ constexpr std::uint32_t kKeep[4][4] = {
 template <Inserter::Access A>
 bool Inserter::fillCavity(VertId v)
 {
-  std::vector<TetId>& created = cavity_.created;
+  ScratchList<TetId>& created = cavity_.created;
   created.resize(cavity_.boundary.size());
   if (!pool_.take(tets_, created.size(), created.data()))
   {
@@ -167,7 +167,7 @@ template bool Inserter::fillCavity<Inserter::Access::Locking>(VertId);
 // boundary facet).
 void Inserter::linkByRotation()
 {
-  const std::vector<TetId>& created = cavity_.created;
+  const ScratchList<TetId>& created = cavity_.created;
   for (std::size_t i = 0; i < created.size(); ++i)
   {
     const BoundaryFacet& b = cavity_.boundary[i];
