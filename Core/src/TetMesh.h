@@ -45,6 +45,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -111,6 +112,17 @@ public:
     out[2] = r[2];
     out[3] = r[3];
   }
+  /// The vertices of face f of t, in its outward order (kFaceVertices[f]).
+  void faceVertices(TetId t, int f, VertId out[3]) const
+  {
+    const std::uint32_t* r = words_ + 8 * std::size_t(t);
+    const int* q = kFaceVertices[f];
+    // Only a face's first corner can be vertex 0, whose word holds the flags; when it is vertex 1
+    // instead, the mask leaves it as it is (the ghost vertex is only ever vertex 3).
+    out[0] = r[q[0]] & kIdMask;
+    out[1] = r[q[1]];
+    out[2] = r[q[2]];
+  }
   FaceCode neighbor(TetId t, int f) const { return words_[8 * std::size_t(t) + 4 + f]; }
   FaceCode across(FaceCode code) const { return neighbor(tetOf(code), faceOf(code)); }
   std::uint32_t flags(TetId t) const { return words_[8 * std::size_t(t)] >> kVertexIdBits; }
@@ -156,6 +168,15 @@ public:
       r[i] = v[i];
       r[4 + i] = kUnlinked;
     }
+  }
+  /// Writes the vertices of t: those of `from` (flags clear) with vertex f replaced by p. Its
+  /// neighbours are left as they were, for the caller to link all four.
+  void createReplacing(TetId t, TetId from, int f, VertId p) const
+  {
+    std::uint32_t* r = &word(8 * std::size_t(t));
+    std::memcpy(r, words_ + 8 * std::size_t(from), 4 * sizeof(std::uint32_t));
+    r[0] &= kIdMask;
+    r[f] = p;
   }
 
 private:

@@ -19,12 +19,6 @@ namespace
 // the high half tells a number from a tetrahedron.
 constexpr TetId kLocalTag = 0x80000000u;
 constexpr TetId kHighHalf = 0xFFFF0000u;
-
-// kKeep[f][k]: all ones where a new tetrahedron built on face f keeps vertex k of the deleted one,
-// zero at k == f, where the new point goes: the replacement as masks, neither a store into the
-// vertices then a wide reload of them (which stalls store forwarding) nor a branch on f.
-constexpr std::uint32_t kKeep[4][4] = {
-  {0, ~0u, ~0u, ~0u}, {~0u, 0, ~0u, ~0u}, {~0u, ~0u, 0, ~0u}, {~0u, ~0u, ~0u, 0}};
 } // namespace
 
 // Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.
@@ -61,18 +55,20 @@ bool Inserter::fillCavity(VertId v)
   return true;
 }
 
-// One pass over the boundary facets. The new tetrahedron of facet (t, f) is t with vertex f
-// replaced by v, which keeps the orientation positive because v sees the facet from t's side; it is
-// linked to the tetrahedron across the facet. Every facet, in its outward order q0 q1 q2
-// (kFaceVertices[f]), runs along its edges q0->q1, q1->q2, q2->q0, and the facet across each edge
-// runs along it the other way: the new face through v and edge qj->qk (opposite the facet's third
-// vertex) is recorded at that directed edge and, once every facet is done, linked to the face
-// recorded at qk->qj. Edges are indexed by local numbers of the boundary's vertices, given on
-// first sight through localNumberSlot() without a branch (a new vertex takes number `count`,
-// which only advances then). The boundary is a triangulated sphere, so its vertices number F/2 + 2
-// for F facets (Euler), which sizes the table before the pass. Returns false, with every new
-// tetrahedron created and linked across the boundary but not to each other, when the boundary is
-// too large for the table or not a sphere after all.
+// Two passes over the boundary facets. The first creates the new tetrahedron of each facet (t, f):
+// t with vertex f replaced by v, which keeps the orientation positive because v sees the facet
+// from t's side, linked to the tetrahedron across the facet. The second links the new tetrahedra
+// to each other; apart, the two loops keep their values in registers, which the compiler spilled
+// from one loop doing both. Every facet, in its outward order q0 q1 q2 (kFaceVertices[f]), runs
+// along its edges q0->q1, q1->q2, q2->q0, and the facet across each edge runs along it the other
+// way: the new face through v and edge qj->qk (opposite the facet's third vertex) is recorded at
+// that directed edge and, once every facet is done, linked to the face recorded at qk->qj. Edges
+// are indexed by local numbers of the boundary's vertices, given on first sight through
+// localNumberSlot() without a branch (a new vertex takes number `count`, which only advances
+// then). The boundary is a triangulated sphere, so its vertices number F/2 + 2 for F facets
+// (Euler), which sizes the table before the pass. Returns false, with every new tetrahedron
+// created and linked across the boundary but not to each other, when the boundary is too large
+// for the table or not a sphere after all.
 template <Inserter::Access A>
 bool Inserter::createAndLink(VertId v)
 {
@@ -95,40 +91,40 @@ bool Inserter::createAndLink(VertId v)
   Cavity::LocalVertex* localVertices = cavity_.localVertices.data();
   FaceCode* edgeFace = cavity_.edgeFace.data();
   Cavity::InteriorFace* interiorFaces = cavity_.interiorFaces.data();
-  std::uint32_t count = 0;
-  bool linked = fits;
-  TetId start = created[0]; // the new point's tetrahedron
   for (std::size_t i = 0; i < facets; ++i)
   {
     const BoundaryFacet b = boundary[i];
+    const FaceCode outer = tets.neighbor(b.inner, b.face);
+    tets.createReplacing(created[i], b.inner, b.face, v);
+    assert(mayTouch(created[i]) && mayTouch(tetOf(outer)));
+    tets.link(faceCode(created[i], b.face), outer);
+  }
+  std::uint32_t count = 0;
+  bool linked = fits;
+  TetId start = created[0]; // the new point's tetrahedron
+  for (std::size_t i = 0; linked && i < facets; ++i)
+  {
+    const int face = boundary[i].face;
     const TetId n = created[i];
-    VertId nv[4];
-    tets.vertices(b.inner, nv);
-    for (int k = 0; k < 4; ++k)
-      nv[k] = (nv[k] & kKeep[b.face][k]) | (v & ~kKeep[b.face][k]);
-    tets.create(n, nv);
-    assert(mayTouch(n) && mayTouch(tetOf(tets.neighbor(b.inner, b.face))));
-    tets.link(faceCode(n, b.face), tets.neighbor(b.inner, b.face));
-    if (!linked)
-      continue;
-    const int* q = kFaceVertices[b.face];
+    VertId u[3];
+    tets.faceVertices(n, face, u);
     std::uint32_t local[3];
     for (int j = 0; j < 3; ++j)
     {
-      assert(inRegion(nv[q[j]]));
-      TetId& entry = localNumberSlot<A>(vertices, nv[q[j]]);
+      assert(inRegion(u[j]));
+      TetId& entry = localNumberSlot<A>(vertices, u[j]);
       const bool isNew = (entry & kHighHalf) != kLocalTag;
       local[j] = isNew ? count : (entry & 0xFFFFu);
       entry = kLocalTag | local[j];
-      localVertices[count] = {nv[q[j]], n};
+      localVertices[count] = {u[j], n};
       count += isNew;
     }
     if (count > width)
     {
       linked = false; // not a sphere after all: the numbers would leave the table
-      continue;
+      break;
     }
-    if (nv[3] == kInfinite)
+    if (tets.isGhost(n))
     {
       // On the hull, a walk's start had better be a ghost: where points come from outside the
       // hull (a convex surface's samples), the first test then finds the next one in conflict.
@@ -136,12 +132,13 @@ bool Inserter::createAndLink(VertId v)
         localVertices[local[j]].tet = n;
       start = n;
     }
+    const int* q = kFaceVertices[face];
     for (int j = 0; j < 3; ++j)
     {
       const std::uint32_t from = local[j], to = local[j == 2 ? 0 : j + 1];
-      const FaceCode face = faceCode(n, q[j == 0 ? 2 : j - 1]);
-      edgeFace[from * width + to] = face;
-      interiorFaces[3 * i + j] = {face, to * width + from};
+      const FaceCode interior = faceCode(n, q[j == 0 ? 2 : j - 1]);
+      edgeFace[from * width + to] = interior;
+      interiorFaces[3 * i + j] = {interior, to * width + from};
     }
   }
   // Each vertex gets one of its new tetrahedra in place of its number.
@@ -172,6 +169,9 @@ void Inserter::linkByRotation()
   {
     const BoundaryFacet& b = cavity_.boundary[i];
     tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(created[i], b.face));
+    for (int f = 0; f < 4; ++f)
+      if (f != b.face)
+        tets_.setNeighbor(faceCode(created[i], f), kUnlinked);
   }
   for (std::size_t i = 0; i < created.size(); ++i)
   {
