@@ -157,6 +157,7 @@ public:
     std::uint32_t& slot = word(8 * std::size_t(t));
     slot = (slot & kIdMask) | (flags << kVertexIdBits);
   }
+  void clearFlags(TetId t) const { word(8 * std::size_t(t)) &= kIdMask; }
   /// Flags a never-written slot dead.
   void markDead(TetId t) const { word(8 * std::size_t(t)) = kDead << kVertexIdBits; }
   /// Writes the whole record of t at once: vertices v (flags clear), no neighbours yet.

@@ -72,6 +72,14 @@ void Inserter::collectBoundary()
   deleted.resize(std::remove_if(deleted.begin(), deleted.end(),
                    [&](FaceCode c) { return tets_.flags(tetOf(c)) != kInCavity; }) -
     deleted.begin());
+  // The fill clears the flags of the tetrahedra across the boundary; those this one leaves out
+  // are listed with the others to clear.
+  for (const BoundaryFacet& b : cavity_.boundary)
+  {
+    const TetId outer = tetOf(tets_.neighbor(b.inner, b.face));
+    if (tets_.flags(outer) == kNotInCavity)
+      cavity_.rejected.push_back(outer);
+  }
   cavity_.boundary.clear();
   for (FaceCode c : deleted)
   {

@@ -53,6 +53,8 @@ void Inserter::undoCavity()
 {
   for (const FaceCode c : cavity_.deleted)
     tets_.setFlags(tetOf(c), 0);
+  for (const BoundaryFacet& b : cavity_.boundary)
+    tets_.setFlags(tetOf(tets_.neighbor(b.inner, b.face)), 0);
   for (const TetId t : cavity_.rejected)
     tets_.setFlags(t, 0);
 }
@@ -62,7 +64,6 @@ std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
   // The lists keep their memory from one insertion to the next, and grow by half at least.
   const std::size_t room = std::max(count, cavity_.deleted.capacity());
   cavity_.deleted.resize(room);
-  cavity_.rejected.resize(room);
   cavity_.boundary.resize(room);
   return room;
 }
@@ -87,9 +88,8 @@ bool Inserter::digCavity(TetId base, VertId v)
   cavity_.clear();
   std::size_t room = makeRoomInCavityLists(64);
   FaceCode* deleted = cavity_.deleted.data();
-  TetId* rejected = cavity_.rejected.data();
   BoundaryFacet* boundary = cavity_.boundary.data();
-  std::size_t inCavity = 1, kept = 0, facets = 0;
+  std::size_t inCavity = 1, facets = 0;
   bool given = false; // the cavity reached beyond what this inserter may change
   // Face f of t, which is in the cavity: the tetrahedron across is tested if it was not yet, and
   // the face is on the boundary unless that one is in the cavity.
@@ -126,8 +126,6 @@ bool Inserter::digCavity(TetId base, VertId v)
       tets.setFlags(n, inside ? kInCavity : kNotInCavity);
       deleted[inCavity] = across;
       inCavity += inside;
-      rejected[kept] = n;
-      kept += !inside;
       // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
       // outcome would wait for the determinant.
       for (int g = 0; g < 4; ++g)
@@ -165,7 +163,6 @@ bool Inserter::digCavity(TetId base, VertId v)
     {
       room = makeRoomInCavityLists(3 * i + 5);
       deleted = cavity_.deleted.data();
-      rejected = cavity_.rejected.data();
       boundary = cavity_.boundary.data();
     }
     const FaceCode entered = deleted[i];
@@ -175,7 +172,6 @@ bool Inserter::digCavity(TetId base, VertId v)
     visit(tetOf(entered), faces[2]);
   }
   cavity_.deleted.resize(inCavity);
-  cavity_.rejected.resize(kept);
   cavity_.boundary.resize(facets);
   if (given)
   {
