@@ -64,8 +64,9 @@ struct Cavity
   /// In conflict with the new point: flagged kInCavity, to delete. Each as the face by which the
   /// search entered it (the base by face 0): tetOf() names the tetrahedron.
   ScratchList<FaceCode> deleted;
-  /// Flagged kNotInCavity until the insertion ends: tested and kept, or given back, and no longer
-  /// across the boundary (those across it are cleared through it).
+  /// Flagged kNotInCavity, to clear when the insertion ends: given back by the correction, or
+  /// across a boundary facet that the correction took away. Those tested and kept that are across
+  /// the final boundary are cleared through it, unlisted.
   ScratchList<TetId> rejected;
   ScratchList<BoundaryFacet> boundary;
   ScratchList<TetId> created; ///< created[i] is the new tetrahedron on boundary[i]

@@ -72,14 +72,11 @@ void Inserter::collectBoundary()
   deleted.resize(std::remove_if(deleted.begin(), deleted.end(),
                    [&](FaceCode c) { return tets_.flags(tetOf(c)) != kInCavity; }) -
     deleted.begin());
-  // The fill clears the flags of the tetrahedra across the boundary; those this one leaves out
-  // are listed with the others to clear.
+  // The fill clears the flags of the tetrahedra across the boundary. A facet leaves it when its
+  // inner tetrahedron leaves the cavity: the one across is listed, to be cleared with the rest.
   for (const BoundaryFacet& b : cavity_.boundary)
-  {
-    const TetId outer = tetOf(tets_.neighbor(b.inner, b.face));
-    if (tets_.flags(outer) == kNotInCavity)
-      cavity_.rejected.push_back(outer);
-  }
+    if (tets_.flags(b.inner) != kInCavity)
+      cavity_.rejected.push_back(tetOf(tets_.neighbor(b.inner, b.face)));
   cavity_.boundary.clear();
   for (FaceCode c : deleted)
   {

@@ -61,8 +61,11 @@ void Inserter::undoCavity()
 
 std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
 {
-  // The lists keep their memory from one insertion to the next, and grow by half at least.
-  const std::size_t room = std::max(count, cavity_.deleted.capacity());
+  // The lists keep their memory from one insertion to the next (a ScratchList grows by half at
+  // least), and each takes all the room it has.
+  cavity_.deleted.resize(std::max(count, cavity_.deleted.capacity()));
+  cavity_.boundary.resize(std::max(count, cavity_.boundary.capacity()));
+  const std::size_t room = std::min(cavity_.deleted.capacity(), cavity_.boundary.capacity());
   cavity_.deleted.resize(room);
   cavity_.boundary.resize(room);
   return room;

@@ -55,20 +55,21 @@ bool Inserter::fillCavity(VertId v)
   return true;
 }
 
-// Two passes over the boundary facets. The first creates the new tetrahedron of each facet (t, f):
-// t with vertex f replaced by v, which keeps the orientation positive because v sees the facet
-// from t's side, linked to the tetrahedron across the facet, whose flags it clears (kNotInCavity:
-// tested and kept). The second links the new tetrahedra to each other; apart, the two loops keep
-// their values in registers, which the compiler spilled from one loop doing both. Every facet, in
-// its outward order q0 q1 q2 (kFaceVertices[f]), runs along its edges q0->q1, q1->q2, q2->q0, and
-// the facet across each edge runs along it the other way: the new face through v and edge qj->qk
-// (opposite the facet's third vertex) is recorded at that directed edge and, once every facet is
-// done, linked to the face recorded at qk->qj. Edges are indexed by local numbers of the
-// boundary's vertices, given on first sight through localNumberSlot() without a branch (a new
-// vertex takes number `count`, which only advances then). The boundary is a triangulated sphere,
-// so its vertices number F/2 + 2 for F facets (Euler), which sizes the table before the pass.
-// Returns false, with every new tetrahedron created and linked across the boundary but not to
-// each other, when the boundary is too large for the table or not a sphere after all.
+// Three loops. The first creates the new tetrahedron of each boundary facet (t, f): t with vertex f
+// replaced by v, which keeps the orientation positive because v sees the facet from t's side,
+// linked to the tetrahedron across the facet, whose flags it clears (kNotInCavity: tested and
+// kept). The second numbers the facets' vertices and records their edges, the third links the new
+// tetrahedra to each other; apart, the first two keep their values in registers, which the compiler
+// spilled from one loop doing both. Every facet, in its outward order q0 q1 q2 (kFaceVertices[f]),
+// runs along its edges q0->q1, q1->q2, q2->q0, and the facet across each edge runs along it the
+// other way: the new face through v and edge qj->qk (opposite the facet's third vertex) is recorded
+// at that directed edge and, once every facet is done, linked to the face recorded at qk->qj. Edges
+// are indexed by local numbers of the boundary's vertices, given on first sight through
+// localNumberSlot() without a branch (a new vertex takes number `count`, which only advances then).
+// The boundary is a triangulated sphere, so its vertices number F/2 + 2 for F facets (Euler), which
+// sizes the table before the loops. Returns false, with every new tetrahedron created and linked
+// across the boundary but not to each other, when the boundary is too large for the table or not a
+// sphere after all.
 template <Inserter::Access A>
 bool Inserter::createAndLink(VertId v)
 {
@@ -162,7 +163,8 @@ template bool Inserter::fillCavity<Inserter::Access::Locking>(VertId);
 // new tetrahedra exist and are linked across the boundary; each face between two of them is
 // linked by rotating about its boundary edge through the deleted tetrahedra, whose slot for each
 // boundary facet is first pointed at the new tetrahedron on it (how the rotation recognizes a
-// boundary facet).
+// boundary facet). The new tetrahedra's other faces are first marked unlinked: createAndLink()
+// leaves them as their slots held them.
 void Inserter::linkByRotation()
 {
   const ScratchList<TetId>& created = cavity_.created;

@@ -286,7 +286,8 @@ private:
   bool ghostInConflict(TetId ghost, VertId v);
   bool onHullPlaneInConflict(TetId ghost, VertId v);
   void undoCavity();
-  /// Room for `count` entries or more in each of the cavity's lists; returns the room.
+  /// Room for `count` entries or more in the cavity search's lists (deleted, boundary); returns
+  /// the room.
   std::size_t makeRoomInCavityLists(std::size_t count);
   template <Access A, bool Weighted>
   bool digCavity(TetId base, VertId v);

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <memory>
 #include <type_traits>
+#include <utility>
 
 namespace fd3
 {
@@ -24,6 +25,17 @@ class ScratchList
     "a ScratchList holds plain items, copied as bytes and never initialized");
 
 public:
+  ScratchList() = default;
+  /// The moved-from list is left empty, as a std::vector is.
+  ScratchList(ScratchList&& other) noexcept { *this = std::move(other); }
+  ScratchList& operator=(ScratchList&& other) noexcept
+  {
+    items_ = std::move(other.items_);
+    size_ = std::exchange(other.size_, 0);
+    capacity_ = std::exchange(other.capacity_, 0);
+    return *this;
+  }
+
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   std::size_t capacity() const { return capacity_; }
@@ -37,7 +49,8 @@ public:
   const T* end() const { return data() + size_; }
   T& back() { return items_[size_ - 1]; }
 
-  /// The items beyond the old size are uninitialized.
+  /// The items beyond the old size hold whatever their room held: nothing written, or earlier
+  /// items.
   void resize(std::size_t size)
   {
     if (size > capacity_)
@@ -47,9 +60,10 @@ public:
   void clear() { size_ = 0; }
   void push_back(const T& item)
   {
+    const T copy = item; // it may be one of the items, which grow() moves
     if (size_ == capacity_)
       grow(size_ + 1);
-    items_[size_++] = item;
+    items_[size_++] = copy;
   }
 
 private:
