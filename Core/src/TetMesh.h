@@ -158,6 +158,11 @@ public:
     slot = (slot & kIdMask) | (flags << kVertexIdBits);
   }
   void clearFlags(TetId t) const { word(8 * std::size_t(t)) &= kIdMask; }
+  /// setFlags() for a tetrahedron whose flags are clear.
+  void addFlags(TetId t, std::uint32_t flags) const
+  {
+    word(8 * std::size_t(t)) |= flags << kVertexIdBits;
+  }
   /// Flags a never-written slot dead.
   void markDead(TetId t) const { word(8 * std::size_t(t)) = kDead << kVertexIdBits; }
   /// Writes the whole record of t at once: vertices v (flags clear), no neighbours yet.

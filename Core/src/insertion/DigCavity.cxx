@@ -126,7 +126,7 @@ bool Inserter::digCavity(TetId base, VertId v)
         inside = probe.inside(
           vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz);
       assert(mayTouch(n));
-      tets.setFlags(n, inside ? kInCavity : kNotInCavity);
+      tets.addFlags(n, inside ? kInCavity : kNotInCavity);
       deleted[inCavity] = across;
       inCavity += inside;
       // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
