@@ -157,7 +157,6 @@ public:
     std::uint32_t& slot = word(8 * std::size_t(t));
     slot = (slot & kIdMask) | (flags << kVertexIdBits);
   }
-  void clearFlags(TetId t) const { word(8 * std::size_t(t)) &= kIdMask; }
   /// setFlags() for a tetrahedron whose flags are clear.
   void addFlags(TetId t, std::uint32_t flags) const
   {

@@ -99,7 +99,7 @@ bool Inserter::createAndLink(VertId v)
     tets.createReplacing(created[i], b.inner, b.face, v);
     assert(mayTouch(created[i]) && mayTouch(tetOf(outer)));
     tets.link(faceCode(created[i], b.face), outer);
-    tets.clearFlags(tetOf(outer)); // tested and kept
+    tets.setFlags(tetOf(outer), 0); // tested and kept
   }
   std::uint32_t count = 0;
   bool linked = fits;
