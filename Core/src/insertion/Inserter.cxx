@@ -109,7 +109,7 @@ bool Inserter::acquire(TetId t)
   return true;
 }
 
-bool Inserter::mayEnter(TetId t, int entryFace)
+bool Inserter::mayEnterShared(TetId t, int entryFace)
 {
   // t shares with the one the walk leaves, the inserter's, all vertices but the one opposite.
   if (!owners_)

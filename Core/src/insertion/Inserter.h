@@ -193,8 +193,12 @@ private:
   bool acquire(TetId t);
   /// Whether the walk may go on into t, entered through its face `entryFace` (-1 for the start):
   /// in a region, when t is the inserter's; in a locking pass, when it could take t and t is live;
-  /// the walk then lets go of the one it leaves.
-  bool mayEnter(TetId t, int entryFace);
+  /// the walk then lets go of the one it leaves. Alone, always: inline, without a call per step.
+  bool mayEnter(TetId t, int entryFace)
+  {
+    return (!restricted_ && !owners_) || mayEnterShared(t, entryFace);
+  }
+  bool mayEnterShared(TetId t, int entryFace);
   /// Counts a put-off insertion, after whatever it did was undone.
   Outcome deferred();
   /// Lets go of the tetrahedra taken for the insertion that ended, except the slots it freed,

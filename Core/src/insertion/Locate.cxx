@@ -14,6 +14,8 @@
 #include "fd3/Measures.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 namespace fd3
 {
@@ -45,29 +47,31 @@ double dot(const double* u, const double* v)
 
 // The faces of a tetrahedron of vertices q, by decreasing distance from p to the vertex each
 // leaves behind: a sorting network of five compare-exchanges without a branch, where a sort's
-// branches were coin tosses to the predictor on every step of every walk.
+// branches were coin tosses to the predictor on every step of every walk. It sorts one integer
+// per face: the squared distance's bits (non-negative doubles order as their bits do), the lowest
+// two replaced by the face, so that an exchange is one minimum and one maximum.
 void orderByDistance(const double* const q[4], const double* p, int order[4])
 {
-  double d[4];
+  std::uint64_t key[4];
   for (int k = 0; k < 4; ++k)
-    d[k] = distance2(q[k], p);
-  // The selections as max, min and masks: written as conditionals, the compiler made branches
-  // of them.
+  {
+    const double d = distance2(q[k], p);
+    std::uint64_t bits;
+    std::memcpy(&bits, &d, sizeof bits);
+    key[k] = (bits & ~std::uint64_t(3)) | static_cast<std::uint64_t>(k);
+  }
   const auto exchange = [&](int i, int j) {
-    const int swap = -static_cast<int>(d[i] < d[j]);
-    const double di = std::max(d[i], d[j]), dj = std::min(d[i], d[j]);
-    const int oi = (order[j] & swap) | (order[i] & ~swap),
-              oj = (order[i] & swap) | (order[j] & ~swap);
-    d[i] = di;
-    d[j] = dj;
-    order[i] = oi;
-    order[j] = oj;
+    const std::uint64_t far = std::max(key[i], key[j]), near = std::min(key[i], key[j]);
+    key[i] = far;
+    key[j] = near;
   };
   exchange(0, 1);
   exchange(2, 3);
   exchange(0, 2);
   exchange(1, 3);
   exchange(1, 2);
+  for (int k = 0; k < 4; ++k)
+    order[k] = static_cast<int>(key[k] & 3u);
 }
 
 // The face of a ghost, of hull face q, to cross on the way over the hull to p, or -1 where p lies
@@ -272,7 +276,7 @@ TetId Inserter::walk(TetId t, VertId v)
     const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
     if (toFirstConflict && provenInConflict(probe, q, tv))
       break;
-    int order[4] = {0, 1, 2, 3};
+    int order[4];
     if (steps < kOrderedSteps)
       orderByDistance(q, p, order);
     else
