@@ -9,6 +9,7 @@
 #include "insertion/Inserter.h"
 
 #include <cassert>
+#include <type_traits>
 
 namespace fd3
 {
@@ -111,22 +112,30 @@ bool Inserter::createAndLink(VertId v)
     VertId u[3];
     tets.faceVertices(n, face, u);
     std::uint32_t local[3];
-    for (int j = 0; j < 3; ++j)
-    {
-      assert(inRegion(u[j]));
-      TetId& entry = localNumberSlot<A>(vertices, u[j]);
-      const bool isNew = (entry & kHighHalf) != kLocalTag;
-      local[j] = isNew ? count : (entry & 0xFFFFu);
-      entry = kLocalTag | local[j];
-      localVertices[count] = {u[j], n};
-      count += isNew;
-    }
+    const auto number = [&](auto mayBeGhost) {
+      for (int j = 0; j < 3; ++j)
+      {
+        assert(inRegion(u[j]));
+        TetId& entry = localNumberSlot<A, decltype(mayBeGhost)::value>(vertices, u[j]);
+        const bool isNew = (entry & kHighHalf) != kLocalTag;
+        local[j] = isNew ? count : (entry & 0xFFFFu);
+        entry = kLocalTag | local[j];
+        localVertices[count] = {u[j], n};
+        count += isNew;
+      }
+    };
+    // Only a ghost's facet holds the ghost vertex: the others are numbered without a test for it.
+    const bool ghost = tets.isGhost(n);
+    if (ghost)
+      number(std::true_type());
+    else
+      number(std::false_type());
     if (count > width)
     {
       linked = false; // not a sphere after all: the numbers would leave the table
       break;
     }
-    if (tets.isGhost(n))
+    if (ghost)
     {
       // On the hull, a walk's start had better be a ghost: where points come from outside the
       // hull (a convex surface's samples), the first test then finds the next one in conflict.

@@ -162,14 +162,18 @@ private:
   {
     return !restricted_ || u == kInfinite || region_.contains(point(u));
   }
-  /// The field of u that holds its local number during a fill (its tet); kInfinite's is this
-  /// inserter's own. In a locking pass, an entry of the cavity's own table.
-  template <Access A>
+  /// The field of u that holds its local number during a fill (its tet); kInfinite's, which only
+  /// a ghost's facet holds (MayBeGhost), is this inserter's own. In a locking pass, an entry of the
+  /// cavity's own table.
+  template <Access A, bool MayBeGhost>
   TetId& localNumberSlot(Vertex* vertices, VertId u)
   {
     if constexpr (A == Access::Locking)
       return cavity_.localNumbers.slot(u);
-    return u == kInfinite ? ghostTet_ : vertices[u].tet;
+    if constexpr (MayBeGhost)
+      if (u == kInfinite)
+        return ghostTet_;
+    return vertices[u].tet;
   }
   /// Sets the tetrahedron of u (in a locking pass, other inserters may read it at the same time).
   template <Access A = Access::Locking>
