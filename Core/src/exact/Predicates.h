@@ -640,11 +640,18 @@ public:
   /// symbolically.
   bool inside(const double* a, const double* b, const double* c, const double* d) const
   {
+    return inside(a, b, c, d, [&] { return predicates_.insideBeyondFirstFilter(a, b, c, d, e_); });
+  }
+  /// inside(), which calls `open` for a test the first filter leaves open: a caller that can find
+  /// the points again keeps no pointer to them alive across the test.
+  template <class Open>
+  bool inside(const double* a, const double* b, const double* c, const double* d, Open open) const
+  {
     double lifts[4];
     const double det = inSphereDeterminant(apex_, a, b, c, d, lifts);
     if (liftsFirst_ ? predicates_.liftsFilterProves(det, lifts) : std::fabs(det) > staticBound_)
       return det < 0;
-    return predicates_.insideBeyondFirstFilter(a, b, c, d, e_);
+    return open();
   }
   /// Whether the first filter alone proves e inside the circumsphere: false may be a tie or a
   /// test the filter left open.

@@ -49,6 +49,15 @@ bool Inserter::onHullPlaneInConflict(TetId ghost, VertId v)
   return conflictSoS(tv, v) > 0;
 }
 
+// A test that the first filter left open, out of line: the search keeps no pointer to the points
+// alive for it.
+bool Inserter::openConflict(TetId t, VertId v)
+{
+  VertId tv[4];
+  tets_.vertices(t, tv);
+  return conflictSoS(tv, v) > 0;
+}
+
 void Inserter::undoCavity()
 {
   for (const FaceCode c : cavity_.deleted)
@@ -123,8 +132,8 @@ bool Inserter::digCavity(TetId base, VertId v)
         inside = probe.inside(vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz,
           vertices[nv[3]].xyz, weights[nv[0]], weights[nv[1]], weights[nv[2]], weights[nv[3]]);
       else
-        inside = probe.inside(
-          vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz);
+        inside = probe.inside(vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz,
+          vertices[nv[3]].xyz, [&] { return openConflict(n, v); });
       assert(mayTouch(n));
       tets.addFlags(n, inside ? kInCavity : kNotInCavity);
       deleted[inCavity] = across;

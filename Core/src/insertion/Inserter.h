@@ -292,6 +292,7 @@ private:
     return predicates_.insideSoS(q, p[v].xyz);
   }
   bool ghostInConflict(TetId ghost, VertId v);
+  bool openConflict(TetId t, VertId v);
   bool onHullPlaneInConflict(TetId ghost, VertId v);
   void undoCavity();
   /// Room for `count` entries or more in the cavity search's lists (deleted, boundary); returns
