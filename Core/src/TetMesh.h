@@ -89,6 +89,43 @@ enum TetFlag : std::uint32_t
   kDead = 3         // a free slot
 };
 
+/// One tetrahedron's record, located once: for an inner loop that reads several of its fields.
+/// TetReader's accessors read through it.
+class TetRecord
+{
+public:
+  explicit TetRecord(const std::uint32_t* words) : r_(words) {}
+
+  VertId vertex(int i) const { return i == 0 ? r_[0] & kIdMask : r_[i]; }
+  /// The four vertices (v0 without its flags).
+  void vertices(VertId out[4]) const
+  {
+    out[0] = r_[0] & kIdMask;
+    out[1] = r_[1];
+    out[2] = r_[2];
+    out[3] = r_[3];
+  }
+  /// The vertices of face f, in its outward order (kFaceVertices[f]).
+  void faceVertices(int f, VertId out[3]) const
+  {
+    const int* q = kFaceVertices[f];
+    // Only a face's first corner can be vertex 0, whose word holds the flags; when it is vertex 1
+    // instead, the mask leaves it as it is (the ghost vertex is only ever vertex 3).
+    out[0] = r_[q[0]] & kIdMask;
+    out[1] = r_[q[1]];
+    out[2] = r_[q[2]];
+  }
+  FaceCode neighbor(int f) const { return r_[4 + f]; }
+  std::uint32_t flags() const { return r_[0] >> kVertexIdBits; }
+  bool isGhost() const { return r_[3] == kInfinite; }
+  const std::uint32_t* words() const { return r_; }
+
+  static constexpr std::uint32_t kIdMask = kMaxVertices - 1;
+
+private:
+  const std::uint32_t* r_;
+};
+
 /// A read-only view of a mesh's records, for inner loops: held in a local, the records' address
 /// stays in a register, where the mesh's member would be reloaded after every store that might
 /// alias it (a byte store aliases everything). Valid until the records move (TetMesh::makeRoom,
@@ -98,42 +135,34 @@ class TetReader
 public:
   explicit TetReader(const std::uint32_t* words) : words_(words) {}
 
-  VertId vertex(TetId t, int i) const
+  TetRecord record(TetId t) const { return TetRecord(words_ + 8 * std::size_t(t)); }
+  /// record(tetOf(code)): a face code with its face cleared is a fourth of the record's offset,
+  /// one instruction where the tetrahedron's id and the scale take two.
+  TetRecord recordOfFace(FaceCode code) const
   {
-    const std::uint32_t v = words_[8 * std::size_t(t) + i];
-    return i == 0 ? v & kIdMask : v;
+    return TetRecord(words_ + 2 * std::size_t(code & ~FaceCode(3)));
   }
-  /// The four vertices of t (v0 without its flags).
-  void vertices(TetId t, VertId out[4]) const
-  {
-    const std::uint32_t* r = words_ + 8 * std::size_t(t);
-    out[0] = r[0] & kIdMask;
-    out[1] = r[1];
-    out[2] = r[2];
-    out[3] = r[3];
-  }
-  /// The vertices of face f of t, in its outward order (kFaceVertices[f]).
-  void faceVertices(TetId t, int f, VertId out[3]) const
-  {
-    const std::uint32_t* r = words_ + 8 * std::size_t(t);
-    const int* q = kFaceVertices[f];
-    // Only a face's first corner can be vertex 0, whose word holds the flags; when it is vertex 1
-    // instead, the mask leaves it as it is (the ghost vertex is only ever vertex 3).
-    out[0] = r[q[0]] & kIdMask;
-    out[1] = r[q[1]];
-    out[2] = r[q[2]];
-  }
-  FaceCode neighbor(TetId t, int f) const { return words_[8 * std::size_t(t) + 4 + f]; }
-  FaceCode across(FaceCode code) const { return neighbor(tetOf(code), faceOf(code)); }
-  std::uint32_t flags(TetId t) const { return words_[8 * std::size_t(t)] >> kVertexIdBits; }
-  bool isGhost(TetId t) const { return words_[8 * std::size_t(t) + 3] == kInfinite; }
+  VertId vertex(TetId t, int i) const { return record(t).vertex(i); }
+  void vertices(TetId t, VertId out[4]) const { record(t).vertices(out); }
+  void faceVertices(TetId t, int f, VertId out[3]) const { record(t).faceVertices(f, out); }
+  FaceCode neighbor(TetId t, int f) const { return record(t).neighbor(f); }
+  FaceCode across(FaceCode code) const { return words_[neighborWord(code)]; }
+  std::uint32_t flags(TetId t) const { return record(t).flags(); }
+  bool isGhost(TetId t) const { return record(t).isGhost(); }
   bool isDead(TetId t) const { return flags(t) == kDead; }
-  /// Starts loading t's record, which the caller will need soon (hides memory latency while
-  /// the cavity is grown breadth-first).
-  void prefetch(TetId t) const { fd3::prefetch(words_ + 8 * std::size_t(t)); }
+  /// Starts loading a record, which the caller will need soon (hides memory latency while the
+  /// cavity is grown breadth-first).
+  void prefetch(TetRecord r) const { fd3::prefetch(r.words()); }
+  void prefetch(TetId t) const { prefetch(record(t)); }
 
 protected:
-  static constexpr std::uint32_t kIdMask = kMaxVertices - 1;
+  static constexpr std::uint32_t kIdMask = TetRecord::kIdMask;
+  /// The word of face code 4t + f's neighbour, 8t + 4 + f: the code plus itself with f cleared,
+  /// two instructions fewer than from t and f.
+  static std::size_t neighborWord(FaceCode code)
+  {
+    return std::size_t(code) + (code & ~FaceCode(3)) + 4;
+  }
   const std::uint32_t* words_;
 };
 
@@ -143,10 +172,7 @@ class TetRecords : public TetReader
 public:
   explicit TetRecords(std::uint32_t* words) : TetReader(words) {}
 
-  void setNeighbor(FaceCode code, FaceCode value) const
-  {
-    word(8 * std::size_t(tetOf(code)) + 4 + faceOf(code)) = value;
-  }
+  void setNeighbor(FaceCode code, FaceCode value) const { word(neighborWord(code)) = value; }
   void link(FaceCode a, FaceCode b) const
   {
     setNeighbor(a, b);
@@ -158,10 +184,12 @@ public:
     slot = (slot & kIdMask) | (flags << kVertexIdBits);
   }
   /// setFlags() for a tetrahedron whose flags are clear.
-  void addFlags(TetId t, std::uint32_t flags) const
+  void addFlags(TetRecord r, std::uint32_t flags) const
   {
-    word(8 * std::size_t(t)) |= flags << kVertexIdBits;
+    // The view was made from writable words, and so was every record it hands out.
+    const_cast<std::uint32_t*>(r.words())[0] |= flags << kVertexIdBits;
   }
+  void addFlags(TetId t, std::uint32_t flags) const { addFlags(record(t), flags); }
   /// Flags a never-written slot dead.
   void markDead(TetId t) const { word(8 * std::size_t(t)) = kDead << kVertexIdBits; }
   /// Writes the whole record of t at once: vertices v (flags clear), no neighbours yet.

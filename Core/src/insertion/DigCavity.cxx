@@ -107,24 +107,26 @@ bool Inserter::digCavity(TetId base, VertId v)
   // the face is on the boundary unless that one is in the cavity.
   const auto visit = [&](TetId t, int f) {
     const FaceCode across = tets.neighbor(t, f);
-    const TetId n = tetOf(across);
+    // The tetrahedron across is named by its id only where a rare case needs it: kept in a
+    // register for them, the id pushed the search's own values to the stack.
     if constexpr (A == Access::Locking)
-      if (given || !acquire(n))
+      if (given || !acquire(tetOf(across)))
       {
         given = true; // another inserter's: not even its flags may be read
         return;
       }
-    const std::uint32_t flag = tets.flags(n);
+    const TetRecord record = tets.recordOfFace(across);
+    const std::uint32_t flag = record.flags();
     if (flag == kInCavity)
       return;
     bool inside = false;
     if (flag == 0)
     {
       VertId nv[4];
-      tets.vertices(n, nv);
+      record.vertices(nv);
       if (nv[3] == kInfinite)
       {
-        inside = ghostInConflict(n, v);
+        inside = ghostInConflict(tetOf(across), v);
         if constexpr (A == Access::Locking)
           given |= lockLost_;
       }
@@ -133,21 +135,21 @@ bool Inserter::digCavity(TetId base, VertId v)
           vertices[nv[3]].xyz, weights[nv[0]], weights[nv[1]], weights[nv[2]], weights[nv[3]]);
       else
         inside = probe.inside(vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz,
-          vertices[nv[3]].xyz, [&] { return openConflict(n, v); });
-      assert(mayTouch(n));
-      tets.addFlags(n, inside ? kInCavity : kNotInCavity);
+          vertices[nv[3]].xyz, [&] { return openConflict(tetOf(across), v); });
+      assert(mayTouch(tetOf(across)));
+      tets.addFlags(record, inside ? kInCavity : kNotInCavity);
       deleted[inCavity] = across;
       inCavity += inside;
       // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
       // outcome would wait for the determinant.
       for (int g = 0; g < 4; ++g)
       {
-        const TetId m = tetOf(tets.neighbor(n, g));
-        tets.prefetch(m);
+        const FaceCode m = record.neighbor(g);
+        tets.prefetch(tets.recordOfFace(m));
         if constexpr (A == Access::Locking)
-          prefetch(owners_ + m);
+          prefetch(owners_ + tetOf(m));
       }
-      // n shares with t, whose four vertices are in the region, all but the one opposite.
+      // It shares with t, whose four vertices are in the region, all but the one opposite.
       if constexpr (A == Access::Region)
       {
         const VertId opposite = nv[faceOf(across)];
