@@ -204,10 +204,10 @@ public:
   }
   /// Writes the vertices of t: those of `from` (flags clear) with vertex f replaced by p. Its
   /// neighbours are left as they were, for the caller to link all four.
-  void createReplacing(TetId t, TetId from, int f, VertId p) const
+  void createReplacing(TetId t, TetRecord from, int f, VertId p) const
   {
     std::uint32_t* r = &word(8 * std::size_t(t));
-    std::memcpy(r, words_ + 8 * std::size_t(from), 4 * sizeof(std::uint32_t));
+    std::memcpy(r, from.words(), 4 * sizeof(std::uint32_t));
     r[0] &= kIdMask;
     r[f] = p;
   }

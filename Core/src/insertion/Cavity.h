@@ -14,13 +14,6 @@
 namespace fd3
 {
 
-/// A face of the cavity's boundary: face `face` of the deleted tetrahedron `inner`.
-struct BoundaryFacet
-{
-  TetId inner;
-  int face;
-};
-
 /// The fill's local numbers of the boundary's vertices where their Vertex::tet may not hold them:
 /// in a locking pass, a vertex can be on the boundaries of two threads' cavities at once. Open
 /// addressing, sized for the boundary at hand and cleared for each fill.
@@ -68,7 +61,9 @@ struct Cavity
   /// across a boundary facet that the correction took away. Those tested and kept that are across
   /// the final boundary are cleared through it, unlisted.
   ScratchList<TetId> rejected;
-  ScratchList<BoundaryFacet> boundary;
+  /// The faces of the deleted tetrahedra across which the kept ones lie, each as its face code
+  /// (tetOf(): the deleted tetrahedron, faceOf(): the face).
+  ScratchList<FaceCode> boundary;
   ScratchList<TetId> created; ///< created[i] is the new tetrahedron on boundary[i]
 
   // The edge table of FillCavity.cxx. The new tetrahedra's vertices get local numbers

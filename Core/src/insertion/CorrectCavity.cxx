@@ -41,11 +41,11 @@ bool Inserter::holdsPoint(TetId t, VertId v)
 // Shape of the tetrahedron the facet would make with the new point: its volume relative to the
 // regular tetrahedron on its longest edge (1 for a regular tetrahedron, 0 when flat), or a negative
 // value when the point does not see the facet. Ghost results (hull faces) have no volume: 1.
-double Inserter::newTetShape(const BoundaryFacet& facet, VertId v)
+double Inserter::newTetShape(FaceCode facet, VertId v)
 {
   VertId tv[4];
-  tets_.vertices(facet.inner, tv);
-  tv[facet.face] = v;
+  tets_.vertices(tetOf(facet), tv);
+  tv[faceOf(facet)] = v;
   if (tv[3] == kInfinite)
     return 1.0;
   const double* q[4] = {point(tv[0]), point(tv[1]), point(tv[2]), point(tv[3])};
@@ -74,16 +74,16 @@ void Inserter::collectBoundary()
     deleted.begin());
   // The fill clears the flags of the tetrahedra across the boundary. A facet leaves it when its
   // inner tetrahedron leaves the cavity: the one across is listed, to be cleared with the rest.
-  for (const BoundaryFacet& b : cavity_.boundary)
-    if (tets_.flags(b.inner) != kInCavity)
-      cavity_.rejected.push_back(tetOf(tets_.neighbor(b.inner, b.face)));
+  for (const FaceCode b : cavity_.boundary)
+    if (tets_.flags(tetOf(b)) != kInCavity)
+      cavity_.rejected.push_back(tetOf(tets_.across(b)));
   cavity_.boundary.clear();
   for (FaceCode c : deleted)
   {
     const TetId t = tetOf(c);
     for (int f = 0; f < 4; ++f)
       if (tets_.flags(tetOf(tets_.neighbor(t, f))) != kInCavity)
-        cavity_.boundary.push_back({t, f});
+        cavity_.boundary.push_back(faceCode(t, f));
   }
 }
 
@@ -114,10 +114,10 @@ bool Inserter::dropOrphanGhosts(VertId v)
 bool Inserter::keepEnclosedVertex(VertId v)
 {
   ++stamp_;
-  for (const BoundaryFacet& b : cavity_.boundary)
+  for (const FaceCode b : cavity_.boundary)
     for (int i = 0; i < 4; ++i)
-      if (i != b.face && tets_.vertex(b.inner, i) != kInfinite)
-        vertexStamp_[tets_.vertex(b.inner, i)] = stamp_;
+      if (i != faceOf(b) && tets_.vertex(tetOf(b), i) != kInfinite)
+        vertexStamp_[tets_.vertex(tetOf(b), i)] = stamp_;
   for (FaceCode c : cavity_.deleted)
   {
     const TetId t = tetOf(c);
@@ -143,13 +143,14 @@ void Inserter::correctCavity(VertId v)
   for (bool changed = true; changed;)
   {
     changed = false;
-    for (const BoundaryFacet& b : cavity_.boundary)
+    for (const FaceCode b : cavity_.boundary)
     {
-      if (tets_.flags(b.inner) != kInCavity || tets_.isGhost(b.inner))
+      const TetId inner = tetOf(b);
+      if (tets_.flags(inner) != kInCavity || tets_.isGhost(inner))
         continue;
-      if (newTetShape(b, v) < mesh_.options.volumeThreshold && !holdsPoint(b.inner, v))
+      if (newTetShape(b, v) < mesh_.options.volumeThreshold && !holdsPoint(inner, v))
       {
-        giveBack(b.inner);
+        giveBack(inner);
         changed = true;
       }
     }

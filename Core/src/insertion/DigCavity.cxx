@@ -14,7 +14,7 @@ namespace
 {
 // The faces of a tetrahedron other than the one it was entered through, which leads back into
 // the cavity: a fixed three faces are visited, not four with a skip whose position is random.
-constexpr int kFacesBesides[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+constexpr FaceCode kFacesBesides[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 } // namespace
 
 bool Inserter::isBeyondHullFace(TetId ghost, VertId v)
@@ -62,8 +62,8 @@ void Inserter::undoCavity()
 {
   for (const FaceCode c : cavity_.deleted)
     tets_.setFlags(tetOf(c), 0);
-  for (const BoundaryFacet& b : cavity_.boundary)
-    tets_.setFlags(tetOf(tets_.neighbor(b.inner, b.face)), 0);
+  for (const FaceCode b : cavity_.boundary)
+    tets_.setFlags(tetOf(tets_.across(b)), 0);
   for (const TetId t : cavity_.rejected)
     tets_.setFlags(t, 0);
 }
@@ -100,13 +100,13 @@ bool Inserter::digCavity(TetId base, VertId v)
   cavity_.clear();
   std::size_t room = makeRoomInCavityLists(64);
   FaceCode* deleted = cavity_.deleted.data();
-  BoundaryFacet* boundary = cavity_.boundary.data();
+  FaceCode* boundary = cavity_.boundary.data();
   std::size_t inCavity = 1, facets = 0;
   bool given = false; // the cavity reached beyond what this inserter may change
-  // Face f of t, which is in the cavity: the tetrahedron across is tested if it was not yet, and
-  // the face is on the boundary unless that one is in the cavity.
-  const auto visit = [&](TetId t, int f) {
-    const FaceCode across = tets.neighbor(t, f);
+  // Face `face` of a tetrahedron in the cavity: the tetrahedron across is tested if it was not
+  // yet, and the face is on the boundary unless that one is in the cavity.
+  const auto visit = [&](FaceCode face) {
+    const FaceCode across = tets.across(face);
     // The tetrahedron across is named by its id only where a rare case needs it: kept in a
     // register for them, the id pushed the search's own values to the stack.
     if constexpr (A == Access::Locking)
@@ -149,17 +149,15 @@ bool Inserter::digCavity(TetId base, VertId v)
         if constexpr (A == Access::Locking)
           prefetch(owners_ + tetOf(m));
       }
-      // It shares with t, whose four vertices are in the region, all but the one opposite.
+      // It shares with the tetrahedron at hand, whose four vertices are in the region, all but
+      // the one opposite.
       if constexpr (A == Access::Region)
       {
         const VertId opposite = nv[faceOf(across)];
         given |= inside && opposite != kInfinite && !region_.contains(vertices[opposite].xyz);
       }
     }
-    // Field by field: a whole BoundaryFacet spilled t and f to the stack as two 4-byte stores
-    // and reloaded them as one 8-byte value, which stalls store forwarding.
-    boundary[facets].inner = t;
-    boundary[facets].face = f;
+    boundary[facets] = face;
     facets += !inside;
   };
   assert(mayTouch(base));
@@ -168,7 +166,7 @@ bool Inserter::digCavity(TetId base, VertId v)
   for (int f = 0; f < 4; ++f)
     prefetchTet(tetOf(tets.neighbor(base, f)));
   for (int f = 0; f < 4; ++f)
-    visit(base, f);
+    visit(faceCode(base, f));
   for (std::size_t i = 1; i < inCavity && !given; ++i)
   {
     // Before the tetrahedron of rank i is visited, each list holds at most 3i + 2 entries (1 + 4
@@ -180,10 +178,11 @@ bool Inserter::digCavity(TetId base, VertId v)
       boundary = cavity_.boundary.data();
     }
     const FaceCode entered = deleted[i];
-    const int* faces = kFacesBesides[faceOf(entered)];
-    visit(tetOf(entered), faces[0]);
-    visit(tetOf(entered), faces[1]);
-    visit(tetOf(entered), faces[2]);
+    const FaceCode face0 = entered & ~FaceCode(3);
+    const FaceCode* faces = kFacesBesides[faceOf(entered)];
+    visit(face0 | faces[0]);
+    visit(face0 | faces[1]);
+    visit(face0 | faces[2]);
   }
   cavity_.deleted.resize(inCavity);
   cavity_.boundary.resize(facets);

@@ -88,18 +88,19 @@ bool Inserter::createAndLink(VertId v)
   if constexpr (A == Access::Locking)
     cavity_.localNumbers.reset(width + 3);
   cavity_.interiorFaces.resize(3 * facets);
-  const BoundaryFacet* boundary = cavity_.boundary.data();
+  const FaceCode* boundary = cavity_.boundary.data();
   const TetId* created = cavity_.created.data();
   Cavity::LocalVertex* localVertices = cavity_.localVertices.data();
   FaceCode* edgeFace = cavity_.edgeFace.data();
   Cavity::InteriorFace* interiorFaces = cavity_.interiorFaces.data();
   for (std::size_t i = 0; i < facets; ++i)
   {
-    const BoundaryFacet b = boundary[i];
-    const FaceCode outer = tets.neighbor(b.inner, b.face);
-    tets.createReplacing(created[i], b.inner, b.face, v);
+    const TetRecord inner = tets.recordOfFace(boundary[i]);
+    const int face = faceOf(boundary[i]);
+    const FaceCode outer = inner.neighbor(face);
+    tets.createReplacing(created[i], inner, face, v);
     assert(mayTouch(created[i]) && mayTouch(tetOf(outer)));
-    tets.link(faceCode(created[i], b.face), outer);
+    tets.link(faceCode(created[i], face), outer);
     tets.setFlags(tetOf(outer), 0); // tested and kept
   }
   std::uint32_t count = 0;
@@ -107,7 +108,7 @@ bool Inserter::createAndLink(VertId v)
   TetId start = created[0]; // the new point's tetrahedron
   for (std::size_t i = 0; linked && i < facets; ++i)
   {
-    const int face = boundary[i].face;
+    const int face = faceOf(boundary[i]);
     const TetId n = created[i];
     VertId u[3];
     tets.faceVertices(n, face, u);
@@ -179,10 +180,10 @@ void Inserter::linkByRotation()
   const ScratchList<TetId>& created = cavity_.created;
   for (std::size_t i = 0; i < created.size(); ++i)
   {
-    const BoundaryFacet& b = cavity_.boundary[i];
-    tets_.setNeighbor(faceCode(b.inner, b.face), faceCode(created[i], b.face));
+    const FaceCode b = cavity_.boundary[i];
+    tets_.setNeighbor(b, faceCode(created[i], faceOf(b)));
     for (int f = 0; f < 4; ++f)
-      if (f != b.face)
+      if (f != faceOf(b))
         tets_.setNeighbor(faceCode(created[i], f), kUnlinked);
   }
   for (std::size_t i = 0; i < created.size(); ++i)
@@ -192,7 +193,7 @@ void Inserter::linkByRotation()
     for (int k = 0; k < 4; ++k)
       setVertexTet(nv[k], created[i]);
     for (int f = 0; f < 4; ++f)
-      if (f != cavity_.boundary[i].face && tets_.neighbor(created[i], f) == kUnlinked)
+      if (f != faceOf(cavity_.boundary[i]) && tets_.neighbor(created[i], f) == kUnlinked)
         linkAroundEdge(i, f);
   }
 }
@@ -202,16 +203,16 @@ void Inserter::linkByRotation()
 // on uw, until a boundary facet is met: the new tetrahedron built on it is the neighbour.
 void Inserter::linkAroundEdge(std::size_t i, int face)
 {
-  const BoundaryFacet& facet = cavity_.boundary[i];
+  const FaceCode facet = cavity_.boundary[i];
   // Local indices of u and w (the same in t and in its new tetrahedron): the two of 0..3 that are
-  // neither `face` nor `facet.face`, as the two bit positions left in a 4-bit mask.
-  const unsigned rest = 15u & ~(1u << face) & ~(1u << facet.face);
+  // neither `face` nor faceOf(facet), as the two bit positions left in a 4-bit mask.
+  const unsigned rest = 15u & ~(1u << face) & ~(1u << faceOf(facet));
   int iu = countTrailingZeros(rest);
   int iw = countTrailingZeros(rest & (rest - 1));
-  const VertId u = tets_.vertex(facet.inner, iu);
-  const VertId w = tets_.vertex(facet.inner, iw);
+  const VertId u = tets_.vertex(tetOf(facet), iu);
+  const VertId w = tets_.vertex(tetOf(facet), iw);
 
-  TetId t = facet.inner;
+  TetId t = tetOf(facet);
   int g = face; // the face of t being crossed; it contains u and w
   for (;;)
   {

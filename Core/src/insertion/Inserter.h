@@ -318,7 +318,7 @@ private:
   // CorrectCavity.cxx
   void correctCavity(VertId v);
   bool holdsPoint(TetId t, VertId v);
-  double newTetShape(const BoundaryFacet& facet, VertId v);
+  double newTetShape(FaceCode facet, VertId v);
   void giveBack(TetId t);
   void collectBoundary();
   bool dropOrphanGhosts(VertId v);
