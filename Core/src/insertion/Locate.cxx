@@ -49,7 +49,7 @@ double dot(const double* u, const double* v)
 // leaves behind: a sorting network of five compare-exchanges without a branch, where a sort's
 // branches were coin tosses to the predictor on every step of every walk. It sorts one integer
 // per face: the squared distance's bits (non-negative doubles order as their bits do), the lowest
-// two replaced by the face, so that an exchange is one minimum and one maximum.
+// two replaced by the face, so that the faces move with their keys.
 void orderByDistance(const double* const q[4], const double* p, int order[4])
 {
   std::uint64_t key[4];
@@ -60,10 +60,11 @@ void orderByDistance(const double* const q[4], const double* p, int order[4])
     std::memcpy(&bits, &d, sizeof bits);
     key[k] = (bits & ~std::uint64_t(3)) | static_cast<std::uint64_t>(k);
   }
+  // Written as a mask: as a minimum and a maximum, the compiler made a branch of each exchange.
   const auto exchange = [&](int i, int j) {
-    const std::uint64_t far = std::max(key[i], key[j]), near = std::min(key[i], key[j]);
-    key[i] = far;
-    key[j] = near;
+    const std::uint64_t swap = (key[i] ^ key[j]) & -std::uint64_t(key[i] < key[j]);
+    key[i] ^= swap;
+    key[j] ^= swap;
   };
   exchange(0, 1);
   exchange(2, 3);
