@@ -40,6 +40,7 @@
 
 #include "fd3/Delaunay.h"
 #include "system/Platform.h"
+#include "system/ScratchList.h"
 #include "system/Stretches.h"
 
 #include <algorithm>
@@ -178,17 +179,14 @@ public:
     setNeighbor(a, b);
     setNeighbor(b, a);
   }
-  void setFlags(TetId t, std::uint32_t flags) const
+  void setFlags(TetRecord r, std::uint32_t flags) const
   {
-    std::uint32_t& slot = word(8 * std::size_t(t));
+    std::uint32_t& slot = firstWord(r);
     slot = (slot & kIdMask) | (flags << kVertexIdBits);
   }
+  void setFlags(TetId t, std::uint32_t flags) const { setFlags(record(t), flags); }
   /// setFlags() for a tetrahedron whose flags are clear.
-  void addFlags(TetRecord r, std::uint32_t flags) const
-  {
-    // The view was made from writable words, and so was every record it hands out.
-    const_cast<std::uint32_t*>(r.words())[0] |= flags << kVertexIdBits;
-  }
+  void addFlags(TetRecord r, std::uint32_t flags) const { firstWord(r) |= flags << kVertexIdBits; }
   void addFlags(TetId t, std::uint32_t flags) const { addFlags(record(t), flags); }
   /// Flags a never-written slot dead.
   void markDead(TetId t) const { word(8 * std::size_t(t)) = kDead << kVertexIdBits; }
@@ -213,8 +211,10 @@ public:
   }
 
 private:
-  // Made from writable words (the constructor's): the view only shares its base's pointer.
+  // Made from writable words (the constructor's): the view only shares its base's pointer, and
+  // every record it hands out points into them.
   std::uint32_t& word(std::size_t i) const { return const_cast<std::uint32_t*>(words_)[i]; }
+  static std::uint32_t& firstWord(TetRecord r) { return const_cast<std::uint32_t*>(r.words())[0]; }
 };
 
 class TetMesh
@@ -339,11 +339,20 @@ public:
     return true;
   }
 
-  /// Frees slot t: flagged dead, taken again before any new one.
-  void give(TetMesh& mesh, TetId t)
+  /// Frees the slots of the tetrahedra of `count` face codes (a cavity's deleted ones): flagged
+  /// dead, taken again before any new one. All at once: one by one, each push_back tested the
+  /// list's capacity.
+  void give(TetMesh& mesh, const FaceCode* codes, std::size_t count)
   {
-    mesh.setFlags(t, kDead);
-    free_.push_back(t);
+    const TetRecords records = mesh.records();
+    const std::size_t first = free_.size();
+    free_.resize(first + count);
+    TetId* freed = free_.data() + first;
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      records.setFlags(records.recordOfFace(codes[i]), kDead);
+      freed[i] = tetOf(codes[i]);
+    }
   }
 
   /// Frees what is left of the claimed block, so that every slot below mesh.slots() is either
@@ -357,13 +366,13 @@ public:
     }
   }
 
-  const std::vector<TetId>& freeSlots() const { return free_; }
+  const ScratchList<TetId>& freeSlots() const { return free_; }
 
   /// Never-used slots claimed at a time.
   static constexpr std::size_t kBlock = 1024;
 
 private:
-  std::vector<TetId> free_;
+  ScratchList<TetId> free_;
   TetId next_ = 0, end_ = 0;
 };
 

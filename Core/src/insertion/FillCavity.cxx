@@ -8,6 +8,7 @@
 // their long edges cost more than the rest of the insertion.
 #include "insertion/Inserter.h"
 
+#include <algorithm>
 #include <cassert>
 #include <type_traits>
 
@@ -41,11 +42,9 @@ bool Inserter::fillCavity(VertId v)
     }
   if (!createAndLink<A>(v))
     linkByRotation();
-  for (const FaceCode c : cavity_.deleted)
-  {
-    assert(isOwned(tetOf(c)));
-    pool_.give(tets_, tetOf(c));
-  }
+  assert(std::all_of(
+    cavity_.deleted.begin(), cavity_.deleted.end(), [&](FaceCode c) { return isOwned(tetOf(c)); }));
+  pool_.give(tets_, cavity_.deleted.data(), cavity_.deleted.size());
   const TetRecords tets = tets_.records();
   for (TetId t : cavity_.rejected)
   {
@@ -101,7 +100,7 @@ bool Inserter::createAndLink(VertId v)
     tets.createReplacing(created[i], inner, face, v);
     assert(mayTouch(created[i]) && mayTouch(tetOf(outer)));
     tets.link(faceCode(created[i], face), outer);
-    tets.setFlags(tetOf(outer), 0); // tested and kept
+    tets.setFlags(tets.recordOfFace(outer), 0); // tested and kept
   }
   std::uint32_t count = 0;
   bool linked = fits;
