@@ -91,7 +91,8 @@ enum TetFlag : std::uint32_t
 };
 
 /// One tetrahedron's record, located once: for an inner loop that reads several of its fields.
-/// TetReader's accessors read through it.
+/// TetReader's accessors read through it. Valid until the records move (TetMesh::makeRoom,
+/// TetMesh::reserve).
 class TetRecord
 {
 public:
@@ -137,8 +138,8 @@ public:
   explicit TetReader(const std::uint32_t* words) : words_(words) {}
 
   TetRecord record(TetId t) const { return TetRecord(words_ + 8 * std::size_t(t)); }
-  /// record(tetOf(code)): a face code with its face cleared is a fourth of the record's offset,
-  /// one instruction where the tetrahedron's id and the scale take two.
+  /// record(tetOf(code)): a face code with its face cleared is an eighth of the record's byte
+  /// offset, which an address scales by itself: one AND where the id takes two shifts.
   TetRecord recordOfFace(FaceCode code) const
   {
     return TetRecord(words_ + 2 * std::size_t(code & ~FaceCode(3)));
@@ -339,16 +340,16 @@ public:
     return true;
   }
 
-  /// Frees the slots of the tetrahedra of `count` face codes (a cavity's deleted ones): flagged
+  /// Frees the slots of the tetrahedra of these face codes (a cavity's deleted ones): flagged
   /// dead, taken again before any new one. All at once: one by one, each push_back tested the
   /// list's capacity.
-  void give(TetMesh& mesh, const FaceCode* codes, std::size_t count)
+  void give(TetMesh& mesh, const ScratchList<FaceCode>& codes)
   {
     const TetRecords records = mesh.records();
     const std::size_t first = free_.size();
-    free_.resize(first + count);
+    free_.resize(first + codes.size());
     TetId* freed = free_.data() + first;
-    for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t i = 0; i < codes.size(); ++i)
     {
       records.setFlags(records.recordOfFace(codes[i]), kDead);
       freed[i] = tetOf(codes[i]);

@@ -38,19 +38,18 @@ bool Inserter::ghostInConflict(TetId ghost, VertId v)
 // that the two never disagree and no flat tetrahedron is created.
 bool Inserter::onHullPlaneInConflict(TetId ghost, VertId v)
 {
-  VertId tv[4];
   const TetId behind = tetOf(tets_.neighbor(ghost, 3));
   if (owners_ && !acquire(behind))
   {
     lockLost_ = true; // another inserter's: the insertion is put off
     return false;
   }
-  tets_.vertices(behind, tv);
-  return conflictSoS(tv, v) > 0;
+  return openConflict(behind, v);
 }
 
-// A test that the first filter left open, out of line: the search keeps no pointer to the points
-// alive for it.
+// Whether v conflicts with the finite tetrahedron t, ties broken symbolically. Out of line, for the
+// tests that the search's first filter leaves open: the search keeps no pointer to the points
+// alive for them.
 bool Inserter::openConflict(TetId t, VertId v)
 {
   VertId tv[4];
@@ -107,8 +106,9 @@ bool Inserter::digCavity(TetId base, VertId v)
   // yet, and the face is on the boundary unless that one is in the cavity.
   const auto visit = [&](FaceCode face) {
     const FaceCode across = tets.across(face);
-    // The tetrahedron across is named by its id only where a rare case needs it: kept in a
-    // register for them, the id pushed the search's own values to the stack.
+    // The tetrahedron across is named by its id only where a rare case needs it (and, in a
+    // locking pass, for its owner): kept in a register for them, the id pushed the search's own
+    // values to the stack.
     if constexpr (A == Access::Locking)
       if (given || !acquire(tetOf(across)))
       {

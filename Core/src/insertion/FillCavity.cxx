@@ -44,7 +44,7 @@ bool Inserter::fillCavity(VertId v)
     linkByRotation();
   assert(std::all_of(
     cavity_.deleted.begin(), cavity_.deleted.end(), [&](FaceCode c) { return isOwned(tetOf(c)); }));
-  pool_.give(tets_, cavity_.deleted.data(), cavity_.deleted.size());
+  pool_.give(tets_, cavity_.deleted);
   const TetRecords tets = tets_.records();
   for (TetId t : cavity_.rejected)
   {
@@ -124,9 +124,10 @@ bool Inserter::createAndLink(VertId v)
         count += isNew;
       }
     };
-    // Only a ghost's facet holds the ghost vertex: the others are numbered without a test for it.
+    // Only a ghost's facet holds the ghost vertex: the others are numbered without a test for it
+    // (in a locking pass, the cavity's table takes any vertex).
     const bool ghost = tets.isGhost(n);
-    if (ghost)
+    if (ghost && A != Access::Locking)
       number(std::true_type());
     else
       number(std::false_type());

@@ -62,7 +62,7 @@ void orderByDistance(const double* const q[4], const double* p, int order[4])
   }
   // Written as a mask: as a minimum and a maximum, the compiler made a branch of each exchange.
   const auto exchange = [&](int i, int j) {
-    const std::uint64_t swap = (key[i] ^ key[j]) & -std::uint64_t(key[i] < key[j]);
+    const std::uint64_t swap = (key[i] ^ key[j]) & (std::uint64_t(0) - (key[i] < key[j]));
     key[i] ^= swap;
     key[j] ^= swap;
   };
