@@ -280,10 +280,13 @@ public:
   /// room for them. Safe to call from several threads at once.
   bool claim(std::size_t count, TetId& first)
   {
+    // Memory reserved ahead may hold more slots than 32-bit face codes name: those are never
+    // handed out (makeRoom() then reports the limit).
+    const std::size_t limit = std::min(capacity(), kMaxTetrahedra);
     std::size_t taken = claimed_.load(std::memory_order_relaxed);
     do
     {
-      if (taken + count > capacity())
+      if (taken + count > limit)
         return false;
     } while (!claimed_.compare_exchange_weak(taken, taken + count, std::memory_order_relaxed));
     first = static_cast<TetId>(taken);
