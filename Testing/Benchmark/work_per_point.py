@@ -20,9 +20,9 @@ PHASES = {
         ("sort", r"InsertionOrder|planInsertion|hilbert|Hilbert|brio|radixSort|perturbationKey|"
                  r"finiteBounds|Frame|frameOf|normaliz|skipClosePoints"),
         ("locate", r"Inserter::walk|Inserter::locate|startTet|regionStart|BackgroundGrid|"
-                   r"nearestInserted|mayEnter"),
-        ("cavity", r"digCavity|ghostInConflict|Predicates::|insideBeyond|inSphere|orient3d|"
-                   r"symbolic|Expansion|correctCavity|undoCavity|makeRoomInCavityLists"),
+                   r"nearestInserted|mayEnter|orderByDistance|hullFaceToward"),
+        ("cavity", r"digCavity|ghostInConflict|openConflict|Predicates::|insideBeyond|inSphere|"
+                   r"orient3d|symbolic|Expansion|correctCavity|undoCavity|makeRoomInCavityLists"),
         ("fill", r"fillCavity|createAndLink|linkAroundEdge|linkByRotation|SlotPool|insertAs|"
                  r"BulkAllocator|releasePages"),
     ],
