@@ -97,10 +97,22 @@ bool Inserter::digCavity(TetId base, VertId v)
   const auto probe = conflictProbe<Weighted>(v);
   const double* const weights = mesh_.weights.data();
   cavity_.clear();
-  std::size_t room = makeRoomInCavityLists(64);
-  FaceCode* deleted = cavity_.deleted.data();
-  FaceCode* boundary = cavity_.boundary.data();
-  std::size_t inCavity = 1, facets = 0;
+  // The lists' ends, and the last entry of `deleted` that may be visited before they need more
+  // room: pointers, for fewer values to keep in registers across the tests.
+  FaceCode* deletedEnd = cavity_.deleted.data();
+  FaceCode* boundaryEnd = cavity_.boundary.data();
+  const FaceCode* lastWithRoom = nullptr;
+  const auto makeRoom = [&](std::size_t count) {
+    const std::size_t inCavity = deletedEnd - cavity_.deleted.data();
+    const std::size_t facets = boundaryEnd - cavity_.boundary.data();
+    const std::size_t room = makeRoomInCavityLists(count);
+    deletedEnd = cavity_.deleted.data() + inCavity;
+    boundaryEnd = cavity_.boundary.data() + facets;
+    // Before the tetrahedron of rank i is visited, each list holds at most 3i + 2 entries (1 + 4
+    // for the base, 3 for each one after it).
+    lastWithRoom = cavity_.deleted.data() + (room - 5) / 3;
+  };
+  makeRoom(64);
   bool given = false; // the cavity reached beyond what this inserter may change
   // Face `face` of a tetrahedron in the cavity: the tetrahedron across is tested if it was not
   // yet, and the face is on the boundary unless that one is in the cavity.
@@ -138,8 +150,8 @@ bool Inserter::digCavity(TetId base, VertId v)
           vertices[nv[3]].xyz, [&] { return openConflict(tetOf(across), v); });
       assert(mayTouch(tetOf(across)));
       tets.addFlags(record, inside ? kInCavity : kNotInCavity);
-      deleted[inCavity] = across;
-      inCavity += inside;
+      *deletedEnd = across;
+      deletedEnd += inside;
       // The neighbours of every tested tetrahedron, kept ones too: a prefetch chosen by the
       // outcome would wait for the determinant.
       for (int g = 0; g < 4; ++g)
@@ -157,35 +169,34 @@ bool Inserter::digCavity(TetId base, VertId v)
         given |= inside && opposite != kInfinite && !region_.contains(vertices[opposite].xyz);
       }
     }
-    boundary[facets] = face;
-    facets += !inside;
+    *boundaryEnd = face;
+    boundaryEnd += !inside;
   };
   assert(mayTouch(base));
   tets.setFlags(base, kInCavity);
-  deleted[0] = faceCode(base, 0);
+  *deletedEnd++ = faceCode(base, 0);
   for (int f = 0; f < 4; ++f)
     prefetchTet(tetOf(tets.neighbor(base, f)));
   for (int f = 0; f < 4; ++f)
     visit(faceCode(base, f));
-  for (std::size_t i = 1; i < inCavity && !given; ++i)
+  for (const FaceCode* next = cavity_.deleted.data() + 1; next < deletedEnd && !given; ++next)
   {
-    // Before the tetrahedron of rank i is visited, each list holds at most 3i + 2 entries (1 + 4
-    // for the base, 3 for each one after it).
-    if (3 * i + 5 > room)
+    if (next > lastWithRoom)
     {
-      room = makeRoomInCavityLists(3 * i + 5);
-      deleted = cavity_.deleted.data();
-      boundary = cavity_.boundary.data();
+      const std::size_t i = next - cavity_.deleted.data();
+      makeRoom(3 * i + 5);
+      next = cavity_.deleted.data() + i;
     }
-    const FaceCode entered = deleted[i];
+    const FaceCode entered = *next;
     const FaceCode face0 = entered & ~FaceCode(3);
     const FaceCode* faces = kFacesBesides[faceOf(entered)];
     visit(face0 | faces[0]);
     visit(face0 | faces[1]);
     visit(face0 | faces[2]);
   }
+  const std::size_t inCavity = deletedEnd - cavity_.deleted.data();
   cavity_.deleted.resize(inCavity);
-  cavity_.boundary.resize(facets);
+  cavity_.boundary.resize(boundaryEnd - cavity_.boundary.data());
   if (given)
   {
     lockLost_ = false;
