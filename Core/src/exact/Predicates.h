@@ -19,6 +19,7 @@
 #include "fd3/Bounds.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cfloat>
 #include <cmath>
 #include <cstddef>
@@ -640,16 +641,22 @@ public:
   /// symbolically.
   bool inside(const double* a, const double* b, const double* c, const double* d) const
   {
-    return inside(a, b, c, d, [&] { return predicates_.insideBeyondFirstFilter(a, b, c, d, e_); });
+    const auto open = [&] { return predicates_.insideBeyondFirstFilter(a, b, c, d, e_); };
+    return liftsFirst_ ? insideFirstFiltered<true>(a, b, c, d, open)
+                       : insideFirstFiltered<false>(a, b, c, d, open);
   }
   /// inside(), which calls `open` for a test the first filter leaves open: a caller that can find
-  /// the points again keeps no pointer to them alive across the test.
-  template <class Open>
-  bool inside(const double* a, const double* b, const double* c, const double* d, Open open) const
+  /// the points again keeps no pointer to them alive across the test. The caller names the first
+  /// filter, the lifts' filter when Predicates::prefersLiftsFilter(), so that a loop of tests
+  /// does not ask which on every one.
+  template <bool LiftsFirst, class Open>
+  bool insideFirstFiltered(
+    const double* a, const double* b, const double* c, const double* d, Open open) const
   {
+    assert(LiftsFirst == liftsFirst_);
     double lifts[4];
     const double det = inSphereDeterminant(apex_, a, b, c, d, lifts);
-    if (liftsFirst_ ? predicates_.liftsFilterProves(det, lifts) : std::fabs(det) > staticBound_)
+    if (LiftsFirst ? predicates_.liftsFilterProves(det, lifts) : std::fabs(det) > staticBound_)
       return det < 0;
     return open();
   }

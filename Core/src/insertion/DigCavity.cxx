@@ -89,9 +89,10 @@ std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
 // tetrahedron at hand). Behind a mispredicted branch, the processor threw away the next tests it
 // had started while the determinant was computed. The records, the vertices and the lists are
 // reached through locals, which the compiler keeps in registers across the stores.
-template <Inserter::Access A, bool Weighted>
+template <Inserter::Access A, Inserter::ConflictTest Test>
 bool Inserter::digCavity(TetId base, VertId v)
 {
+  constexpr bool Weighted = Test == ConflictTest::Power;
   const TetRecords tets = tets_.records();
   const Vertex* const vertices = mesh_.vertices.data();
   const auto probe = conflictProbe<Weighted>(v);
@@ -146,8 +147,9 @@ bool Inserter::digCavity(TetId base, VertId v)
         inside = probe.inside(vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz,
           vertices[nv[3]].xyz, weights[nv[0]], weights[nv[1]], weights[nv[2]], weights[nv[3]]);
       else
-        inside = probe.inside(vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz,
-          vertices[nv[3]].xyz, [&] { return openConflict(tetOf(across), v); });
+        inside = probe.template insideFirstFiltered<Test == ConflictTest::InSphereLifts>(
+          vertices[nv[0]].xyz, vertices[nv[1]].xyz, vertices[nv[2]].xyz, vertices[nv[3]].xyz,
+          [&] { return openConflict(tetOf(across), v); });
       assert(mayTouch(tetOf(across)));
       tets.addFlags(record, inside ? kInCavity : kNotInCavity);
       *deletedEnd = across;
@@ -207,11 +209,23 @@ bool Inserter::digCavity(TetId base, VertId v)
   return true;
 }
 
-template bool Inserter::digCavity<Inserter::Access::Free, false>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Region, false>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Locking, false>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Free, true>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Region, true>(TetId, VertId);
-template bool Inserter::digCavity<Inserter::Access::Locking, true>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Free, Inserter::ConflictTest::InSphereStatic>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Region, Inserter::ConflictTest::InSphereStatic>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Locking,
+  Inserter::ConflictTest::InSphereStatic>(TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Free, Inserter::ConflictTest::InSphereLifts>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Region, Inserter::ConflictTest::InSphereLifts>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Locking, Inserter::ConflictTest::InSphereLifts>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Free, Inserter::ConflictTest::Power>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Region, Inserter::ConflictTest::Power>(
+  TetId, VertId);
+template bool Inserter::digCavity<Inserter::Access::Locking, Inserter::ConflictTest::Power>(
+  TetId, VertId);
 
 } // namespace fd3

@@ -298,12 +298,24 @@ private:
   /// Room for `count` entries or more in the cavity search's lists (deleted, boundary); returns
   /// the room.
   std::size_t makeRoomInCavityLists(std::size_t count);
-  template <Access A, bool Weighted>
+  /// The cavity search's conflict test: the insphere test, its static filter or its lifts' filter
+  /// first (Predicates::prefersLiftsFilter()), or the power test. A template parameter, so that
+  /// the search does not ask which on every test.
+  enum class ConflictTest
+  {
+    InSphereStatic,
+    InSphereLifts,
+    Power
+  };
+  template <Access A, ConflictTest Test>
   bool digCavity(TetId base, VertId v);
   template <Access A>
   bool digCavity(TetId base, VertId v)
   {
-    return mesh_.weighted() ? digCavity<A, true>(base, v) : digCavity<A, false>(base, v);
+    if (mesh_.weighted())
+      return digCavity<A, ConflictTest::Power>(base, v);
+    return predicates_.prefersLiftsFilter() ? digCavity<A, ConflictTest::InSphereLifts>(base, v)
+                                            : digCavity<A, ConflictTest::InSphereStatic>(base, v);
   }
   // Weighted (HiddenPoints.cxx)
   /// Whether the base that the walk found for v, which contains v's point or is a ghost whose
