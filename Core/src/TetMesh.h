@@ -87,7 +87,9 @@ enum TetFlag : std::uint32_t
 {
   kInCavity = 1,    // in the conflict zone of the point being inserted
   kNotInCavity = 2, // tested during this insertion and kept
-  kDead = 3         // a free slot
+  // A free slot. The flag of a cavity's tetrahedra, so that freeing them writes nothing: no
+  // live tetrahedron is their neighbour, and an insertion given up clears it.
+  kDead = kInCavity
 };
 
 /// One tetrahedron's record, located once: for an inner loop that reads several of its fields.
@@ -343,20 +345,16 @@ public:
     return true;
   }
 
-  /// Frees the slots of the tetrahedra of these face codes (a cavity's deleted ones): flagged
-  /// dead, taken again before any new one. All at once: one by one, each push_back tested the
-  /// list's capacity.
-  void give(TetMesh& mesh, const ScratchList<FaceCode>& codes)
+  /// Frees the slots of the tetrahedra of these face codes (a cavity's deleted ones, which their
+  /// flag kInCavity already marks dead): taken again before any new one. All at once: one by
+  /// one, each push_back tested the list's capacity.
+  void give(const ScratchList<FaceCode>& codes)
   {
-    const TetRecords records = mesh.records();
     const std::size_t first = free_.size();
     free_.resize(first + codes.size());
     TetId* freed = free_.data() + first;
     for (std::size_t i = 0; i < codes.size(); ++i)
-    {
-      records.setFlags(records.recordOfFace(codes[i]), kDead);
       freed[i] = tetOf(codes[i]);
-    }
   }
 
   /// Frees what is left of the claimed block, so that every slot below mesh.slots() is either

@@ -58,7 +58,9 @@ TEST(MeshCheck, FindsEachBrokenInvariant)
   {
     auto mesh = meshOf(p);
     auto& tets = const_cast<fd3::TetMesh&>(mesh->tetrahedra());
-    tets.setFlags(finiteTet(tets, 100), 1);
+    // A tetrahedron tested and kept whose flag was not cleared (a live one flagged kInCavity reads
+    // as dead: freed, but in no free list, below).
+    tets.setFlags(finiteTet(tets, 100), fd3::kNotInCavity);
     EXPECT_TRUE(says(mesh->checkMesh(), "keeps cavity flags")) << mesh->checkMesh();
   }
   {

@@ -42,9 +42,9 @@ bool Inserter::fillCavity(VertId v)
     }
   if (!createAndLink<A>(v))
     linkByRotation();
-  assert(std::all_of(
-    cavity_.deleted.begin(), cavity_.deleted.end(), [&](FaceCode c) { return isOwned(tetOf(c)); }));
-  pool_.give(tets_, cavity_.deleted);
+  assert(std::all_of(cavity_.deleted.begin(), cavity_.deleted.end(),
+    [&](FaceCode c) { return isOwned(tetOf(c)) && tets_.isDead(tetOf(c)); }));
+  pool_.give(cavity_.deleted);
   const TetRecords tets = tets_.records();
   for (TetId t : cavity_.rejected)
   {
