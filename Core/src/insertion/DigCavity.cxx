@@ -159,7 +159,7 @@ bool Inserter::digCavity(TetId base, VertId v)
       for (int g = 0; g < 4; ++g)
       {
         const FaceCode m = record.neighbor(g);
-        tets.prefetch(tets.recordOfFace(m));
+        tets.prefetchOfFace(m);
         if constexpr (A == Access::Locking)
           prefetch(owners_ + tetOf(m));
       }
