@@ -181,6 +181,10 @@ public:
   explicit TetRecords(std::uint32_t* words) : TetReader(words) {}
 
   void setNeighbor(FaceCode code, FaceCode value) const { word(neighborWord(code)) = value; }
+  void setNeighbor(TetRecord r, int f, FaceCode value) const
+  {
+    const_cast<std::uint32_t*>(r.words())[4 + f] = value;
+  }
   void link(FaceCode a, FaceCode b) const
   {
     setNeighbor(a, b);

@@ -77,15 +77,17 @@ struct Cavity
     VertId vertex;
     TetId tet; ///< one of its new tetrahedra
   };
-  struct InteriorFace
+  /// The three faces that new tetrahedron i shares with others, those on the edges of its
+  /// boundary facet: for each edge j (q_j -> q_j+1 of the facet's vertices), the entry of edgeFace
+  /// that holds its neighbour.
+  struct InteriorFaces
   {
-    FaceCode face;
-    std::uint32_t reversedEdge; ///< the entry of edgeFace that holds its neighbour
+    std::uint32_t reversedEdge[3];
   };
-  ScratchList<LocalVertex> localVertices;  ///< by local number
-  ScratchList<FaceCode> edgeFace;          ///< grown on demand, up to kMaxLocalVertices^2
-  ScratchList<InteriorFace> interiorFaces; ///< three per new tetrahedron
-  LocalNumbers localNumbers;               ///< in a locking pass, in place of Vertex::tet
+  ScratchList<LocalVertex> localVertices;   ///< by local number
+  ScratchList<FaceCode> edgeFace;           ///< grown on demand, up to kMaxLocalVertices^2
+  ScratchList<InteriorFaces> interiorFaces; ///< by new tetrahedron
+  LocalNumbers localNumbers;                ///< in a locking pass, in place of Vertex::tet
 
   void clear()
   {

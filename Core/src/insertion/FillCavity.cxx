@@ -86,12 +86,12 @@ bool Inserter::createAndLink(VertId v)
   cavity_.localVertices.resize(width + 3);
   if constexpr (A == Access::Locking)
     cavity_.localNumbers.reset(width + 3);
-  cavity_.interiorFaces.resize(3 * facets);
+  cavity_.interiorFaces.resize(facets);
   const FaceCode* boundary = cavity_.boundary.data();
   const TetId* created = cavity_.created.data();
   Cavity::LocalVertex* localVertices = cavity_.localVertices.data();
   FaceCode* edgeFace = cavity_.edgeFace.data();
-  Cavity::InteriorFace* interiorFaces = cavity_.interiorFaces.data();
+  Cavity::InteriorFaces* interiorFaces = cavity_.interiorFaces.data();
   for (std::size_t i = 0; i < facets; ++i)
   {
     const TetRecord inner = tets.recordOfFace(boundary[i]);
@@ -150,7 +150,7 @@ bool Inserter::createAndLink(VertId v)
       const std::uint32_t from = local[j], to = local[j == 2 ? 0 : j + 1];
       const FaceCode interior = faceCode(n, q[j == 0 ? 2 : j - 1]);
       edgeFace[from * width + to] = interior;
-      interiorFaces[3 * i + j] = {interior, to * width + from};
+      interiorFaces[i].reversedEdge[j] = to * width + from;
     }
   }
   // Each vertex gets one of its new tetrahedra in place of its number.
@@ -160,8 +160,13 @@ bool Inserter::createAndLink(VertId v)
   ghostTet_ = kNoTet;
   if (!linked)
     return false;
-  for (std::size_t i = 0; i < 3 * facets; ++i)
-    tets.setNeighbor(interiorFaces[i].face, edgeFace[interiorFaces[i].reversedEdge]);
+  for (std::size_t i = 0; i < facets; ++i)
+  {
+    const int* q = kFaceVertices[faceOf(boundary[i])];
+    const TetRecord n = tets.record(created[i]);
+    for (int j = 0; j < 3; ++j)
+      tets.setNeighbor(n, q[j == 0 ? 2 : j - 1], edgeFace[interiorFaces[i].reversedEdge[j]]);
+  }
   return true;
 }
 
