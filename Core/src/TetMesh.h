@@ -212,13 +212,15 @@ public:
     }
   }
   /// Writes the vertices of t: those of `from` (flags clear) with vertex f replaced by p. Its
-  /// neighbours are left as they were, for the caller to link all four.
-  void createReplacing(TetId t, TetRecord from, int f, VertId p) const
+  /// neighbours are left as they were, for the caller to link all four through the record
+  /// returned.
+  TetRecord createReplacing(TetId t, TetRecord from, int f, VertId p) const
   {
     std::uint32_t* r = &word(8 * std::size_t(t));
     std::memcpy(r, from.words(), 4 * sizeof(std::uint32_t));
     r[0] &= kIdMask;
     r[f] = p;
+    return TetRecord(r);
   }
 
 private:

@@ -97,9 +97,11 @@ bool Inserter::createAndLink(VertId v)
     const TetRecord inner = tets.recordOfFace(boundary[i]);
     const int face = faceOf(boundary[i]);
     const FaceCode outer = inner.neighbor(face);
-    tets.createReplacing(created[i], inner, face, v);
-    assert(mayTouch(created[i]) && mayTouch(tetOf(outer)));
-    tets.link(faceCode(created[i], face), outer);
+    const TetId n = created[i];
+    const TetRecord record = tets.createReplacing(n, inner, face, v);
+    assert(mayTouch(n) && mayTouch(tetOf(outer)));
+    tets.setNeighbor(record, face, outer);
+    tets.setNeighbor(outer, faceCode(n, face));
     tets.setFlags(tets.recordOfFace(outer), 0); // tested and kept
   }
   std::uint32_t count = 0;
