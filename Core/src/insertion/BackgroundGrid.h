@@ -27,28 +27,36 @@ public:
     std::size_t count, const Bounds& box, double pointsPerCell, const Stretches& fill = nullptr);
   bool enabled() const { return cellCount_ > 0; }
 
-  void markInserted(const double* p, std::uint32_t vertex)
+  /// A point's cell, found once for the search from it and the mark after its insertion.
+  struct Cell
   {
-    cells_[cellIndex(p)].store(vertex, std::memory_order_relaxed);
+    int ijk[3];
+    std::size_t index;
+  };
+  Cell cellOf(const double* p) const
+  {
+    Cell c;
+    cellCoordinates(p, c.ijk);
+    c.index = index(c.ijk[0], c.ijk[1], c.ijk[2]);
+    return c;
   }
 
-  /// The vertex remembered by the first cell met when searching layer by layer outwards from p's
-  /// cell whose vertex passes `accept`, or kEmpty when the first `maxLayers` layers have none.
-  template <typename Accept>
-  std::uint32_t nearestInserted(const double* p, int maxLayers, Accept accept) const;
-  std::uint32_t nearestInserted(const double* p, int maxLayers) const
+  void markInserted(const Cell& c, std::uint32_t vertex)
   {
-    return nearestInserted(p, maxLayers, [](std::uint32_t) { return true; });
+    cells_[c.index].store(vertex, std::memory_order_relaxed);
+  }
+
+  /// The vertex remembered by the first cell met when searching layer by layer outwards from
+  /// cell c whose vertex passes `accept`, or kEmpty when the first `maxLayers` layers have none.
+  template <typename Accept>
+  std::uint32_t nearestInserted(const Cell& c, int maxLayers, Accept accept) const;
+  std::uint32_t nearestInserted(const Cell& c, int maxLayers) const
+  {
+    return nearestInserted(c, maxLayers, [](std::uint32_t) { return true; });
   }
 
 private:
   void cellCoordinates(const double* p, int ijk[3]) const;
-  std::size_t cellIndex(const double* p) const
-  {
-    int ijk[3];
-    cellCoordinates(p, ijk);
-    return index(ijk[0], ijk[1], ijk[2]);
-  }
   std::size_t index(int i, int j, int k) const
   {
     return (std::size_t(k) * dims_[1] + j) * dims_[0] + i;
@@ -105,15 +113,13 @@ std::uint32_t BackgroundGrid::scanLayer(const int c[3], int n, Accept& accept) c
 }
 
 template <typename Accept>
-std::uint32_t BackgroundGrid::nearestInserted(const double* p, int maxLayers, Accept accept) const
+std::uint32_t BackgroundGrid::nearestInserted(const Cell& c, int maxLayers, Accept accept) const
 {
-  int c[3];
-  cellCoordinates(p, c);
-  if (const std::uint32_t v = cell(index(c[0], c[1], c[2])); v != kEmpty && accept(v))
+  if (const std::uint32_t v = cell(c.index); v != kEmpty && accept(v))
     return v;
   const int widest = std::max({dims_[0], dims_[1], dims_[2]});
   for (int n = 1; n <= maxLayers && n < widest; ++n)
-    if (const std::uint32_t v = scanLayer(c, n, accept); v != kEmpty)
+    if (const std::uint32_t v = scanLayer(c.ijk, n, accept); v != kEmpty)
       return v;
   return kEmpty;
 }

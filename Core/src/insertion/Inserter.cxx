@@ -61,7 +61,7 @@ void Inserter::start()
   {
     mesh_.vertices[v[i]].tet = t;
     if (mesh_.grid.enabled())
-      mesh_.grid.markInserted(point(v[i]), v[i]);
+      mesh_.grid.markInserted(mesh_.grid.cellOf(point(v[i])), v[i]);
   }
   lastInserted_ = 3;
   regionStart_ = t;
@@ -206,7 +206,8 @@ template <Inserter::Access A>
 Inserter::Outcome Inserter::insertAs(VertId v)
 {
   PhaseClock clock(v % kSampling == 0);
-  const TetId base = locate(v);
+  const BackgroundGrid::Cell cell = gridCell(v); // for the search and the mark after
+  const TetId base = locate(v, cell);
   clock.lap(stats_.secondsLocate);
   if (lookForDuplicates_ && base != kNoTet)
     if (const VertId repeated = repeatedVertex(base, v);
@@ -250,7 +251,7 @@ Inserter::Outcome Inserter::insertAs(VertId v)
   if constexpr (A == Access::Locking)
     releaseHeld();
   if (mesh_.grid.enabled())
-    mesh_.grid.markInserted(point(v), v);
+    mesh_.grid.markInserted(cell, v);
   lastInserted_ = v;
   ++stats_.insertedPoints;
   return Outcome::Inserted;

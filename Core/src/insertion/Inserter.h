@@ -138,7 +138,7 @@ public:
   const std::vector<VertId>& hidden() const { return hidden_; }
 
   /// A tetrahedron in conflict with vertex v, reading only (for the start of a parallel pass).
-  TetId locateForStart(VertId v) { return locate(v); }
+  TetId locateForStart(VertId v) { return locate(v, gridCell(v)); }
   bool isOwned(TetId t) const
   {
     return owners_ ? owners_[t].load(std::memory_order_relaxed) == me_
@@ -210,9 +210,14 @@ private:
   void releaseHeld();
 
   // Locate.cxx
-  TetId startTet(VertId v);
+  /// v's cell of the background grid, where there is one.
+  BackgroundGrid::Cell gridCell(VertId v) const
+  {
+    return mesh_.grid.enabled() ? mesh_.grid.cellOf(point(v)) : BackgroundGrid::Cell{};
+  }
+  TetId startTet(VertId v, const BackgroundGrid::Cell& cell);
   TetId liveStart();
-  TetId regionStart(VertId v) const;
+  TetId regionStart(VertId v, const BackgroundGrid::Cell& cell) const;
   template <bool Weighted>
   TetId walk(TetId from, VertId v);
   /// A walk's way over the hull, from ghost to ghost.
@@ -242,7 +247,7 @@ private:
     return probe.provenInside(q, weights);
   }
   TetId scanForBase(VertId v, bool toFirstConflict);
-  TetId locate(VertId v);
+  TetId locate(VertId v, const BackgroundGrid::Cell& cell);
   /// The vertex of base (which contains v's point) that v repeats, or kNoVertex.
   VertId repeatedVertex(TetId base, VertId v) const;
   template <Access A>

@@ -146,18 +146,18 @@ int hullFaceToward(const double* const q[3], const double* p, int entryFace)
 // one the grid's onion search finds and the last inserted one (the curve order puts it close). On a
 // surface sample the grid's cells are sized for volume and hold many points each, so the last
 // vertex is often nearer; on volume data the grid's usually is.
-TetId Inserter::startTet(VertId v)
+TetId Inserter::startTet(VertId v, const BackgroundGrid::Cell& cell)
 {
   if (restricted_)
-    return regionStart(v);
+    return regionStart(v, cell);
   VertId start = lastInserted_;
   if (mesh_.grid.enabled())
   {
     // A weighted mesh's grid may name a vertex hidden since.
     const VertId near = mesh_.weighted()
-      ? mesh_.grid.nearestInserted(point(v), kMaxOnionLayers,
+      ? mesh_.grid.nearestInserted(cell, kMaxOnionLayers,
           [this](VertId u) { return relaxedLoad(mesh_.vertices[u].tet) != kNoTet; })
-      : mesh_.grid.nearestInserted(point(v), kMaxOnionLayers);
+      : mesh_.grid.nearestInserted(cell, kMaxOnionLayers);
     if (near != BackgroundGrid::kEmpty &&
       distance2(point(near), point(v)) < distance2(point(start), point(v)))
       start = near;
@@ -188,13 +188,13 @@ TetId Inserter::liveStart()
 // shares a word with the flags). A region's points follow the whole set's curve out of its box and
 // back in elsewhere, and on surface samples the curve also jumps across empty space: without the
 // grid, walks on several threads crossed the region.
-TetId Inserter::regionStart(VertId v) const
+TetId Inserter::regionStart(VertId v, const BackgroundGrid::Cell& cell) const
 {
   if (!mesh_.grid.enabled())
     return regionStart_;
   const double* p = point(v);
   // A weighted mesh's grid may name a vertex hidden since (in the region: by this inserter).
-  const VertId near = mesh_.grid.nearestInserted(p, kMaxOnionLayers,
+  const VertId near = mesh_.grid.nearestInserted(cell, kMaxOnionLayers,
     [this](VertId u) { return region_.contains(point(u)) && mesh_.vertices[u].tet != kNoTet; });
   if (near == BackgroundGrid::kEmpty)
     return regionStart_;
@@ -355,9 +355,9 @@ TetId Inserter::scanForBase(VertId v, bool toFirstConflict)
   return kNoTet;
 }
 
-TetId Inserter::locate(VertId v)
+TetId Inserter::locate(VertId v, const BackgroundGrid::Cell& cell)
 {
-  return mesh_.weighted() ? walk<true>(startTet(v), v) : walk<false>(startTet(v), v);
+  return mesh_.weighted() ? walk<true>(startTet(v, cell), v) : walk<false>(startTet(v, cell), v);
 }
 
 // A point repeating a vertex w lies in a closed tetrahedron only if w is one of its vertices (the
