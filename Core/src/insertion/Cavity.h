@@ -14,6 +14,10 @@
 namespace fd3
 {
 
+/// What holds a vertex's local number during a fill (its Vertex::tet, or an entry of LocalNumbers)
+/// before it has one: any value below 2^31 does, as a tetrahedron id.
+constexpr TetId kUnnumbered = 0;
+
 /// The fill's local numbers of the boundary's vertices where their Vertex::tet may not hold them:
 /// in a locking pass, a vertex can be on the boundaries of two threads' cavities at once. Open
 /// addressing, sized for the boundary at hand and cleared for each fill.
@@ -31,7 +35,7 @@ public:
     values_.resize(size);
     mask_ = size - 1;
   }
-  /// The entry of u, kNoTet when new.
+  /// The entry of u, kUnnumbered when new.
   TetId& slot(VertId u)
   {
     std::size_t i = static_cast<std::uint32_t>(u * 0x9E3779B1u) >> shift_; // Fibonacci hashing
@@ -40,7 +44,7 @@ public:
     if (keys_[i] == kNoVertex)
     {
       keys_[i] = u;
-      values_[i] = kNoTet;
+      values_[i] = kUnnumbered;
     }
     return values_[i];
   }

@@ -16,11 +16,11 @@ namespace fd3
 {
 namespace
 {
-// During a fill, the tet field of each boundary vertex holds kLocalTag | its local number. Every
-// tetrahedron id is below 2^30 and kNoTet (a vertex yet to be inserted) has other high bits, so
-// the high half tells a number from a tetrahedron.
+// During a fill, the tet field of each boundary vertex holds kLocalTag | its local number. A
+// boundary vertex is a live one, whose field holds a tetrahedron id, below 2^30 (the ghost vertex's
+// stand-in and a locking pass's table: kUnnumbered), so the top bit alone tells a number.
 constexpr TetId kLocalTag = 0x80000000u;
-constexpr TetId kHighHalf = 0xFFFF0000u;
+static_assert(kUnnumbered < kLocalTag && kMaxTetrahedra <= kLocalTag, "untagged");
 } // namespace
 
 // Returns false, undoing everything, when the mesh has no room left for the new tetrahedra.
@@ -119,7 +119,7 @@ bool Inserter::createAndLink(VertId v)
       {
         assert(inRegion(u[j]));
         TetId& entry = localNumberSlot<A, decltype(mayBeGhost)::value>(vertices, u[j]);
-        const bool isNew = (entry & kHighHalf) != kLocalTag;
+        const bool isNew = entry < kLocalTag;
         local[j] = isNew ? count : (entry & 0xFFFFu);
         entry = kLocalTag | local[j];
         localVertices[count] = {u[j], n};
@@ -159,7 +159,7 @@ bool Inserter::createAndLink(VertId v)
   for (std::uint32_t k = 0; k < count; ++k)
     setVertexTet<A>(localVertices[k].vertex, localVertices[k].tet);
   setVertexTet<A>(v, start);
-  ghostTet_ = kNoTet;
+  ghostTet_ = kUnnumbered;
   if (!linked)
     return false;
   for (std::size_t i = 0; i < facets; ++i)

@@ -373,7 +373,7 @@ private:
   // point that was put off (both the inserter's, unlike a vertex's tetrahedron).
   VertId lastInserted_ = 0;
   TetId regionStart_ = 0;
-  TetId ghostTet_ = kNoTet; // the ghost vertex's stand-in for Vertex::tet, during fills only
+  TetId ghostTet_ = kUnnumbered; // the ghost vertex's stand-in for Vertex::tet, during fills only
   // How many steps the next walk may take over the hull (Locate.cxx): one more after each walk
   // that found its way there, half after each that ran out of them.
   int hullStepCap_ = 1;
