@@ -288,26 +288,6 @@ bool exactCircumcentreOffset(const double* a, const double* b, const double* c, 
   return true;
 }
 
-std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
-{
-  // splitmix64's finalizer over the coordinates' bits (-0 as 0: the same point).
-  auto mix = [](std::uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  };
-  std::uint64_t hash = mix(seed + 0x9E3779B97F4A7C15ull);
-  for (int a = 0; a < 3; ++a)
-  {
-    std::uint64_t bits;
-    const double x = p[a] == 0.0 ? 0.0 : p[a];
-    std::memcpy(&bits, &x, sizeof bits);
-    hash = mix(hash ^ bits);
-  }
-  const int level = std::min(countTrailingZeros(hash | (1ull << 63)), 15);
-  return static_cast<std::uint16_t>(((15 - level) << 12) | ((hash >> 48) & 0xFFFu));
-}
-
 void Predicates::adaptTo(
   const double* xyz, std::size_t count, std::size_t stride, const Bounds& box)
 {

@@ -17,6 +17,7 @@
 #include "exact/Expansion.h"
 #include "exact/PeriodicImages.h"
 #include "fd3/Bounds.h"
+#include "system/Platform.h"
 
 #include <algorithm>
 #include <cassert>
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #if defined(__AVX__)
 #include <immintrin.h>
 #elif defined(__SSE2__)
@@ -50,8 +52,26 @@ bool exactCircumcentreOffset(const double* a, const double* b, const double* c, 
 /// insertion order, the threads or the MPI ranks (which share one frame). Its top 4 bits are 15
 /// minus the point's BRIO level (a level-k point is one in 2^(k+1), the levels' rounds going in
 /// from the highest), so that the first point of any set in the perturbation's order is inserted
-/// among the first.
-std::uint16_t perturbationKey(const double* p, std::uint64_t seed);
+/// among the first. Inline: a loop over the points hoists the seed's mix out of it.
+inline std::uint16_t perturbationKey(const double* p, std::uint64_t seed)
+{
+  // splitmix64's finalizer over the coordinates' bits (-0 as 0: the same point).
+  auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  std::uint64_t hash = mix(seed + 0x9E3779B97F4A7C15ull);
+  for (int a = 0; a < 3; ++a)
+  {
+    std::uint64_t bits;
+    const double x = p[a] == 0.0 ? 0.0 : p[a];
+    std::memcpy(&bits, &x, sizeof bits);
+    hash = mix(hash ^ bits);
+  }
+  const int level = std::min(countTrailingZeros(hash | (1ull << 63)), 15);
+  return static_cast<std::uint16_t>(((15 - level) << 12) | ((hash >> 48) & 0xFFFu));
+}
 
 /// The perturbation's order of points: by key, then by coordinates, so that distinct points are
 /// never tied.
