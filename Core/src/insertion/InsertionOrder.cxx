@@ -134,7 +134,8 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
     forParts([&](std::size_t k) {
       std::uint32_t* mine = &count[k * kBuckets];
       std::fill(mine, mine + kBuckets, 0u);
-      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+      const std::size_t first = n * k / parts, last = n * (k + 1) / parts; // once, see below
+      for (std::size_t i = first; i < last; ++i)
         ++mine[digit(words[i])];
     });
     // Where each part's words of each digit go: by digit, then by part (stable). Each thread sums
@@ -162,7 +163,10 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
     });
     forParts([&](std::size_t k) {
       std::uint32_t* next = &count[k * kBuckets];
-      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+      // The bounds in locals: the stores could change the captured n and parts as far as the
+      // compiler knows, so the loop's test divided again on every word.
+      const std::size_t first = n * k / parts, last = n * (k + 1) / parts;
+      for (std::size_t i = first; i < last; ++i)
         buffer[next[digit(words[i])]++] = words[i];
     });
     words.swap(buffer);
@@ -429,7 +433,8 @@ IdArray brioRounds(const IdArray& sorted, const std::uint16_t* key,
   team.run(
     parts,
     [&](std::size_t k) {
-      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+      const std::size_t first = n * k / parts, last = n * (k + 1) / parts; // once, as above
+      for (std::size_t i = first; i < last; ++i)
         ++count[k * rounds + roundOf(sorted[i])];
     },
     record);
@@ -445,7 +450,8 @@ IdArray brioRounds(const IdArray& sorted, const std::uint16_t* key,
   team.run(
     parts,
     [&](std::size_t k) {
-      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i)
+      const std::size_t first = n * k / parts, last = n * (k + 1) / parts;
+      for (std::size_t i = first; i < last; ++i)
         order[count[k * rounds + roundOf(sorted[i])]++] = sorted[i];
     },
     record);

@@ -385,7 +385,11 @@ void Triangulator::shareOut(const IdArray& vertices, const Partition& partition,
   team_.run(
     parts,
     [&](std::size_t k) {
-      for (std::size_t i = vertices.size() * k / parts; i < vertices.size() * (k + 1) / parts; ++i)
+      // The bounds in locals: push_back() might change the captured values, as far as the
+      // compiler knows, and the loop's test would divide on every vertex.
+      const std::size_t first = vertices.size() * k / parts;
+      const std::size_t last = vertices.size() * (k + 1) / parts;
+      for (std::size_t i = first; i < last; ++i)
         byStretch[k][partition.regionOf(point(vertices[i]))].push_back(vertices[i]);
     },
     record);

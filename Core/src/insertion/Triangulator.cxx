@@ -283,9 +283,13 @@ const std::uint32_t* Triangulator::packPointIds()
     team_.run(
       parts,
       [&](std::size_t k) {
-        for (std::size_t i = a + (end - a) * k / parts; i < a + (end - a) * (k + 1) / parts; ++i)
+        // The bounds in locals: the stores through `packed` could change the captured values,
+        // so the loop's test would divide again on every id.
+        const std::size_t first = a + (end - a) * k / parts, last = a + (end - a) * (k + 1) / parts;
+        const Vertex* vertices = mesh_.vertices.data();
+        for (std::size_t i = first; i < last; ++i)
         {
-          const std::uint32_t point = mesh_.vertices[i].point;
+          const std::uint32_t point = vertices[i].point;
           std::memcpy(packed + sizeof(point) * i, &point, sizeof(point));
         }
       },
