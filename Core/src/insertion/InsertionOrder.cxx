@@ -108,6 +108,9 @@ private:
   std::uint16_t entry_[kStates][64];
 };
 
+// Built before main(), not on first use: a local static's guard was tested on every point.
+const HilbertTable kHilbertTable;
+
 } // namespace
 
 // One word per entry, not a key array and an id array, so that each pass scatters one stream.
@@ -461,8 +464,7 @@ IdArray brioRounds(const IdArray& sorted, const std::uint16_t* key,
 
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, std::uint32_t z)
 {
-  static const HilbertTable table;
-  return table.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
+  return kHilbertTable.index(spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2);
 }
 
 InsertionPlan planInsertion(const double* xyz, const std::uint16_t* key, IdArray ids,
