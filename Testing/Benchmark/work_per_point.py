@@ -18,7 +18,7 @@ import tempfile
 PHASES = {
     "core": [
         ("sort", r"InsertionOrder|planInsertion|hilbert|Hilbert|brio|radixSort|perturbationKey|"
-                 r"finiteBounds|Frame|frameOf|normaliz|skipClosePoints"),
+                 r"Impl::keys|finiteBounds|Frame|frameOf|normaliz|skipClosePoints"),
         ("locate", r"Inserter::walk|Inserter::locate|startTet|regionStart|BackgroundGrid|"
                    r"nearestInserted|mayEnter|orderByDistance|hullFaceToward"),
         ("cavity", r"digCavity|ghostInConflict|openConflict|Predicates::|insideBeyond|inSphere|"
