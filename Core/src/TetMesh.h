@@ -159,8 +159,8 @@ public:
   void prefetch(TetRecord r) const { fd3::prefetch(r.words()); }
   void prefetch(TetId t) const { prefetch(record(t)); }
   /// prefetch() of the record of a face code's tetrahedron. The face is not cleared: it only
-  /// moves the address within the record, in the same cache line (records are 32 bytes, and
-  /// aligned to them in a mesh of any size, BulkAllocator.cxx).
+  /// moves the address within the record, in the same cache line (records are 32 bytes, and the
+  /// records' array is aligned to a cache line, BulkAllocator.cxx).
   void prefetchOfFace(FaceCode code) const { fd3::prefetch(words_ + 2 * std::size_t(code)); }
 
 protected:

@@ -1,10 +1,11 @@
 // The allocator of the kernel's large arrays (tetrahedra, vertices, output ids): elements are left
-// uninitialized (they are written right after), and large blocks are aligned to 2 MB, so that a
-// system whose transparent huge pages are always on can back them with huge pages. Below 1 GiB they
-// are not asked for (madvise): the first touch of each page dominates what pages cost, and where
-// the host takes freed memory back a huge page's first touch costs more than its 4 KB pages. From
-// 1 GiB on, the tetrahedra of large surface samples, whose thin tetrahedra reach across the whole
-// set, need the reach of huge pages in the TLB more (docs/performance.md has the figures).
+// uninitialized (they are written right after), and blocks are aligned to a cache line, large ones
+// to 2 MB so that a system whose transparent huge pages are always on can back them with huge
+// pages. Below 1 GiB they are not asked for (madvise): the first touch of each page dominates what
+// pages cost, and where the host takes freed memory back a huge page's first touch costs more than
+// its 4 KB pages. From 1 GiB on, the tetrahedra of large surface samples, whose thin tetrahedra
+// reach across the whole set, need the reach of huge pages in the TLB more (docs/performance.md has
+// the figures).
 #ifndef fd3_BulkAllocator_h
 #define fd3_BulkAllocator_h
 
