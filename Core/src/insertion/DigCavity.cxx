@@ -85,7 +85,7 @@ std::size_t Inserter::makeRoomInCavityLists(std::size_t count)
 // writes them); in a locking pass, one that another inserter holds (not read at all).
 //
 // No branch depends on a test's outcome, a coin toss to the predictor: the outcome only picks the
-// flag written and which list's count advances (the lists have room for every face of the
+// flag written and which list's end advances (the lists have room for every face of the
 // tetrahedron at hand). Behind a mispredicted branch, the processor threw away the next tests it
 // had started while the determinant was computed. The records, the vertices and the lists are
 // reached through locals, which the compiler keeps in registers across the stores.
