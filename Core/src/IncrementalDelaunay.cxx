@@ -143,10 +143,8 @@ void extractOutput(IdArray records, std::size_t slots, const std::uint32_t* poin
     team.run(
       parts,
       [&](std::size_t k) {
-        // The bounds in locals, or the loop's test divides on every slot (the stores might change
-        // the captured values, as far as the compiler knows).
-        const std::size_t first = slots * k / parts, last = slots * (k + 1) / parts;
-        for (std::size_t t = first; t < last; ++t)
+        const Part part = partOf(slots, k, parts);
+        for (std::size_t t = part.first; t < part.last; ++t)
           if (const std::uint32_t id = newId[t]; id != kDropped)
             for (int f = 0; f < 4; ++f)
             {

@@ -137,15 +137,16 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
     forParts([&](std::size_t k) {
       std::uint32_t* mine = &count[k * kBuckets];
       std::fill(mine, mine + kBuckets, 0u);
-      const std::size_t first = n * k / parts, last = n * (k + 1) / parts; // once, see below
-      for (std::size_t i = first; i < last; ++i)
+      const Part part = partOf(n, k, parts);
+      for (std::size_t i = part.first; i < part.last; ++i)
         ++mine[digit(words[i])];
     });
     // Where each part's words of each digit go: by digit, then by part (stable). Each thread sums
     // a stretch of digits over the parts, then turns them into offsets: one thread walking every
     // digit across every part's row missed the cache on each step.
     forParts([&](std::size_t k) {
-      for (std::size_t b = kBuckets * k / parts; b < kBuckets * (k + 1) / parts; ++b)
+      const Part digits = partOf(kBuckets, k, parts);
+      for (std::size_t b = digits.first; b < digits.last; ++b)
       {
         std::uint32_t sum = 0;
         for (std::size_t j = 0; j < parts; ++j)
@@ -157,7 +158,8 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
     for (std::uint32_t& digitWords : total)
       start += std::exchange(digitWords, start);
     forParts([&](std::size_t k) {
-      for (std::size_t b = kBuckets * k / parts; b < kBuckets * (k + 1) / parts; ++b)
+      const Part digits = partOf(kBuckets, k, parts);
+      for (std::size_t b = digits.first; b < digits.last; ++b)
       {
         std::uint32_t offset = total[b];
         for (std::size_t j = 0; j < parts; ++j)
@@ -166,10 +168,8 @@ void radixSortByHighHalf(Words& words, int bits, ThreadTeam* team)
     });
     forParts([&](std::size_t k) {
       std::uint32_t* next = &count[k * kBuckets];
-      // The bounds in locals: the stores could change the captured n and parts as far as the
-      // compiler knows, so the loop's test divided again on every word.
-      const std::size_t first = n * k / parts, last = n * (k + 1) / parts;
-      for (std::size_t i = first; i < last; ++i)
+      const Part part = partOf(n, k, parts);
+      for (std::size_t i = part.first; i < part.last; ++i)
         buffer[next[digit(words[i])]++] = words[i];
     });
     words.swap(buffer);
@@ -436,8 +436,8 @@ IdArray brioRounds(const IdArray& sorted, const std::uint16_t* key,
   team.run(
     parts,
     [&](std::size_t k) {
-      const std::size_t first = n * k / parts, last = n * (k + 1) / parts; // once, as above
-      for (std::size_t i = first; i < last; ++i)
+      const Part part = partOf(n, k, parts);
+      for (std::size_t i = part.first; i < part.last; ++i)
         ++count[k * rounds + roundOf(sorted[i])];
     },
     record);
@@ -453,8 +453,8 @@ IdArray brioRounds(const IdArray& sorted, const std::uint16_t* key,
   team.run(
     parts,
     [&](std::size_t k) {
-      const std::size_t first = n * k / parts, last = n * (k + 1) / parts;
-      for (std::size_t i = first; i < last; ++i)
+      const Part part = partOf(n, k, parts);
+      for (std::size_t i = part.first; i < part.last; ++i)
         order[count[k * rounds + roundOf(sorted[i])]++] = sorted[i];
     },
     record);

@@ -178,7 +178,10 @@ SharedStretches::SharedStretches(std::size_t count, std::size_t parts) : stretch
   if (count > 0xFFFFFFFFu)
     throw std::length_error("fd3: a pass of more than 2^32 points");
   for (std::size_t k = 0; k < parts; ++k)
-    stretches_[k].range.store(pack(count * k / parts, count * (k + 1) / parts));
+  {
+    const Part part = partOf(count, k, parts);
+    stretches_[k].range.store(pack(part.first, part.last));
+  }
 }
 
 bool SharedStretches::next(std::size_t k, std::size_t& rank)
@@ -385,11 +388,8 @@ void Triangulator::shareOut(const IdArray& vertices, const Partition& partition,
   team_.run(
     parts,
     [&](std::size_t k) {
-      // The bounds in locals: push_back() might change the captured values, as far as the
-      // compiler knows, and the loop's test would divide on every vertex.
-      const std::size_t first = vertices.size() * k / parts;
-      const std::size_t last = vertices.size() * (k + 1) / parts;
-      for (std::size_t i = first; i < last; ++i)
+      const Part part = partOf(vertices.size(), k, parts);
+      for (std::size_t i = part.first; i < part.last; ++i)
         byStretch[k][partition.regionOf(point(vertices[i]))].push_back(vertices[i]);
     },
     record);
@@ -489,8 +489,9 @@ IdArray Triangulator::mergeAscending(
   team_.run(
     parts,
     [&](std::size_t k) {
-      std::fill(marked.begin() + std::ptrdiff_t(span * k / parts),
-        marked.begin() + std::ptrdiff_t(span * (k + 1) / parts), std::uint8_t(0));
+      const Part part = partOf(span, k, parts);
+      std::fill(marked.begin() + std::ptrdiff_t(part.first),
+        marked.begin() + std::ptrdiff_t(part.last), std::uint8_t(0));
     },
     record);
   team_.run(

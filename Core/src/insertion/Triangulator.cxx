@@ -283,9 +283,8 @@ const std::uint32_t* Triangulator::packPointIds()
     team_.run(
       parts,
       [&](std::size_t k) {
-        // The bounds in locals: the stores through `packed` could change the captured values,
-        // so the loop's test would divide again on every id.
-        const std::size_t first = a + (end - a) * k / parts, last = a + (end - a) * (k + 1) / parts;
+        const Part part = partOf(end - a, k, parts);
+        const std::size_t first = a + part.first, last = a + part.last;
         const Vertex* vertices = mesh_.vertices.data();
         for (std::size_t i = first; i < last; ++i)
         {

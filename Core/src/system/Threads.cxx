@@ -168,7 +168,11 @@ void ThreadTeam::forRanges(std::size_t count, const char* phase,
 {
   const std::size_t parts = partsFor(count);
   run(
-    parts, [&](std::size_t k) { f(k, count * k / parts, count * (k + 1) / parts); },
+    parts,
+    [&](std::size_t k) {
+      const Part part = partOf(count, k, parts);
+      f(k, part.first, part.last);
+    },
     newRecord(phase));
 }
 

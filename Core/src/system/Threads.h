@@ -28,6 +28,18 @@ namespace fd3
 /// kMinThreadLimit lets any machine run, and test, what a large one runs).
 int boundedThreads(int requested);
 
+/// Part k of [0, count) cut into `parts` contiguous parts, in order. A loop over a part takes its
+/// bounds from here into locals: written in the loop's test, they were divided again on every
+/// element, since the loop's stores might change the captured count, as far as the compiler knows.
+struct Part
+{
+  std::size_t first, last;
+};
+inline Part partOf(std::size_t count, std::size_t k, std::size_t parts)
+{
+  return {count * k / parts, count * (k + 1) / parts};
+}
+
 class ThreadTeam
 {
 public:
@@ -144,14 +156,23 @@ void ThreadTeam::countThenWrite(ThreadedWork& record, std::size_t first, std::si
     return;
   }
   std::vector<std::size_t> offset(parts + 1, 0);
-  const auto begin = [&](std::size_t k) { return first + n * k / parts; };
   run(
-    parts, [&](std::size_t k) { offset[k + 1] = count(begin(k), begin(k + 1)); }, record);
+    parts,
+    [&](std::size_t k) {
+      const Part part = partOf(n, k, parts);
+      offset[k + 1] = count(first + part.first, first + part.last);
+    },
+    record);
   offset[0] = written;
   for (std::size_t k = 0; k < parts; ++k)
     offset[k + 1] += offset[k];
   run(
-    parts, [&](std::size_t k) { write(k, begin(k), begin(k + 1), offset[k]); }, record);
+    parts,
+    [&](std::size_t k) {
+      const Part part = partOf(n, k, parts);
+      write(k, first + part.first, first + part.last, offset[k]);
+    },
+    record);
   written = offset[parts];
 }
 
@@ -184,7 +205,6 @@ void ThreadTeam::accumulate(Vector& v, const char* phase)
 {
   using Value = typename Vector::value_type;
   const std::size_t n = v.size(), parts = partsFor(n);
-  const auto begin = [&](std::size_t k) { return n * k / parts; };
   std::vector<Value> before(parts + 1, Value(0)); // the sum of the stretches before each
   ThreadedWork& record = newRecord(phase);
   if (parts > 1)
@@ -193,7 +213,8 @@ void ThreadTeam::accumulate(Vector& v, const char* phase)
       parts,
       [&](std::size_t k) {
         Value sum(0);
-        for (std::size_t i = begin(k); i < begin(k + 1); ++i)
+        const Part part = partOf(n, k, parts);
+        for (std::size_t i = part.first; i < part.last; ++i)
           sum += v[i];
         before[k + 1] = sum;
       },
@@ -205,7 +226,8 @@ void ThreadTeam::accumulate(Vector& v, const char* phase)
     parts,
     [&](std::size_t k) {
       Value sum = before[k];
-      for (std::size_t i = begin(k); i < begin(k + 1); ++i)
+      const Part part = partOf(n, k, parts);
+      for (std::size_t i = part.first; i < part.last; ++i)
         v[i] = sum += v[i];
     },
     record);
