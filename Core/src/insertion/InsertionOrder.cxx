@@ -41,12 +41,12 @@ class HilbertTable
   static_assert(kHilbertBits % 2 == 0, "the table goes two levels at a time");
 
 public:
-  HilbertTable()
+  constexpr HilbertTable()
   {
     for (int state = 0; state < kStates; ++state)
       for (std::uint32_t bits = 0; bits < 64; ++bits)
       {
-        std::uint32_t high, low;
+        std::uint32_t high = 0, low = 0;
         const int middle = step(state, bits >> 3, high);
         const int next = step(middle, bits & 7u, low);
         entry_[state][bits] = static_cast<std::uint16_t>(next << 6 | high << 3 | low);
@@ -74,12 +74,13 @@ private:
 
   // One level: the curve's bits (axis 0 in the high bit) for the level's bits b (axis 0 in the
   // low bit, as interleaved), and the state below.
-  static int step(int state, std::uint32_t b, std::uint32_t& curve)
+  // Written for a constant expression in C++17 (no std::swap, std::equal or uninitialised local).
+  static constexpr int step(int state, std::uint32_t b, std::uint32_t& curve)
   {
     int parity = state & 1, permutation = (state >> 1) % 6, flips = (state >> 1) / 6;
     std::uint8_t axis[3] = {
       kPermutations[permutation][0], kPermutations[permutation][1], kPermutations[permutation][2]};
-    int t[3];
+    int t[3] = {};
     for (int i = 0; i < 3; ++i)
       t[i] = static_cast<int>((b >> axis[i]) & 1u) ^ ((flips >> i) & 1);
     // Skilling's inner loop, on the transform of the levels below: axis i's bit set inverts axis
@@ -90,7 +91,9 @@ private:
         flips ^= 1;
       else
       {
-        std::swap(axis[0], axis[i]);
+        const std::uint8_t first = axis[0];
+        axis[0] = axis[i];
+        axis[i] = first;
         const int differ = (flips ^ (flips >> i)) & 1;
         flips ^= differ | (differ << i);
       }
@@ -99,17 +102,18 @@ private:
     const int g0 = t[0], g1 = t[1] ^ g0, g2 = t[2] ^ g1;
     curve = static_cast<std::uint32_t>((g0 ^ parity) << 2 | (g1 ^ parity) << 1 | (g2 ^ parity));
     parity ^= g2;
-    for (permutation = 0; permutation < 6; ++permutation)
-      if (std::equal(axis, axis + 3, kPermutations[permutation]))
+    for (permutation = 0; permutation < 6; ++permutation) // two axes decide the third
+      if (axis[0] == kPermutations[permutation][0] && axis[1] == kPermutations[permutation][1])
         break;
     return (6 * flips + permutation) * 2 + parity;
   }
 
-  std::uint16_t entry_[kStates][64];
+  std::uint16_t entry_[kStates][64] = {};
 };
 
-// Built before main(), not on first use: a local static's guard was tested on every point.
-const HilbertTable kHilbertTable;
+// Built by the compiler: a local static's guard was tested on every point, and a table built
+// before main() would read as zeros to a static constructor of a program that runs first.
+constexpr HilbertTable kHilbertTable;
 
 } // namespace
 
