@@ -487,6 +487,29 @@ inline __m256d swapHalves(__m256d v)
 {
   return _mm256_permute2f128_pd(v, v, 1);
 }
+/// Four points less e, one point to a lane: x = (ax - ex, bx - ex, cx - ex, dx - ex), and so on.
+struct FromApex
+{
+  FromApex(
+    const InSphereApex& e, const double* a, const double* b, const double* c, const double* d)
+  {
+    // (ax, ay, cx, cy) and (bx, by, dx, dy) give the x and y lanes.
+    const __m256d ac =
+      _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(a)), _mm_loadu_pd(c), 1);
+    const __m256d bd =
+      _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(b)), _mm_loadu_pd(d), 1);
+    x = _mm256_sub_pd(_mm256_unpacklo_pd(ac, bd), e.x);
+    y = _mm256_sub_pd(_mm256_unpackhi_pd(ac, bd), e.y);
+    z = _mm256_sub_pd(_mm256_set_pd(d[2], c[2], b[2], a[2]), e.z);
+  }
+  /// (|a - e|^2, |b - e|^2, |c - e|^2, |d - e|^2), as distance2() computes each.
+  __m256d distances2() const
+  {
+    return _mm256_add_pd(
+      _mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+  }
+  __m256d x, y, z;
+};
 } // namespace lanes
 #endif
 
@@ -500,14 +523,8 @@ inline double inSphereDeterminant(const InSphereApex& e, const double* a, const 
 {
 #if defined(__AVX__)
   using namespace lanes;
-  // (ax, ay, cx, cy) and (bx, by, dx, dy) give the x and y lanes.
-  const __m256d ac =
-    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(a)), _mm_loadu_pd(c), 1);
-  const __m256d bd =
-    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(b)), _mm_loadu_pd(d), 1);
-  const __m256d x = _mm256_sub_pd(_mm256_unpacklo_pd(ac, bd), e.x);
-  const __m256d y = _mm256_sub_pd(_mm256_unpackhi_pd(ac, bd), e.y);
-  const __m256d z = _mm256_sub_pd(_mm256_set_pd(d[2], c[2], b[2], a[2]), e.z);
+  const FromApex points(e, a, b, c, d);
+  const __m256d x = points.x, y = points.y, z = points.z;
   // (ab, bc, cd, da) and (ac, bd, -ac, -bd).
   const __m256d m = _mm256_sub_pd(_mm256_mul_pd(x, rotate(y)), _mm256_mul_pd(rotate(x), y));
   const __m256d n = _mm256_sub_pd(_mm256_mul_pd(x, swapHalves(y)), _mm256_mul_pd(swapHalves(x), y));
@@ -516,8 +533,7 @@ inline double inSphereDeterminant(const InSphereApex& e, const double* a, const 
     _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(z, rotate(m)), _mm256_mul_pd(rotate(z), n)),
       _mm256_mul_pd(swapHalves(z), m));
   // (alift, blift, clift, dlift)
-  __m256d l =
-    _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+  __m256d l = points.distances2();
   if (lowered)
     l = _mm256_sub_pd(l, _mm256_loadu_pd(lowered));
   if (lifts)

@@ -16,9 +16,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 namespace fd3
 {
@@ -54,17 +51,7 @@ double dot(const double* u, const double* v)
 void distanceKeys(const double* const q[4], const double* p, std::uint64_t key[4])
 {
 #if defined(__AVX__)
-  // (q0x, q0y, q2x, q2y) and (q1x, q1y, q3x, q3y) give the x and y lanes.
-  const __m256d ac =
-    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(q[0])), _mm_loadu_pd(q[2]), 1);
-  const __m256d bd =
-    _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(q[1])), _mm_loadu_pd(q[3]), 1);
-  const __m256d x = _mm256_sub_pd(_mm256_unpacklo_pd(ac, bd), _mm256_set1_pd(p[0]));
-  const __m256d y = _mm256_sub_pd(_mm256_unpackhi_pd(ac, bd), _mm256_set1_pd(p[1]));
-  const __m256d z =
-    _mm256_sub_pd(_mm256_set_pd(q[3][2], q[2][2], q[1][2], q[0][2]), _mm256_set1_pd(p[2]));
-  const __m256d d =
-    _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(x, x), _mm256_mul_pd(y, y)), _mm256_mul_pd(z, z));
+  const __m256d d = lanes::FromApex(InSphereApex(p), q[0], q[1], q[2], q[3]).distances2();
   const __m256d high = _mm256_castsi256_pd(_mm256_set1_epi64x(~std::int64_t(3)));
   const __m256d faces = _mm256_castsi256_pd(_mm256_set_epi64x(3, 2, 1, 0));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(key),
