@@ -1,6 +1,7 @@
 #include "insertion/Triangulator.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <numeric>
@@ -97,6 +98,9 @@ bool Triangulator::insertOne(
   pools_[0]->retire(mesh_.tets); // every slot below slots() live or dead, as after a round
   if (outcome == Inserter::Outcome::Duplicate)
     return false;
+  // Hidden would leave the last cavity's lists the previous insertion's: IncrementalDelaunay::
+  // addOne() refuses weighted meshes, where alone a point can be hidden.
+  assert(outcome == Inserter::Outcome::Inserted);
   const TetMesh& tets = mesh_.tets;
   for (const FaceCode c : inserter.lastCavity().deleted)
     if (!tets.isGhost(tetOf(c)))
